@@ -1,0 +1,133 @@
+"""The layered capacitor of the seed's Fig. 2: stratum corneum | air gap | insulator (Heß & Forsbach 2020).
+
+All quantities SI. ``gap`` is the air-gap thickness d_a [m] (>= 0, zero at contact points), ``voltage`` the
+voltage U across the stack [V] (only U² enters). Everything broadcasts over ``gap`` and ``voltage`` arrays.
+
+Sign convention (``docs/conventions.md``): :meth:`DielectricStack.pressure` returns the *magnitude* of the
+attractive electrostatic stress σ_el >= 0. As a surface traction in the contact solver's convention
+(positive = compressive) it enters as ``-σ_el``. The interaction energy per unit area is
+``V(d) = -w(d)`` (:meth:`DielectricStack.energy`) and ``σ_el = dV/dd``.
+
+Pure numpy: importing this module loads neither numba nor an FFT library.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from surfaces._checks import check_finite_array, check_positive
+
+#: Vacuum permittivity ε0 [F/m] (CODATA 2018).
+EPSILON_0 = 8.8541878128e-12
+
+
+@dataclass(frozen=True)
+class ElectricFields:
+    """Normal electric fields in the three layers [V/m] and the electric displacement D [C/m²] (Eqs. 18–19)."""
+
+    stratum_corneum: np.ndarray
+    air: np.ndarray
+    insulator: np.ndarray
+    displacement: np.ndarray
+
+
+@dataclass(frozen=True)
+class DielectricStack:
+    """Stratum corneum, air gap and insulating screen layer in series (seed Eqs. 18–25).
+
+    Defaults are the seed's Table 1: ``d_sc`` = 250 µm, ``eps_sc`` = 3000, ``d_i`` = 1 µm, ``eps_i`` = 3.9,
+    ``eps_a`` = 1. Thicknesses in m, permittivities relative (dimensionless).
+    """
+
+    d_sc: float = 250e-6
+    eps_sc: float = 3000.0
+    d_i: float = 1e-6
+    eps_i: float = 3.9
+    eps_a: float = 1.0
+
+    def __post_init__(self):
+        for name in ("d_sc", "eps_sc", "d_i", "eps_i", "eps_a"):
+            object.__setattr__(self, name, check_positive(name, getattr(self, name)))
+
+    # -- geometry of the series capacitor ------------------------------------------------------------------
+    @property
+    def dielectric_offset(self) -> float:
+        """``c = d_sc/eps_sc + d_i/eps_i`` [m]: the solid layers' air-equivalent thickness (ε_ra = 1)."""
+        return self.d_sc / self.eps_sc + self.d_i / self.eps_i
+
+    def electrical_thickness(self, gap) -> np.ndarray:
+        """``h(d) = d_sc/eps_sc + d/eps_a + d_i/eps_i`` [m], the bracket of Eqs. 20–22."""
+        gap = check_finite_array("gap", gap, nonnegative=True)
+        return self.dielectric_offset + gap / self.eps_a
+
+    @staticmethod
+    def _voltage_squared(voltage) -> np.ndarray:
+        return check_finite_array("voltage", voltage) ** 2
+
+    # -- Eqs. 18-24 ----------------------------------------------------------------------------------------
+    def fields(self, gap, voltage) -> ElectricFields:
+        """Fields from D-continuity (Eq. 18) and the voltage sum (Eq. 19): ``E_k = U / (eps_k h(d))`` [V/m]."""
+        voltage = check_finite_array("voltage", voltage)
+        field_air_equivalent = voltage / self.electrical_thickness(gap)      # = D / eps0
+        return ElectricFields(stratum_corneum=field_air_equivalent / self.eps_sc,
+                              air=field_air_equivalent / self.eps_a,
+                              insulator=field_air_equivalent / self.eps_i,
+                              displacement=EPSILON_0 * field_air_equivalent)
+
+    def pressure(self, gap, voltage) -> np.ndarray:
+        """Electrostatic attraction per unit area σ_el = ε0 U² / (2 eps_a h(d)²) [Pa] (Eq. 21)."""
+        return EPSILON_0 * self._voltage_squared(voltage) / (2 * self.eps_a * self.electrical_thickness(gap) ** 2)
+
+    def pressure_derivative(self, gap, voltage, order: int = 1) -> np.ndarray:
+        """d^k σ_el / dd^k for k = 1, 2 [Pa/m^k]; the 1/eps_a chain-rule factor from dh/dd is included.
+
+        ``dσ/dd = -2 σ / (eps_a h)``, ``d²σ/dd² = 6 σ / (eps_a h)²``.
+        """
+        if order not in (1, 2):
+            raise ValueError(f"order must be 1 or 2, got {order!r}")
+        eps_a_h = self.eps_a * self.electrical_thickness(gap)
+        sigma = self.pressure(gap, voltage)
+        return -2 * sigma / eps_a_h if order == 1 else 6 * sigma / eps_a_h ** 2
+
+    def force(self, gap, voltage, area) -> np.ndarray:
+        """Electrostatic force F_el = σ_el A [N] on a plate of ``area`` [m²] (Eq. 20)."""
+        area = check_finite_array("area", area, nonnegative=True)
+        return self.pressure(gap, voltage) * area
+
+    def strong_troxel_pressure(self, voltage) -> np.ndarray:
+        """Direct-contact limit σ_el(d = 0) = ε0 U² / (2 eps_a c²) [Pa] (Eq. 23; Eq. 24 for eps_a = 1)."""
+        return self.pressure(0.0, voltage)
+
+    def work_of_adhesion(self, gap, voltage) -> np.ndarray:
+        """Work of electroadhesion w(d) = ∫_d^∞ σ_el dd' = ε0 U² / (2 h(d)) [J/m²] (Eq. 22)."""
+        return EPSILON_0 * self._voltage_squared(voltage) / (2 * self.electrical_thickness(gap))
+
+    def energy(self, gap, voltage) -> np.ndarray:
+        """Interaction energy per unit area V(d) = -w(d) [J/m²]; ``dV/dd = σ_el``."""
+        return -self.work_of_adhesion(gap, voltage)
+
+    # -- Eq. 25 --------------------------------------------------------------------------------------------
+    def equivalent_gap(self, gap_field, weights=None) -> float:
+        """Equivalent air gap d_eq with σ_el(d_eq) = <σ_el(d(x, y))> over the apparent area (Eq. 25) [m].
+
+        Closed-form inversion: ``d_eq = eps_a c (<(1 + d/(eps_a c))^-2>^(-1/2) - 1)``; independent of the
+        voltage. Contact points (d = 0) are part of the average. ``weights`` (same shape, >= 0, or a boolean
+        mask of the apparent area) make it a weighted average.
+        """
+        gap = check_finite_array("gap_field", gap_field, nonnegative=True)
+        if gap.size == 0:
+            raise ValueError("gap_field is empty; it needs at least one value")
+        offset = self.eps_a * self.dielectric_offset
+        inverse_square = (1.0 + gap / offset) ** -2
+        if weights is None:
+            mean = inverse_square.mean()
+        else:
+            weights = check_finite_array("weights", weights, nonnegative=True)
+            if weights.shape != gap.shape:
+                raise ValueError(f"weights has shape {weights.shape}, gap_field has {gap.shape}; they must match")
+            total = weights.sum()
+            if total <= 0:
+                raise ValueError("weights must have a positive sum (an empty apparent area was given)")
+            mean = float(np.sum(weights * inverse_square) / total)
+        return float(offset * (mean ** -0.5 - 1.0))

@@ -1,0 +1,62 @@
+"""Input validation shared by ``surfaces`` and ``roughcontact``.
+
+Every check raises ``ValueError`` (or ``TypeError`` for a wrong kind of object) whose message names the
+parameter, the offending value and the valid range, as the project's standards require.
+"""
+from __future__ import annotations
+
+import math
+from numbers import Real
+
+import numpy as np
+
+
+def check_real(name: str, value, *, low=None, high=None, low_open=False, high_open=False,
+               allow_none=False):
+    """Return ``float(value)`` after checking it is a finite real number in the given range.
+
+    ``low``/``high`` bound the range; ``*_open`` makes that bound exclusive. ``None`` bounds are absent.
+    """
+    if value is None and allow_none:
+        return None
+    if isinstance(value, bool) or not isinstance(value, (Real, np.floating, np.integer)):
+        raise TypeError(f"{name} must be a real number, got {value!r} of type {type(value).__name__}")
+    value = float(value)
+    lo = "-inf" if low is None else f"{low:g}"
+    hi = "inf" if high is None else f"{high:g}"
+    interval = f"{'(' if low_open or low is None else '['}{lo}, {hi}{')' if high_open or high is None else ']'}"
+    if not math.isfinite(value):
+        raise ValueError(f"{name} must be finite, got {value!r}; valid range {interval}")
+    if low is not None and (value < low or (low_open and value == low)):
+        raise ValueError(f"{name} = {value!r} is out of range; valid range {interval}")
+    if high is not None and (value > high or (high_open and value == high)):
+        raise ValueError(f"{name} = {value!r} is out of range; valid range {interval}")
+    return value
+
+
+def check_positive(name: str, value, *, allow_none=False):
+    """Return ``float(value)`` after checking it is finite and strictly positive."""
+    return check_real(name, value, low=0.0, low_open=True, allow_none=allow_none)
+
+
+def check_finite_array(name: str, values, *, nonnegative=False, dtype=np.float64) -> np.ndarray:
+    """Return ``values`` as a float array after checking there is no NaN/inf (and no negative entry)."""
+    try:
+        array = np.asarray(values, dtype=dtype)
+    except (TypeError, ValueError) as error:
+        raise TypeError(f"{name} must be an array of real numbers, got {type(values).__name__}") from error
+    finite = np.isfinite(array)
+    if not finite.all():
+        bad = array[~finite].flat[0]
+        raise ValueError(f"{name} must be finite everywhere; found {bad!r} at "
+                         f"{np.argwhere(~finite)[0].tolist()} (valid range: finite reals)")
+    if nonnegative and (array < 0).any():
+        raise ValueError(f"{name} must be >= 0 everywhere; minimum is {array.min()!r} (valid range [0, inf))")
+    return array
+
+
+def check_choice(name: str, value, choices):
+    """Return ``value`` after checking it is one of ``choices``."""
+    if value not in choices:
+        raise ValueError(f"{name} = {value!r} is not valid; choose one of {sorted(choices)}")
+    return value

@@ -1,0 +1,135 @@
+"""Height fields: heights in metres on a :class:`~surfaces.Grid`, with the recipe that made them."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ._checks import check_finite_array, check_real
+from .grid import Grid
+from .io import load_npz, save_npz
+
+
+def _frozen(array: np.ndarray) -> np.ndarray:
+    array = np.array(array, dtype=np.float64, copy=True)
+    array.flags.writeable = False
+    return array
+
+
+@dataclass(frozen=True, eq=False)
+class HeightField:
+    """Immutable topography ``h(x, y)`` [m] on ``grid``; positive heights point towards the counter-face.
+
+    ``metadata`` records how the field was made (generator name, parameters, seed) so a saved field can be
+    regenerated. Fields on the same grid add (``a + b``) and scale (``2.0 * a``); each operation returns a
+    new field whose metadata lists its parts.
+    """
+
+    grid: Grid
+    heights: np.ndarray
+    metadata: dict = field(default_factory=dict)
+
+    def __post_init__(self):
+        if not isinstance(self.grid, Grid):
+            raise TypeError(f"grid must be a surfaces.Grid, got {type(self.grid).__name__}")
+        heights = check_finite_array("heights", self.heights)
+        if heights.shape != self.grid.shape:
+            raise ValueError(f"heights has shape {heights.shape}, but grid.shape is {self.grid.shape}")
+        object.__setattr__(self, "heights", _frozen(heights))
+        object.__setattr__(self, "metadata", dict(self.metadata))
+
+    # -- construction --------------------------------------------------------------------------------------
+    @classmethod
+    def from_array(cls, heights, lengths, periodic=False, **metadata) -> "HeightField":
+        """Wrap a plain array of heights [m] measured over ``lengths`` [m]."""
+        heights = np.asarray(heights, dtype=float)
+        if heights.ndim == 1:
+            heights = heights[:, None]
+        if np.ndim(lengths) == 0:
+            lengths = (lengths, lengths if heights.shape[1] > 1 else lengths / heights.shape[0])
+        grid = Grid(heights.shape, tuple(lengths), periodic)
+        return cls(grid, heights, {"generator": "from_array", **metadata})
+
+    @classmethod
+    def read(cls, path, lengths=None, periodic=False, unit: float = 1.0) -> "HeightField":
+        """Read a height map from ``.npz`` (saved field), ``.npy`` or whitespace-separated text.
+
+        For ``.npy`` and text, ``lengths`` [m] is required and ``unit`` converts the stored numbers to metres
+        (e.g. ``unit=1e-6`` for a map in µm).
+        """
+        path = Path(path)
+        if path.suffix == ".npz":
+            return cls.load(path)
+        if lengths is None:
+            raise ValueError(f"lengths (physical size in m) is required to read {path.name}; got None")
+        check_real("unit", unit, low=0.0, low_open=True)
+        raw = np.load(path) if path.suffix == ".npy" else np.loadtxt(path, ndmin=2)
+        return cls.from_array(np.asarray(raw, dtype=float) * unit, lengths, periodic, source=str(path))
+
+    # -- arithmetic ----------------------------------------------------------------------------------------
+    def _check_same_grid(self, other: "HeightField"):
+        if other.grid != self.grid:
+            raise ValueError(f"cannot combine height fields on different grids: {self.grid} vs {other.grid}")
+
+    def __add__(self, other):
+        if isinstance(other, HeightField):
+            self._check_same_grid(other)
+            return HeightField(self.grid, self.heights + other.heights,
+                               {"generator": "sum", "parts": [self.metadata, other.metadata]})
+        if isinstance(other, (int, float, np.floating, np.integer)):
+            return HeightField(self.grid, self.heights + float(other),
+                               {"generator": "offset", "offset": float(other), "parts": [self.metadata]})
+        return NotImplemented
+
+    __radd__ = __add__
+
+    def __neg__(self):
+        return self * -1.0
+
+    def __sub__(self, other):
+        return self + (-other)
+
+    def __mul__(self, factor):
+        if not isinstance(factor, (int, float, np.floating, np.integer)):
+            return NotImplemented
+        factor = check_real("factor", factor)
+        return HeightField(self.grid, self.heights * factor,
+                           {"generator": "scaled", "factor": factor, "parts": [self.metadata]})
+
+    __rmul__ = __mul__
+
+    # -- derived quantities ----------------------------------------------------------------------------------
+    @property
+    def shape(self) -> tuple:
+        return self.grid.shape
+
+    def detrended(self) -> "HeightField":
+        """Copy with the mean height removed."""
+        return HeightField(self.grid, self.heights - self.heights.mean(),
+                           {"generator": "detrended", "parts": [self.metadata]})
+
+    # -- persistence -----------------------------------------------------------------------------------------
+    def save(self, path) -> Path:
+        """Save heights, grid and metadata to ``path`` (``.npz``); :meth:`load` restores an equal field."""
+        from . import __version__
+        return save_npz(path, {"heights": self.heights},
+                        {"kind": "HeightField", "grid": self.grid.to_dict(), "metadata": self.metadata,
+                         "version": __version__})
+
+    @classmethod
+    def load(cls, path) -> "HeightField":
+        arrays, meta = load_npz(path)
+        if meta.get("kind") != "HeightField":
+            raise ValueError(f"{path} holds a {meta.get('kind')!r}, not a HeightField")
+        return cls(Grid.from_dict(meta["grid"]), arrays["heights"], meta["metadata"])
+
+    def __eq__(self, other):
+        if not isinstance(other, HeightField):
+            return NotImplemented
+        return self.grid == other.grid and np.array_equal(self.heights, other.heights)
+
+    def __repr__(self):
+        h = self.heights
+        return (f"HeightField(shape={self.grid.shape}, lengths={self.grid.lengths}, periodic={self.grid.periodic}, "
+                f"h_min={h.min():.3g} m, h_max={h.max():.3g} m, generator={self.metadata.get('generator')!r})")
