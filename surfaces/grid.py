@@ -88,15 +88,27 @@ class Grid:
         """Pixel coordinates as two arrays of ``shape`` [m] (``indexing='ij'``)."""
         return np.meshgrid(*self.coordinates(), indexing="ij")
 
-    def wavevectors(self, real: bool = False) -> tuple:
-        """Angular wavevector components ``(qx, qy)`` [rad/m], broadcastable to the spectrum shape.
+    def mode_indices(self, real: bool = False) -> tuple:
+        """Integer wavenumbers ``(kx, ky)`` in ``numpy.fft`` order, broadcastable to the spectrum shape.
 
-        ``real=True`` gives the half spectrum of ``numpy.fft.rfft2`` (last axis halved).
+        ``real=True`` gives the half spectrum of ``numpy.fft.rfft2`` (last axis ``0 .. ny//2``).
         """
-        qx = 2 * np.pi * np.fft.fftfreq(self.shape[0], d=self.spacing[0])
-        fy = np.fft.rfftfreq if real else np.fft.fftfreq
-        qy = 2 * np.pi * fy(self.shape[1], d=self.spacing[1])
-        return qx[:, None], qy[None, :]
+        nx, ny = self.shape
+        kx = np.concatenate([np.arange((nx - 1) // 2 + 1), np.arange(-(nx // 2), 0)])
+        ky = np.arange(ny // 2 + 1) if real else np.concatenate([np.arange((ny - 1) // 2 + 1),
+                                                                 np.arange(-(ny // 2), 0)])
+        return kx[:, None], ky[None, :]
+
+    def wavevectors(self, real: bool = False) -> tuple:
+        """Angular wavevector components ``(qx, qy) = 2π (kx/Lx, ky/Ly)`` [rad/m], broadcastable to the
+        spectrum shape.
+
+        ``real=True`` gives the half spectrum of ``numpy.fft.rfft2`` (last axis halved). The values depend
+        only on the integer wavenumber and the physical size, so a refined grid has bit-identical ``q`` on
+        the modes it shares with the coarse one.
+        """
+        kx, ky = self.mode_indices(real)
+        return 2 * np.pi * kx / self.lengths[0], 2 * np.pi * ky / self.lengths[1]
 
     @cached_property
     def _q_magnitude(self):
