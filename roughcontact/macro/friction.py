@@ -1,0 +1,144 @@
+"""Sliding friction of a fingerpad under electroadhesion (seed Eqs. 35–46).
+
+Chain for a normal force F_N [N] and voltage U [V]:
+
+1. equivalent air gap d_eq = gap_model(F_N, U) (Eq. 46 or any gap model, :mod:`.gap`);
+2. σ_el = σ_el(d_eq, U) (Eq. 21) and w = w(d_eq, U) (Eq. 22) from :class:`~roughcontact.electrostatics.DielectricStack`;
+3. ridge area before sliding A_R0 = law.area(F_N, w) (Eq. 9 inverted);
+4. friction law F_T = τ0 A_R + μ0 (F_N + σ_el A_R) (Eq. 40; τ0 = 0 gives Eq. 41) with the area reduction
+   A_R = A_R0 − η F_T², η = c₂/A_R0 (Eqs. 43–44). With κ = τ0 + μ0 σ_el this is the quadratic
+   κ η F_T² + F_T − (μ0 F_N + κ A_R0) = 0, whose positive root (Eq. 45) is used in the rationalised form
+
+       F_T = 2 X / (1 + √(1 + 4 κ η X)),   X = μ0 F_N + κ A_R0,
+
+   exact and smooth as σ_el → 0 (it gives F_T = μ0 F_N exactly at U = 0, where Eq. 45 is 0·∞).
+5. μ = F_T / F_N (Eq. 42).
+
+Saturation rule (outside the paper's 0–2.3 N): the empirical reduction law would make A_R negative when
+c₂ (μ0 F_N)² > A_R0² (about 18 N for Table 1). A contact area cannot be negative, so A_R = max(A_R0 − η F_T², 0);
+the self-consistent solution there is A_R = 0, F_T = μ0 F_N, reported by ``area_saturated``.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from surfaces._checks import check_finite_array, check_real
+
+from ..electrostatics import DielectricStack
+from ..results import SavableResult
+from .gap import LinearGap
+from .power_law import MILLIMETRE, PowerLawContact
+
+
+@dataclass(frozen=True)
+class SlidingState(SavableResult):
+    """State of the sliding contact at given (F_N, U); arrays broadcast over both (SI units).
+
+    ``gap`` d_eq [m], ``pressure`` σ_el [Pa], ``work_of_adhesion`` w [J/m²], ``initial_area`` A_R0 [m²] (before
+    tangential loading), ``area`` A_R [m²] (sliding), ``tangential_force`` F_T [N], ``electrostatic_force``
+    F_el = σ_el A_R [N], ``friction_coefficient`` μ = F_T/F_N (Eq. 42; +inf at F_N = 0 with F_T > 0, μ0 at
+    F_N = F_T = 0), ``area_saturated`` where the reduction law hit A_R = 0.
+    """
+
+    normal_force: np.ndarray
+    voltage: np.ndarray
+    gap: np.ndarray
+    pressure: np.ndarray
+    work_of_adhesion: np.ndarray
+    initial_area: np.ndarray
+    area: np.ndarray
+    tangential_force: np.ndarray
+    electrostatic_force: np.ndarray
+    friction_coefficient: np.ndarray
+    area_saturated: np.ndarray
+
+    @property
+    def area_reduction(self) -> np.ndarray:
+        """Relative ridge-area reduction 1 − A_R/A_R0 at the onset of sliding (0 where A_R0 = 0)."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(self.initial_area > 0, 1 - self.area / self.initial_area, 0.0)
+
+
+def _default_gap_model():
+    return LinearGap.paper_table1()
+
+
+@dataclass(frozen=True)
+class SlidingFrictionModel:
+    """Pressure-controlled sliding friction with electroadhesion and tangential area reduction (Eqs. 40–45).
+
+    ``mu0`` μ0 [-], ``contact`` the ridge-area power law (Eq. 9), ``stack`` the dielectric stack (Eqs. 21–22),
+    ``gap_model`` any callable (F_N [N], U [V]) -> d_eq [m], ``c2`` [m⁴/N²] of η = c₂/A_R0 (Eq. 44),
+    ``tau0`` the intrinsic interfacial shear strength τ0 [Pa] of Eq. 40 (0: pressure-controlled, Eq. 41).
+    """
+
+    mu0: float = 0.26
+    contact: PowerLawContact = field(default_factory=PowerLawContact.table1_ridge)
+    stack: DielectricStack = field(default_factory=DielectricStack)
+    gap_model: object = field(default_factory=_default_gap_model)
+    c2: float = 5000 * MILLIMETRE ** 4
+    tau0: float = 0.0
+
+    def __post_init__(self):
+        object.__setattr__(self, "mu0", check_real("mu0", self.mu0, low=0.0, low_open=True))
+        object.__setattr__(self, "c2", check_real("c2", self.c2, low=0.0))
+        object.__setattr__(self, "tau0", check_real("tau0", self.tau0, low=0.0))
+        if not isinstance(self.contact, PowerLawContact):
+            raise TypeError(f"contact must be a PowerLawContact, got {type(self.contact).__name__}")
+        if not isinstance(self.stack, DielectricStack):
+            raise TypeError(f"stack must be a DielectricStack, got {type(self.stack).__name__}")
+        if not callable(self.gap_model):
+            raise TypeError(f"gap_model must be callable as gap_model(normal_force, voltage), "
+                            f"got {type(self.gap_model).__name__}")
+
+    @classmethod
+    def paper_table1(cls) -> SlidingFrictionModel:
+        """The seed's Table 1: μ0 = 0.26, Table-1 stack, ridge law α_R = 74 mm² N^-0.52, β_R = 43.5 mm^0.59,
+        n_R = 1.41, gap d_a = 3.1 µm − 0.5 µm/N · F_N (Eq. 46), c₂ = 5000 mm⁴/N²."""
+        return cls()
+
+    def gap(self, normal_force, voltage) -> np.ndarray:
+        """Equivalent air gap d_eq [m] from the gap model, checked to be finite and >= 0."""
+        force, voltage = np.broadcast_arrays(check_finite_array("normal_force", normal_force),
+                                             check_finite_array("voltage", voltage))
+        gap = np.broadcast_to(np.asarray(self.gap_model(force, voltage), dtype=float), force.shape)
+        return check_finite_array("gap_model output (equivalent gap)", gap, nonnegative=True)
+
+    def state(self, normal_force, voltage) -> SlidingState:
+        """Full sliding state at normal force F_N [N] and voltage U [V] (Eqs. 21–22, 9, 40–45)."""
+        force, voltage = np.broadcast_arrays(check_finite_array("normal_force", normal_force),
+                                             check_finite_array("voltage", voltage))
+        gap = self.gap(force, voltage)
+        sigma = self.stack.pressure(gap, voltage)
+        w = self.stack.work_of_adhesion(gap, voltage)
+        initial_area = self.contact.area(force, w)
+        kappa = self.tau0 + self.mu0 * sigma                     # shear stress per unit ridge area [Pa]
+        loaded = initial_area > 0
+        with np.errstate(divide="ignore", invalid="ignore"):
+            mean_pressure = np.where(loaded, self.mu0 * force / initial_area, 0.0)   # μ0 F_N / A_R0 [Pa]
+        drive = self.mu0 * force + kappa * initial_area           # X [N]
+        if (drive < 0).any():
+            index = tuple(np.argwhere(drive < 0)[0])
+            raise ValueError(f"normal_force = {force[index]!r} N is so tensile that μ0 F_N + (τ0 + μ0 σ_el) A_R0 "
+                             f"< 0 at voltage {voltage[index]!r} V; the friction law needs it >= 0")
+        tangential = 2 * drive / (1 + np.sqrt(1 + 4 * kappa * self.c2 * (mean_pressure + kappa)))
+        saturated = self.c2 * (self.mu0 * force) ** 2 > initial_area ** 2
+        tangential = np.where(saturated, self.mu0 * force, tangential)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            area = np.where(loaded & ~saturated, initial_area - self.c2 * tangential ** 2 / initial_area, 0.0)
+            excess = tangential - self.mu0 * force
+            mu = np.where(force > 0, tangential / force, np.where(excess > 0, np.inf, self.mu0))
+        return SlidingState(normal_force=force.copy(), voltage=voltage.copy(), gap=gap, pressure=sigma,
+                            work_of_adhesion=w, initial_area=initial_area, area=np.maximum(area, 0.0),
+                            tangential_force=tangential, electrostatic_force=sigma * np.maximum(area, 0.0),
+                            friction_coefficient=mu, area_saturated=saturated)
+
+    def tangential_force(self, normal_force, voltage) -> np.ndarray:
+        """Sliding friction force F_T [N] (Eq. 45, rationalised; Eq. 40 if τ0 > 0)."""
+        return self.state(normal_force, voltage).tangential_force
+
+    def friction_coefficient(self, normal_force, voltage) -> np.ndarray:
+        """Apparent friction coefficient μ = F_T/F_N = μ0 (1 + F_el/F_N) (Eq. 42)."""
+        return self.state(normal_force, voltage).friction_coefficient
