@@ -78,7 +78,8 @@ class Grid:
 
     @property
     def fully_periodic(self) -> bool:
-        return all(self.periodic)
+        """True if every axis with more than one pixel is periodic (a profile's y flag is irrelevant)."""
+        return all(periodic for n, periodic in zip(self.shape, self.periodic) if n > 1)
 
     def coordinates(self) -> tuple:
         """Pixel coordinates ``(x, y)`` as two 1-D arrays [m]."""

@@ -78,8 +78,9 @@ class HeightField:
             return HeightField(self.grid, self.heights + other.heights,
                                {"generator": "sum", "parts": [self.metadata, other.metadata]})
         if isinstance(other, (int, float, np.floating, np.integer)):
-            return HeightField(self.grid, self.heights + float(other),
-                               {"generator": "offset", "offset": float(other), "parts": [self.metadata]})
+            offset = check_real("offset", other)
+            return HeightField(self.grid, self.heights + offset,
+                               {"generator": "offset", "offset": offset, "parts": [self.metadata]})
         return NotImplemented
 
     __radd__ = __add__
@@ -88,7 +89,12 @@ class HeightField:
         return self * -1.0
 
     def __sub__(self, other):
+        if not isinstance(other, (HeightField, int, float, np.floating, np.integer)):
+            return NotImplemented
         return self + (-other)
+
+    def __rsub__(self, other):
+        return (-self) + other
 
     def __mul__(self, factor):
         if not isinstance(factor, (int, float, np.floating, np.integer)):
@@ -98,6 +104,14 @@ class HeightField:
                            {"generator": "scaled", "factor": factor, "parts": [self.metadata]})
 
     __rmul__ = __mul__
+
+    def __truediv__(self, divisor):
+        if not isinstance(divisor, (int, float, np.floating, np.integer)):
+            return NotImplemented
+        divisor = check_real("divisor", divisor)
+        if divisor == 0:
+            raise ValueError("divisor must be non-zero, got 0; valid range: finite reals except 0")
+        return self * (1.0 / divisor)
 
     # -- derived quantities ----------------------------------------------------------------------------------
     @property
@@ -123,6 +137,10 @@ class HeightField:
         if meta.get("kind") != "HeightField":
             raise ValueError(f"{path} holds a {meta.get('kind')!r}, not a HeightField")
         return cls(Grid.from_dict(meta["grid"]), arrays["heights"], meta["metadata"])
+
+    def __reduce__(self):
+        # rebuild through the constructor so the unpickled heights are validated and read-only again
+        return (type(self), (self.grid, np.asarray(self.heights), self.metadata))
 
     def __eq__(self, other):
         if not isinstance(other, HeightField):

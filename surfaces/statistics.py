@@ -47,7 +47,7 @@ def rms_height(field: HeightField) -> float:
 
 
 def _gradients(field: HeightField) -> list:
-    """Central-difference gradient components (one-sided at non-periodic edges) [-]."""
+    """Central-difference gradient components (second-order one-sided at non-periodic edges) [-]."""
     grads = []
     for axis, (n, d, periodic) in enumerate(zip(field.grid.shape, field.grid.spacing, field.grid.periodic)):
         if n == 1:
@@ -56,7 +56,7 @@ def _gradients(field: HeightField) -> list:
         if periodic:
             grads.append((np.roll(h, -1, axis) - np.roll(h, 1, axis)) / (2 * d))
         else:
-            grads.append(np.gradient(h, d, axis=axis))
+            grads.append(np.gradient(h, d, axis=axis, edge_order=min(2, n - 1)))
     return grads
 
 
@@ -85,7 +85,8 @@ def rms_curvature(field: HeightField, method=None) -> float:
         if periodic:
             laplacian = laplacian + (np.roll(h, -1, axis) - 2 * h + np.roll(h, 1, axis)) / d ** 2
         else:
-            laplacian = laplacian + np.gradient(np.gradient(h, d, axis=axis), d, axis=axis)
+            laplacian = laplacian + np.gradient(np.gradient(h, d, axis=axis, edge_order=2), d, axis=axis,
+                                                edge_order=2)
     return float(np.sqrt(np.mean(laplacian ** 2)))
 
 
@@ -109,9 +110,13 @@ def psd(field: HeightField, bins=None, window=None) -> tuple:
 
     ``bins``: number of radial bins (default: one per ``2π/L`` ring). ``window``: ``'hann'`` (default on
     non-periodic axes, power-normalised) or ``'none'``. Only ``q > 0`` is returned; empty bins are dropped.
+    Profile: ``C₁`` averages the ``±q`` pair; the Nyquist mode (even ``n``) has no partner and is halved, so that
+    ``2 Σ_q C₁(q) Δq = h_rms²`` exactly (Parseval, ``Δq = 2π/L``) for an unwindowed periodic profile.
     """
     field = _as_field(field)
     grid = field.grid
+    if bins is not None and (isinstance(bins, bool) or not isinstance(bins, (int, np.integer)) or bins < 1):
+        raise ValueError(f"bins must be an integer >= 1 (or None), got {bins!r}")
     h = (field.heights - field.heights.mean()) * _window(field, window)
     power = np.abs(np.fft.fft2(h) / h.size) ** 2
     if grid.is_profile:
@@ -121,14 +126,15 @@ def psd(field: HeightField, bins=None, window=None) -> tuple:
         order = np.argsort(q[positive], kind="stable")
         q_pos, c_pos = q[positive][order], spectrum[positive][order]
         unique_q, inverse = np.unique(q_pos, return_inverse=True)   # average the ±q pair
-        return unique_q, np.bincount(inverse, c_pos) / np.bincount(inverse)
+        c_mean = np.bincount(inverse, c_pos) / np.bincount(inverse)
+        if grid.shape[0] % 2 == 0:
+            c_mean[-1] /= 2                                           # Nyquist: its own partner
+        return unique_q, c_mean
     spectrum = power * grid.area / (2 * np.pi) ** 2
     q = grid.wavevector_magnitude()
     dq = 2 * np.pi / max(grid.lengths)
     q_max = q.max()
     n_bins = int(np.ceil(q_max / dq)) if bins is None else int(bins)
-    if n_bins < 1:
-        raise ValueError(f"bins must be >= 1, got {bins!r}")
     edges = np.linspace(0.5 * dq, q_max * (1 + 1e-12), n_bins + 1) if bins is not None else \
         (np.arange(n_bins + 1) + 0.5) * dq
     index = np.digitize(q.ravel(), edges) - 1

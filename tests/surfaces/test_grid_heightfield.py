@@ -1,0 +1,193 @@
+"""Grid and HeightField: geometry, immutability, arithmetic, persistence, import, pickling, plotting."""
+import dataclasses
+import pickle
+
+import numpy as np
+import pytest
+
+import surfaces
+from surfaces import plotting
+
+L = 2e-3
+
+
+# -- Grid ---------------------------------------------------------------------------------------------------
+def test_grid_geometry_and_wavevectors():
+    grid = surfaces.Grid((5, 8), (L, 3 * L), periodic=(True, False))
+    assert grid.spacing == (L / 5, 3 * L / 8) and grid.area == 3 * L ** 2 and grid.size == 40
+    assert grid.pixel_area == pytest.approx(L / 5 * 3 * L / 8, rel=1e-15)
+    assert grid.periodic == (True, False) and not grid.fully_periodic
+    x, y = grid.coordinates()
+    assert np.allclose(x, np.arange(5) * L / 5, rtol=1e-15) and np.allclose(y, np.arange(8) * 3 * L / 8)
+    kx, ky = grid.mode_indices()
+    assert np.array_equal(kx[:, 0], np.rint(np.fft.fftfreq(5) * 5)) and np.array_equal(
+        ky[0], np.rint(np.fft.fftfreq(8) * 8))
+    qx, qy = grid.wavevectors()
+    assert np.allclose(qx[:, 0], 2 * np.pi * np.fft.fftfreq(5, L / 5), rtol=1e-14)
+    assert np.allclose(qy[0], 2 * np.pi * np.fft.fftfreq(8, 3 * L / 8), rtol=1e-14)
+    assert np.allclose(grid.wavevectors(real=True)[1][0], 2 * np.pi * np.fft.rfftfreq(8, 3 * L / 8), rtol=1e-14)
+    assert np.allclose(grid.wavevector_magnitude(), np.hypot(qx, qy), rtol=1e-15)
+    assert not grid.wavevector_magnitude().flags.writeable
+
+
+def test_refined_grid_shares_bit_identical_wavevectors():
+    grid = surfaces.Grid((7, 6), (L, 0.7 * L))
+    fine = grid.refined(3)
+    assert fine.shape == (21, 18) and fine.lengths == grid.lengths
+    kx, ky = grid.mode_indices()
+    assert np.array_equal(fine.wavevector_magnitude()[kx[:, 0]][:, ky[0]], grid.wavevector_magnitude())
+    assert surfaces.Grid((16, 1), (L, L / 16)).refined(2).shape == (32, 1)
+    assert surfaces.Grid((16, 1), (L, L / 16), periodic=(True, False)).fully_periodic   # profile: y irrelevant
+
+
+def test_grid_equality_hash_dict_and_pickle():
+    grid = surfaces.Grid((4, 4), (L, L), periodic=True)
+    grid.wavevector_magnitude()                                                   # fill the cache
+    assert grid == surfaces.Grid([4, 4], [L, L], (True, True)) and hash(grid) == hash(surfaces.Grid((4, 4), (L, L)))
+    assert grid != surfaces.Grid((4, 4), (L, L), periodic=False)
+    assert surfaces.Grid.from_dict(grid.to_dict()) == grid
+    restored = pickle.loads(pickle.dumps(grid))
+    assert restored == grid and np.array_equal(restored.wavevector_magnitude(), grid.wavevector_magnitude())
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        grid.shape = (2, 2)
+
+
+@pytest.mark.parametrize("kwargs, name", [
+    (dict(shape=(4,), lengths=(L, L)), "shape"),
+    (dict(shape=(4, 0), lengths=(L, L)), "shape"),
+    (dict(shape=(4.0, 4), lengths=(L, L)), "shape"),
+    (dict(shape=(4, 4), lengths=(L, -L)), "lengths"),
+    (dict(shape=(4, 4), lengths=(0.0, L)), "lengths"),
+    (dict(shape=(4, 4), lengths=(float("nan"), L)), "lengths"),
+    (dict(shape=(4, 4), lengths=(L, L), periodic=(True, False, True)), "periodic"),
+])
+def test_grid_bad_input(kwargs, name):
+    with pytest.raises(ValueError, match=name):
+        surfaces.Grid(**kwargs)
+
+
+# -- HeightField --------------------------------------------------------------------------------------------
+GRID = surfaces.Grid((6, 5), (L, L), periodic=True)
+
+
+def field_of(values, **metadata):
+    return surfaces.HeightField(GRID, values, metadata)
+
+
+def test_heightfield_is_immutable_and_copies_its_input():
+    values = np.arange(30.0).reshape(6, 5) * 1e-6
+    field = field_of(values, generator="test")
+    values[0, 0] = 1.0
+    assert field.heights[0, 0] == 0.0
+    assert not field.heights.flags.writeable
+    with pytest.raises(ValueError):
+        field.heights[0, 0] = 1.0
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        field.heights = values
+
+
+def test_heightfield_arithmetic():
+    a = field_of(np.full((6, 5), 1e-6), generator="a")
+    b = field_of(np.arange(30.0).reshape(6, 5) * 1e-7, generator="b")
+    assert np.array_equal((a + b).heights, a.heights + b.heights)
+    assert (a + b).metadata == {"generator": "sum", "parts": [a.metadata, b.metadata]}
+    assert np.array_equal((a - b).heights, a.heights - b.heights)
+    assert np.array_equal((2.0 * b).heights, 2 * b.heights) and (b * 2) == (2 * b)
+    assert np.array_equal((b / 4).heights, b.heights * 0.25)
+    assert np.array_equal((1e-6 - b).heights, 1e-6 - b.heights) and np.array_equal((b + 1e-6).heights,
+                                                                                   b.heights + 1e-6)
+    assert np.array_equal((-b).heights, -b.heights)
+    assert sum([a, b, b]) == a + b + b                                     # builtin sum starts from 0
+    other = surfaces.HeightField(surfaces.Grid((6, 5), (L, L), periodic=False), a.heights)
+    with pytest.raises(ValueError, match="different grids"):
+        a + other
+    with pytest.raises(ValueError, match="offset"):
+        a + float("nan")
+    with pytest.raises(ValueError, match="factor"):
+        a * float("inf")
+    with pytest.raises(ValueError, match="divisor"):
+        a / 0
+    with pytest.raises(TypeError):
+        a + "1"
+    assert b.detrended().heights.mean() == pytest.approx(0, abs=1e-20)     # round-off of 30 values ~3e-6
+
+
+@pytest.mark.parametrize("values, match", [
+    (np.full((6, 5), np.nan), "heights"),
+    (np.zeros((5, 6)), "shape"),
+])
+def test_heightfield_bad_heights(values, match):
+    with pytest.raises(ValueError, match=match):
+        field_of(values)
+
+
+def test_save_load_round_trip_is_exact(tmp_path):
+    grid = surfaces.Grid((33, 20), (L, 0.6 * L), periodic=(False, True))
+    field = surfaces.self_affine(grid, hurst=0.6, rms_height=1e-6, rng=np.int64(3))
+    path = field.save(tmp_path / "rough")
+    assert path.suffix == ".npz"
+    loaded = surfaces.HeightField.load(path)
+    assert loaded == field and loaded.grid == grid
+    assert np.array_equal(loaded.heights, field.heights) and loaded.metadata == field.metadata
+    assert surfaces.HeightField.read(path) == field
+    assert surfaces.self_affine(grid, **{k: loaded.metadata[k] for k in ("hurst", "rms_height")},
+                                rng=loaded.metadata["seed"]) == field           # regenerated from the record
+    other = tmp_path / "other.npz"
+    surfaces.io.save_npz(other, {"x": np.zeros(2)}, {"kind": "Something"})
+    with pytest.raises(ValueError, match="HeightField"):
+        surfaces.HeightField.load(other)
+
+
+def test_read_plain_height_maps(tmp_path):
+    values_um = np.random.default_rng(0).standard_normal((12, 9))
+    np.save(tmp_path / "map.npy", values_um)
+    np.savetxt(tmp_path / "map.txt", values_um)
+    np.savetxt(tmp_path / "profile.txt", values_um[:, 0])
+    for name in ("map.npy", "map.txt"):
+        field = surfaces.HeightField.read(tmp_path / name, lengths=(L, 0.75 * L), unit=1e-6)
+        assert field.grid == surfaces.Grid((12, 9), (L, 0.75 * L), periodic=False)
+        assert np.allclose(field.heights, values_um * 1e-6, rtol=1e-15, atol=0)
+    profile = surfaces.HeightField.read(tmp_path / "profile.txt", lengths=L, unit=1e-6)
+    assert profile.grid.is_profile and profile.grid.spacing[0] == pytest.approx(L / 12, rel=1e-15)
+    with pytest.raises(ValueError, match="lengths"):
+        surfaces.HeightField.read(tmp_path / "map.npy")
+    with pytest.raises(ValueError, match="unit"):
+        surfaces.HeightField.read(tmp_path / "map.npy", lengths=L, unit=-1.0)
+
+
+def test_from_array():
+    field = surfaces.HeightField.from_array(np.ones((4, 3)), L, periodic=True, source="test")
+    assert field.grid == surfaces.Grid((4, 3), (L, L), True) and field.metadata["source"] == "test"
+    assert surfaces.HeightField.from_array(np.ones(8), L).grid.shape == (8, 1)
+
+
+def test_pickle_round_trip_keeps_field_read_only():
+    field = surfaces.self_affine(surfaces.Grid((16, 16), (L, L)), hurst=0.8, rms_height=1e-6, rng=1)
+    restored = pickle.loads(pickle.dumps(field))
+    assert restored == field and restored.metadata == field.metadata
+    assert not restored.heights.flags.writeable
+
+
+# -- plotting (smoke test, Agg) -----------------------------------------------------------------------------
+def test_plotting_helpers_return_their_artists():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    rc_before = dict(matplotlib.rcParams)
+    field = surfaces.self_affine(surfaces.Grid((32, 24), (L, L)), hurst=0.8, rms_height=1e-6, rng=2)
+    figure, axes = plt.subplots(1, 3)
+    try:
+        image = plotting.plot_map(field, ax=axes[0])
+        assert image.axes is axes[0] and np.allclose(image.get_array(), field.heights.T * 1e6)
+        line = plotting.plot_profile(field, ax=axes[1], axis=1, index=3)
+        assert np.allclose(line.get_ydata(), field.heights[3] * 1e6)
+        psd_line = plotting.plot_psd(field, ax=axes[2])
+        assert np.allclose(psd_line.get_xdata(), surfaces.psd(field)[0])
+        with pytest.raises(ValueError, match="index"):
+            plotting.plot_profile(field, ax=axes[1], index=99)
+        own = plotting.plot_psd(field)                                          # ax=None makes a figure
+        assert own.figure is not figure
+        plt.close(own.figure)
+    finally:
+        plt.close(figure)
+    assert dict(matplotlib.rcParams) == rc_before
