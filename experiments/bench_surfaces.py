@@ -42,7 +42,7 @@ def main(argv=None):
     cases.append((f"self_affine {n_rough}² periodic", rough_grid,
                   lambda: surfaces.self_affine(rough_grid, hurst=0.8, rms_slope=0.2, rolloff=1e-3, rng=0)))
     fingerprint = getattr(surfaces, "fingerprint", None)
-    if fingerprint is not None:
+    if callable(fingerprint):                          # the function, not the submodule of the same name
         print_grid = surfaces.Grid((n_print, n_print), (10e-3, 10e-3), periodic=False)
         cases.append((f"fingerprint {n_print}² left_loop", print_grid,
                       lambda: fingerprint(print_grid, pattern="left_loop", rng=0)))
