@@ -303,12 +303,12 @@ def self_affine(grid: Grid, hurst: float, *, rms_height=None, rms_slope=None, pr
     normalise : bool
         True (default): the realisation is rescaled so its discrete rms height or rms slope equals the
         target exactly — a Hurst spectrum puts most of the height variance into a handful of long-wavelength
-        modes, so an unnormalised sample can miss the requested rms height by tens of per cent.
+        modes, so an unnormalised sample can miss the requested rms height by several per cent or more.
         False: the prefactor is set from the analytic moment (:class:`SelfAffinePSD`; this needs
         ``short_cutoff``) and the realisation is left alone, so the ensemble is unbiased Gaussian (use this
-        for ensemble statistics). A ``prefactor`` amplitude is never rescaled. Refinement consistency: a ``prefactor`` amplitude keeps every coarse mode
-        on any finer grid; an rms amplitude does so when ``short_cutoff`` is given (then all grids realise
-        the same modes and the same scale factor).
+        for ensemble statistics). A ``prefactor`` amplitude is never rescaled.
+        Refinement consistency: a ``prefactor`` amplitude keeps every coarse mode on any finer grid; an rms
+        amplitude does so when ``short_cutoff`` is given (then all grids realise the same modes and scale).
     rng : None, int or numpy.random.Generator
         Random source; an int seed (or the fresh seed drawn for None) is stored in the metadata.
     """
