@@ -68,3 +68,7 @@ class SavableResult:
             if isinstance(kwargs.get(f.name), list) and "tuple" in str(f.type):
                 kwargs[f.name] = tuple(kwargs[f.name])
         return cls(**kwargs)
+
+
+class ConvergenceWarning(UserWarning):
+    """An iterative solver stopped before meeting its tolerance; the result says so (``converged=False``)."""

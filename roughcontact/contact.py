@@ -1,0 +1,405 @@
+"""Frictionless normal contact of a rough elastic body with a rigid flat: Polonsky–Keer constrained CG.
+
+Unknown: the contact pressure p ≥ 0 [Pa] on the grid; the gap g = s − h + u(p) ≥ 0 [m] with u = K p from
+:class:`~roughcontact.elastic.ElasticHalfSpace` and p g = 0 (``docs/conventions.md``). Load control fixes
+<p> (the flat position s is the Lagrange multiplier); displacement control fixes s = max(h) − δ.
+
+Algorithm: Polonsky & Keer (1999), Wear 231:206, steps (a)–(h), restricted conjugate gradients on the
+contact set I_c = {p > 0} with the mean gap on I_c removed (load control), projection p ≥ 0 and re-entry
+of penetrated points (I_ol, with a CG restart). The displacement is carried along incrementally,
+u ← α (u − τ K t), so an iteration costs **one** convolution K t while the contact set is unchanged; when a
+point leaves or enters the contact set (or every ``_REFRESH`` steps, and before accepting convergence) u is
+recomputed exactly (one more convolution). Convergence criterion, with ``gap_scale`` the rms height of h:
+
+    sqrt(<(g − ḡ_c)²>_{I_c}) ≤ tol · gap_scale   and   max(−g outside I_c) ≤ tol · gap_scale,
+
+the load constraint being satisfied exactly by construction. See ``docs/solver.md``.
+"""
+from __future__ import annotations
+
+import math
+import time
+import warnings
+from dataclasses import dataclass, field
+
+import numpy as np
+from numba import njit
+
+from surfaces import HeightField
+from surfaces._checks import check_finite_array, check_positive, check_real
+
+from ._version import __version__
+from .elastic import ElasticHalfSpace
+from .interactions import HardWall, Interaction
+from .results import ConvergenceWarning, SavableResult
+
+METHOD = "polonsky-keer"
+_REFRESH = 50          # exact recomputation of u at least every _REFRESH CG steps (round-off drift)
+
+
+# -- fused pointwise kernels (flat contiguous views; accumulators in float64) --------------------------------
+@njit(cache=True)
+def _gap_moments(p, u, h, alpha, shift):
+    """For g = α u − h + shift: Σ g and Σ g² over the contact set p > 0, its size, and the largest −g
+    outside it (−inf if there is none). ``α`` is the pending load normalisation of p and u (PK step (g))."""
+    sum_g = 0.0
+    sum_g2 = 0.0
+    count = 0
+    outside = -np.inf
+    for i in range(p.size):
+        g = alpha * u[i] - h[i] + shift
+        if p[i] > 0:
+            sum_g += g
+            sum_g2 += g * g
+            count += 1
+        elif -g > outside:
+            outside = -g
+    return sum_g, sum_g2, count, outside
+
+
+@njit(cache=True)
+def _conjugate_direction(u, h, p, alpha, shift, beta, t):
+    """PK step (c): t ← g + β t on the contact set, 0 elsewhere (g = α u − h + shift). Returns Σ g t, Σ t."""
+    sum_gt = 0.0
+    sum_t = 0.0
+    for i in range(p.size):
+        if p[i] > 0:
+            g = alpha * u[i] - h[i] + shift
+            direction = g + beta * t[i]
+            t[i] = direction
+            sum_gt += g * direction
+            sum_t += direction
+        else:
+            t[i] = 0.0
+    return sum_gt, sum_t
+
+
+@njit(cache=True)
+def _direction_moments(p, t, r):
+    """Σ r and Σ r t over the contact set, for r = K t (PK step (d))."""
+    sum_r = 0.0
+    sum_rt = 0.0
+    for i in range(p.size):
+        if p[i] > 0:
+            sum_r += r[i]
+            sum_rt += r[i] * t[i]
+    return sum_r, sum_rt
+
+
+@njit(cache=True)
+def _projected_step(p, t, u, h, r, alpha, shift, tau):
+    """PK steps (e)–(f) on the normalised fields α p, α u: p ← max(α p − τ t, 0), and p ← −τ g where that
+    is 0 and the wall is penetrated (g = α u − h + shift < 0).
+
+    Also u ← α u − τ r, the displacement after the step if the contact set did not change. Returns Σ p and
+    the numbers of points that left and entered the contact set.
+    """
+    total = 0.0
+    left = 0
+    entered = 0
+    for i in range(p.size):
+        previous = alpha * p[i]
+        displacement = alpha * u[i]
+        value = previous - tau * t[i]
+        if value <= 0.0:
+            reentry = -tau * (displacement - h[i] + shift)
+            if reentry > 0.0:
+                value = reentry
+                entered += 1
+            else:
+                value = 0.0
+            if previous > 0.0:
+                left += 1
+        p[i] = value
+        total += value
+        u[i] = displacement - tau * r[i]
+    return total, left, entered
+
+
+@njit(cache=True)
+def _scale(values, alpha):
+    for i in range(values.size):
+        values[i] *= alpha
+
+
+@njit(cache=True)
+def _finalise_gap(u, h, p, shift, gap, contact):
+    """Gap field g = max(u − h + shift, 0), zero on the contact set; contact mask p > 0."""
+    for i in range(p.size):
+        contact[i] = p[i] > 0
+        g = u[i] - h[i] + shift
+        gap[i] = 0.0 if (contact[i] or g < 0) else g
+
+
+# -- result -----------------------------------------------------------------------------------------------------
+@dataclass(frozen=True, eq=False)
+class ContactResult(SavableResult):
+    """Solution of one contact problem. Fields in SI units; see ``docs/conventions.md`` for signs.
+
+    ``pressure`` [Pa], ``displacement`` u [m], ``gap`` g [m] (≥ 0, exactly 0 on the contact set), ``contact``
+    (bool mask p > 0), ``contact_fraction`` A/A0, ``mean_pressure`` [Pa], ``mean_gap`` [m], ``penetration``
+    δ = max(h) − s [m], ``elastic_energy`` ½∫p u dA [J], ``iterations`` (CG steps), ``residuals`` (history of
+    the relative rms gap error on the contact set), ``converged``, ``message``, ``wall_time`` [s], ``params``.
+    """
+
+    pressure: np.ndarray
+    displacement: np.ndarray
+    gap: np.ndarray
+    contact: np.ndarray
+    contact_fraction: float
+    mean_pressure: float
+    mean_gap: float
+    penetration: float
+    elastic_energy: float
+    iterations: int
+    residuals: np.ndarray
+    converged: bool
+    message: str
+    wall_time: float
+    params: dict = field(default_factory=dict)
+
+    @property
+    def total_force(self) -> float:
+        """Total normal force F = <p> Lx Ly [N]."""
+        return self.mean_pressure * self.params["grid"].area
+
+    def __repr__(self):
+        return (f"ContactResult(contact_fraction={self.contact_fraction:.6g}, mean_pressure={self.mean_pressure:.6g} "
+                f"Pa, mean_gap={self.mean_gap:.6g} m, converged={self.converged}, iterations={self.iterations})")
+
+
+@dataclass(frozen=True)
+class SolverState:
+    """What a ``callback`` sees after each CG step: iteration, relative residual, contact fraction."""
+
+    iteration: int
+    residual: float
+    penetration_error: float
+    contact_fraction: float
+
+
+# -- solver ---------------------------------------------------------------------------------------------------
+def _heights(height_field, half) -> np.ndarray:
+    if isinstance(height_field, HeightField):
+        if height_field.grid != half.grid:
+            raise ValueError(f"height_field.grid {height_field.grid} differs from the half-space grid {half.grid}")
+        heights = height_field.heights
+    else:
+        heights = check_finite_array("height_field", height_field)
+        if heights.shape != half.grid.shape:
+            raise ValueError(f"height_field has shape {heights.shape}, but the half-space grid has shape "
+                             f"{half.grid.shape}")
+    return np.ascontiguousarray(heights, dtype=half.dtype)
+
+
+def _initial_pressure(x0, heights, half, mean_pressure, flat_position):
+    """Warm start ``x0`` (a ContactResult or a pressure array), else the PK default guess."""
+    if x0 is not None:
+        pressure = x0.pressure if isinstance(x0, ContactResult) else x0
+        pressure = check_finite_array("x0", pressure, nonnegative=True)
+        if pressure.shape != heights.shape:
+            raise ValueError(f"x0 has shape {pressure.shape}, but the grid has shape {heights.shape}")
+        if pressure.any():
+            return np.array(pressure, dtype=half.dtype)
+    if mean_pressure is not None:
+        return np.full(heights.shape, mean_pressure, dtype=half.dtype)
+    overlap = np.maximum(heights - flat_position, 0)      # rigid overlap; pressure ~ E* δ / (contact size)
+    contact_size = math.sqrt(np.count_nonzero(overlap) * half.grid.pixel_area)
+    return (overlap * (half.E_star / contact_size)).astype(half.dtype)
+
+
+def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, total_force=None,
+                  penetration=None, tol=1e-8, maxiter=10000, x0=None, callback=None,
+                  interaction: Interaction | None = None, warn=True) -> ContactResult:
+    """Press ``height_field`` onto a rigid flat and solve for pressure, displacement and gap.
+
+    Parameters
+    ----------
+    height_field : surfaces.HeightField or array
+        Topography h [m] on ``half.grid`` (peaks positive, towards the flat).
+    half : ElasticHalfSpace
+        The elastic body (kernel, FFT backend, dtype).
+    mean_pressure, total_force, penetration
+        Exactly one: <p> [Pa] > 0, F = <p> Lx Ly [N] > 0, or δ = max(h) − s [m] (displacement control).
+    tol : float
+        Relative tolerance of the convergence criterion (module docstring), in (0, 1).
+    maxiter : int
+        Maximum number of CG steps.
+    x0 : ContactResult or array, optional
+        Warm start: a previous result or a pressure field [Pa] (rescaled to the requested load).
+    callback : callable, optional
+        ``callback(SolverState)`` after every step; raising ``StopIteration`` halts (``converged=False``).
+    interaction : Interaction, optional
+        Surface interaction law; only :class:`~roughcontact.interactions.HardWall` (the default) so far.
+    warn : bool
+        Emit a :class:`~roughcontact.results.ConvergenceWarning` when not converged.
+    """
+    start = time.perf_counter()
+    if not isinstance(half, ElasticHalfSpace):
+        raise TypeError(f"half must be an ElasticHalfSpace, got {type(half).__name__}")
+    interaction = HardWall() if interaction is None else interaction
+    if not isinstance(interaction, HardWall):
+        raise ValueError(f"interaction = {interaction!r} is not supported yet; only HardWall() (the default) is "
+                         "implemented (see docs/solver.md for how smooth interactions will plug in)")
+    given = {name: value for name, value in (("mean_pressure", mean_pressure), ("total_force", total_force),
+                                             ("penetration", penetration)) if value is not None}
+    if len(given) != 1:
+        raise ValueError(f"give exactly one of mean_pressure, total_force, penetration; got {sorted(given) or 'none'}")
+    tol = check_real("tol", tol, low=0.0, high=1.0, low_open=True, high_open=True)
+    if isinstance(maxiter, bool) or not isinstance(maxiter, (int, np.integer)) or maxiter < 0:
+        raise ValueError(f"maxiter must be an integer >= 0, got {maxiter!r}")
+    if callback is not None and not callable(callback):
+        raise TypeError(f"callback must be callable, got {type(callback).__name__}")
+    grid = half.grid
+    heights = _heights(height_field, half)
+    if total_force is not None:
+        mean_pressure = check_positive("total_force", total_force) / grid.area
+    elif mean_pressure is not None:
+        mean_pressure = check_positive("mean_pressure", mean_pressure)
+    load_control = mean_pressure is not None
+    h_max = float(heights.max())
+    flat_position = None if load_control else h_max - check_real("penetration", penetration)
+
+    params = {"E_star": half.E_star, "grid": grid, "tol": tol, "maxiter": int(maxiter), "method": METHOD,
+              "control": next(iter(given)), "requested": float(next(iter(given.values()))),
+              "interaction": type(interaction).__name__, "kernel": half.description, "version": __version__}
+
+    n_points = heights.size
+    h = heights.reshape(-1)
+    if not load_control and flat_position >= h_max:          # the flat does not reach the surface
+        zeros = np.zeros(n_points, half.dtype)
+        return _result(zeros, zeros.copy(), h, flat_position, half, params, 0, [0.0], True,
+                       "no contact: penetration <= 0", start, 0)
+    # the four grid-sized work arrays (aligned: the periodic FFT uses them in place)
+    p, u, t, r = (half.empty().reshape(-1) for _ in range(4))
+    p[:] = _initial_pressure(x0, heights, half, mean_pressure, flat_position).reshape(-1)
+    t[:] = 0.0
+
+    def convolve(source, out):
+        half.displacement_into(source.reshape(grid.shape), out.reshape(grid.shape))
+
+    # alpha: pending load normalisation (PK step (g)); the normalised fields are α p and α u = K(α p)
+    alpha = mean_pressure * n_points / float(p.sum(dtype=np.float64)) if load_control else 1.0
+    deviation = heights - heights.mean(dtype=np.float64)
+    gap_scale = float(np.sqrt(np.mean(deviation * deviation, dtype=np.float64)))
+    del deviation
+    convolve(p, u)
+    convolutions, exact, since_exact = 1, True, 0
+    if gap_scale == 0.0:                                    # flat surface: scale by the elastic displacement
+        gap_scale = alpha * float(np.sqrt(np.mean(np.square(u, dtype=np.float64)))) or 1.0
+
+    residuals, iterations, converged, halted, message = [], 0, False, False, ""
+    shift = float(h.mean(dtype=np.float64)) - alpha * float(u.mean(dtype=np.float64)) if load_control else flat_position
+    beta_allowed, previous_squared, tau, reported = False, 1.0, 0.0, -1
+    while True:
+        # (a)-(b) gap moments on the contact set; load control centres the gap there (flat position = shift)
+        sum_g, sum_g2, n_contact, outside = _gap_moments(p, u, h, alpha, shift)
+        if load_control and n_contact:
+            correction = -sum_g / n_contact
+            squared = max(sum_g2 - sum_g * sum_g / n_contact, 0.0)
+            if n_contact * correction ** 2 > 1e6 * squared:  # moments about a stale shift lost precision
+                shift += correction
+                sum_g, squared, n_contact, outside = _gap_moments(p, u, h, alpha, shift)
+                correction = -sum_g / n_contact
+            shift += correction
+            outside -= correction
+        else:
+            squared = sum_g2
+        residual = math.sqrt(squared / n_contact) / gap_scale if n_contact else math.inf
+        penetration_error = max(outside, 0.0) / gap_scale
+        if callback is not None and iterations > reported:
+            reported = iterations
+            try:
+                callback(SolverState(iterations, residual, penetration_error, n_contact / n_points))
+            except StopIteration:
+                residuals.append(residual)
+                halted = True
+                message = f"halted by callback after {iterations} iterations (relative rms gap error {residual:.3g})"
+                break
+        if residual <= tol and penetration_error <= tol:
+            if not exact:                                   # accept only on an exactly recomputed u
+                convolve(p, u)
+                convolutions, exact, since_exact = convolutions + 1, True, 0
+                continue
+            residuals.append(residual)
+            converged, message = True, f"converged: relative rms gap error {residual:.3g} <= tol {tol:g}"
+            break
+        residuals.append(residual)
+        if iterations >= maxiter:
+            message = (f"not converged after {iterations} iterations: relative rms gap error {residual:.3g}, "
+                       f"penetration error {penetration_error:.3g} (tol {tol:g})")
+            break
+        iterations += 1
+        if n_contact == 0:                                  # displacement control lost all contact: restart
+            p[:] = _initial_pressure(None, heights, half, None, flat_position).reshape(-1)
+            alpha, beta_allowed, step_incremental = 1.0, False, False
+        else:
+            # (c) conjugate direction; (d) step length from the one convolution r = K t
+            beta = squared / previous_squared if beta_allowed else 0.0
+            previous_squared = squared
+            sum_gt, sum_t = _conjugate_direction(u, h, p, alpha, shift, beta, t)
+            convolve(t, r)
+            convolutions += 1
+            sum_r, sum_rt = _direction_moments(p, t, r)
+            curvature = sum_rt - (sum_r / n_contact) * sum_t if load_control else sum_rt
+            if curvature > 0:
+                tau = sum_gt / curvature
+            elif tau == 0.0:                                # t = 0 on a gap-free contact set: re-entry only
+                tau = 1.0 / half.pixel_compliance
+            # (e)-(f) projected step, re-entry of penetrated points; u ← u − τ r provisionally
+            total, left, entered = _projected_step(p, t, u, h, r, alpha, shift, tau)
+            beta_allowed = entered == 0
+            alpha = 1.0
+            if load_control:                                # (g), applied lazily through alpha
+                if total > 0:
+                    alpha = mean_pressure * n_points / total
+                else:
+                    p[:] = mean_pressure
+            step_incremental = left == 0 and entered == 0 and since_exact < _REFRESH and total > 0
+        if step_incremental:
+            exact, since_exact = False, since_exact + 1
+        else:                                               # contact set changed: recompute u exactly
+            convolve(p, u)
+            convolutions, exact, since_exact = convolutions + 1, True, 0
+    if not exact:
+        convolve(p, u)
+        convolutions += 1
+    _scale(p, alpha)
+    _scale(u, alpha)
+    if not converged and warn:
+        warnings.warn(message, ConvergenceWarning, stacklevel=2)
+    return _result(p, u, h, shift, half, params, iterations, residuals, converged, message, start, convolutions)
+
+
+def _result(p, u, h, shift, half, params, iterations, residuals, converged, message, start, convolutions):
+    grid = half.grid
+    gap = np.empty(p.size, half.dtype)
+    contact = np.empty(p.size, np.bool_)
+    _finalise_gap(u, h, p, shift, gap, contact)
+    pressure, displacement = p.reshape(grid.shape), u.reshape(grid.shape)
+    gap, contact = gap.reshape(grid.shape), contact.reshape(grid.shape)
+    for array in (pressure, displacement, gap, contact):
+        array.flags.writeable = False
+    params = {**params, "convolutions": int(convolutions)}
+    return ContactResult(
+        pressure=pressure, displacement=displacement, gap=gap, contact=contact,
+        contact_fraction=float(np.count_nonzero(contact)) / contact.size,
+        mean_pressure=float(p.mean(dtype=np.float64)), mean_gap=float(gap.mean(dtype=np.float64)),
+        penetration=float(h.max()) - float(shift), elastic_energy=half.elastic_energy(pressure, displacement),
+        iterations=int(iterations), residuals=np.asarray(residuals, dtype=np.float64), converged=bool(converged),
+        message=message, wall_time=time.perf_counter() - start, params=params)
+
+
+def load_path(height_field, half: ElasticHalfSpace, mean_pressures, warm_start=True, **solver_options):
+    """Yield :func:`solve_contact` results for each of ``mean_pressures`` [Pa] in order.
+
+    With ``warm_start`` each solve starts from the previous pressure field (rescaled to the new load), which
+    for a smooth load sweep cuts the iterations several-fold. ``solver_options`` go to :func:`solve_contact`.
+    """
+    if "x0" in solver_options:
+        raise ValueError("load_path sets x0 itself; pass warm_start=False to start every step cold")
+    previous = None
+    for mean_pressure in mean_pressures:
+        previous = solve_contact(height_field, half, mean_pressure=mean_pressure,
+                                 x0=previous if warm_start else None, **solver_options)
+        yield previous

@@ -1,0 +1,239 @@
+"""Elastic response of the deformable body: surface displacement from surface pressure by FFT.
+
+Fourier multipliers Φ(q) [m/Pa] with ũ(q) = Φ(q) p̃(q) (u positive into the body, p positive compressive;
+``docs/conventions.md``):
+
+* periodic half-space: Φ = 2/(E* |q|) (Johnson 1985, Contact Mechanics, §2; references §4); the q = 0 mode
+  is undetermined and set to 0, so <u> = 0;
+* free (non-periodic) surface: the grid is zero-padded to 2n per axis and convolved with the exact
+  displacement of a uniform pressure on one rectangular pixel (Love 1929, Phil. Trans. A 228:377):
+  u(x, y) = 1/(π E*) Σ± F(x ± dx/2, y ± dy/2), F(X, Y) = X asinh(Y/|X|) + Y asinh(X/|Y|)
+  (DC-FFT, Liu, Wang & Liu 2000, Wear 243:101; Hockney 1970) — the linear, not circular, convolution;
+* a layer of thickness t on a rigid base or on a softer half-space: Φ(q) from :mod:`roughcontact.layered`.
+  A finite Φ(0) (layer on a rigid base) is kept, so <u> = Φ(0) <p>; an infinite one is set to 0.
+
+Periodicity comes from the grid and is never changed: a 2-D grid must be periodic on both axes or on none
+(mixed periodicity raises ``ValueError``); a profile (shape ``(n, 1)``, plane strain) must be periodic
+along x.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from surfaces import Grid
+from surfaces._checks import check_choice, check_finite_array, check_positive, check_real
+
+from .fft import make_backend
+
+BOTTOMS = ("bonded", "frictionless")
+
+
+def love_pixel_displacement(x, y, dx, dy, E_star):
+    """Displacement u(x, y) [m per Pa] of a half-space under unit pressure on the pixel |x'| ≤ dx/2, |y'| ≤ dy/2.
+
+    Love (1929): u = 1/(π E*) ∫∫ dA'/|r − r'|, evaluated in closed form. ``x``, ``y`` [m] broadcast.
+    """
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+
+    def antiderivative(X, Y):   # ∂²F/∂X∂Y = 1/√(X² + Y²); the X ln|X|, Y ln|Y| terms cancel in the sum
+        ax, ay = np.abs(X), np.abs(Y)
+        return (np.where(ax > 0, X * np.arcsinh(Y / np.where(ax > 0, ax, 1.0)), 0.0)
+                + np.where(ay > 0, Y * np.arcsinh(X / np.where(ay > 0, ay, 1.0)), 0.0))
+
+    a, b = dx / 2, dy / 2
+    return (antiderivative(x + a, y + b) - antiderivative(x + a, y - b)
+            - antiderivative(x - a, y + b) + antiderivative(x - a, y - b)) / (np.pi * E_star)
+
+
+class ElasticHalfSpace:
+    """Surface Green's function of the elastic body on ``grid``, applied by FFT on pre-planned buffers.
+
+    Parameters
+    ----------
+    grid : surfaces.Grid
+        Surface grid; its periodicity selects periodic (both axes) or free-surface (neither) convolution.
+    E_star : float
+        Contact modulus E* = E/(1 − ν²) [Pa] of the half-space, or of the layer when ``thickness`` is set.
+    thickness : float, optional
+        Layer thickness [m]; with ``poisson`` and ``bottom`` a layer on a rigid base, with
+        ``substrate_E_star``/``substrate_poisson`` a layer bonded on an elastic half-space.
+    poisson : float, optional
+        Poisson ratio of the layer (required with ``thickness``), in (−1, 0.5].
+    bottom : {"bonded", "frictionless"}
+        Interface between the layer and a rigid base.
+    substrate_E_star, substrate_poisson : float, optional
+        Contact modulus [Pa] and Poisson ratio of the half-space under the layer.
+    backend : {"pyfftw", "scipy"}
+        FFT backend (:mod:`roughcontact.fft`); ``threads`` FFT threads; ``planner_effort`` FFTW planner flag.
+    dtype : float64 or float32
+        Precision of the buffers, of the pressure and of the displacement in a solve.
+
+    Not thread-safe: the FFT buffers are shared state. Pickles by its parameters (plans are rebuilt).
+    """
+
+    def __init__(self, grid, E_star, *, thickness=None, poisson=None, bottom="bonded", substrate_E_star=None,
+                 substrate_poisson=None, backend="pyfftw", threads=1, dtype=np.float64,
+                 planner_effort="FFTW_ESTIMATE"):
+        if not isinstance(grid, Grid):
+            raise TypeError(f"grid must be a surfaces.Grid, got {type(grid).__name__}")
+        self._parameters = dict(thickness=thickness, poisson=poisson, bottom=bottom,
+                                substrate_E_star=substrate_E_star, substrate_poisson=substrate_poisson,
+                                backend=backend, threads=threads, dtype=np.dtype(dtype).name,
+                                planner_effort=planner_effort)
+        self.grid = grid
+        self.E_star = check_positive("E_star", E_star)
+        self.periodic = self._check_periodicity(grid)
+        self.layer = self._check_layer(thickness, poisson, bottom, substrate_E_star, substrate_poisson)
+        if self.layer is not None and not self.periodic:
+            raise ValueError("a layered body needs a periodic grid; the free-surface (non-periodic) layered "
+                             "kernel is not implemented (got grid.periodic = "
+                             f"{grid.periodic})")
+        nx, ny = grid.shape
+        self.transform_shape = (nx, ny) if self.periodic else (2 * nx, 2 * ny)
+        self._fft = make_backend(backend, self.transform_shape, dtype, threads, planner_effort)
+        self.dtype = self._fft.dtype
+        self._padded = None if self.periodic else self._fft.empty()     # free surface: 2nx × 2ny work array
+        self._multiplier = self._fourier_multiplier().astype(self.dtype)
+        self._multiplier.flags.writeable = False
+
+    # -- construction helpers ------------------------------------------------------------------------------
+    @staticmethod
+    def _check_periodicity(grid) -> bool:
+        px, py = grid.periodic
+        if grid.is_profile:
+            if not px:
+                raise ValueError(f"a profile grid (shape {grid.shape}, plane strain) must be periodic along x; "
+                                 f"got periodic = {grid.periodic} (the free plane-strain kernel is not defined)")
+            return True
+        if px != py:
+            raise ValueError(f"mixed periodicity {grid.periodic} is not supported; use a grid periodic on both "
+                             "axes or on none")
+        return px
+
+    def _check_layer(self, thickness, poisson, bottom, substrate_E_star, substrate_poisson):
+        check_choice("bottom", bottom, BOTTOMS)
+        on_substrate = substrate_E_star is not None or substrate_poisson is not None
+        if thickness is None:
+            if poisson is not None or on_substrate:
+                raise ValueError("poisson / substrate_E_star / substrate_poisson describe a layer and need "
+                                 f"thickness; got thickness = None")
+            return None
+        layer = {"thickness": check_positive("thickness", thickness),
+                 "poisson": check_real("poisson", poisson, low=-1.0, high=0.5, low_open=True)}
+        if on_substrate:
+            layer.update(kind="layer on half-space",
+                         substrate_E_star=check_positive("substrate_E_star", substrate_E_star),
+                         substrate_poisson=check_real("substrate_poisson", substrate_poisson, low=-1.0,
+                                                      high=0.5, low_open=True))
+        else:
+            layer.update(kind="layer on rigid base", bottom=bottom)
+        return layer
+
+    def compliance(self, q) -> np.ndarray:
+        """Fourier multiplier Φ(q) [m/Pa] at wavevector magnitudes ``q`` > 0 [rad/m] (ũ = Φ p̃)."""
+        q = np.asarray(q, dtype=float)
+        if self.layer is None:
+            return 2.0 / (self.E_star * q)
+        from . import layered
+        layer = self.layer
+        if layer["kind"] == "layer on rigid base":
+            return layered.layer_on_rigid_base_compliance(q, self.E_star, layer["poisson"], layer["thickness"],
+                                                          bottom=layer["bottom"])
+        return layered.layer_on_half_space_compliance(q, self.E_star, layer["poisson"], layer["thickness"],
+                                                      layer["substrate_E_star"], layer["substrate_poisson"])
+
+    def _fourier_multiplier(self) -> np.ndarray:
+        """Φ on the half spectrum of the transform grid, including the 1/N of the unnormalised FFT pair."""
+        n_total = self.transform_shape[0] * self.transform_shape[1]
+        if not self.periodic:
+            return self._free_surface_multiplier() / n_total
+        qx, qy = self.grid.wavevectors(real=True)
+        q = np.hypot(qx, qy)
+        multiplier = np.zeros(q.shape)
+        positive = q > 0
+        multiplier[positive] = self.compliance(q[positive])
+        if self.layer is not None and self.layer["kind"] == "layer on rigid base":
+            multiplier[0, 0] = float(self.compliance(np.array([0.0]))[0])   # finite uniform compression
+        return multiplier / n_total
+
+    def _free_surface_multiplier(self) -> np.ndarray:
+        """FFT of the Love pixel influence coefficients laid out for the padded (linear) convolution."""
+        nx, ny = self.grid.shape
+        dx, dy = self.grid.spacing
+        offsets_x = np.fft.fftfreq(2 * nx, 1.0 / (2 * nx)) * dx     # 0, dx, …, −dx: wrapped distances
+        offsets_y = np.fft.fftfreq(2 * ny, 1.0 / (2 * ny)) * dy
+        coefficients = love_pixel_displacement(offsets_x[:, None], offsets_y[None, :], dx, dy, self.E_star)
+        return np.fft.rfft2(coefficients).real   # coefficients are even in x and y → real spectrum
+
+    # -- pickling: parameters only ---------------------------------------------------------------------------
+    def __getstate__(self):
+        return {"grid": self.grid, "E_star": self.E_star, **self._parameters}
+
+    def __setstate__(self, state):
+        self.__init__(state.pop("grid"), state.pop("E_star"), **state)
+
+    def __repr__(self):
+        kind = "periodic" if self.periodic else "free surface"
+        layer = "" if self.layer is None else f", layer={self.layer}"
+        return (f"ElasticHalfSpace(grid={self.grid}, E_star={self.E_star:g} Pa, {kind}{layer}, "
+                f"backend={self._fft.name!r}, dtype={self.dtype.name})")
+
+    @property
+    def description(self) -> dict:
+        """Plain-data description for result parameters."""
+        return {"E_star": self.E_star, "periodic": self.periodic, "layer": self.layer,
+                "backend": self._fft.name, "threads": self._fft.threads, "dtype": self.dtype.name,
+                "transform_shape": list(self.transform_shape)}
+
+    @property
+    def backend(self) -> str:
+        return self._fft.name
+
+    @property
+    def pixel_compliance(self) -> float:
+        """Displacement of a pixel under unit pressure on that pixel alone [m/Pa] (diagonal of K)."""
+        unit = np.zeros(self.grid.shape, self.dtype)
+        unit[0, 0] = 1.0
+        return float(self.displacement_into(unit, unit)[0, 0])
+
+    # -- the operator ------------------------------------------------------------------------------------------
+    def empty(self) -> np.ndarray:
+        """Uninitialised array of ``grid.shape`` in this dtype that the periodic FFT uses without copying."""
+        return self._fft.empty() if self.periodic else np.empty(self.grid.shape, self.dtype)
+
+    def displacement_into(self, pressure: np.ndarray, out: np.ndarray) -> np.ndarray:
+        """Write u = K p [m] for ``pressure`` [Pa] (``grid.shape``, this dtype) into ``out``; ``out`` is returned.
+
+        No allocation; with arrays from :meth:`empty` (periodic grids) no copy either. Free surface: p is
+        placed in the corner of the zero-padded 2n buffer and u read back from the same corner.
+        """
+        fft = self._fft
+        if self.periodic:
+            fft.forward(pressure)
+            np.multiply(fft.spectrum, self._multiplier, out=fft.spectrum)
+            fft.backward(out)
+            return out
+        nx, ny = self.grid.shape
+        padded = self._padded
+        padded[nx:, :] = 0                                      # backward() filled the padding last time
+        padded[:nx, ny:] = 0
+        padded[:nx, :ny] = pressure
+        fft.forward(padded)
+        np.multiply(fft.spectrum, self._multiplier, out=fft.spectrum)
+        fft.backward(padded)
+        np.copyto(out, padded[:nx, :ny])
+        return out
+
+    def displacement(self, pressure) -> np.ndarray:
+        """Surface displacement u [m] (positive into the body) under ``pressure`` [Pa] (compressive > 0)."""
+        pressure = check_finite_array("pressure", pressure)
+        if pressure.shape != self.grid.shape:
+            raise ValueError(f"pressure has shape {pressure.shape}, but grid.shape is {self.grid.shape}")
+        out = np.empty(self.grid.shape, self.dtype)
+        return self.displacement_into(pressure.astype(self.dtype, copy=False), out)
+
+    def elastic_energy(self, pressure, displacement) -> float:
+        """Stored elastic energy U = ½ ∫ p u dA [J] of a pressure [Pa] and its displacement [m]."""
+        p = np.asarray(pressure, dtype=np.float64).ravel()
+        u = np.asarray(displacement, dtype=np.float64).ravel()
+        return 0.5 * self.grid.pixel_area * float(np.dot(p, u))

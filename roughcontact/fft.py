@@ -1,0 +1,118 @@
+"""Real 2-D FFT backends: plans made once per shape, executed many times on caller or internal buffers.
+
+A backend serves one transform ``shape`` (real) and owns the half spectrum ``spectrum`` (complex,
+``(shape[0], shape[1]//2 + 1)``). :meth:`forward(real)` maps a real array into ``spectrum`` and
+:meth:`backward(out)` maps ``spectrum`` into the real array ``out``; both are **unnormalised** (a pair
+multiplies by ``shape[0]*shape[1]``), so a caller folds ``1/N`` into its Fourier multiplier once.
+``backward`` may overwrite ``spectrum``; ``forward`` never writes its input. Arrays from :meth:`empty` are
+used in place (no copy); other arrays of the right shape work too, through a copy.
+
+* ``"pyfftw"`` (default): FFTW plans made once at construction on SIMD-aligned buffers and re-pointed at the
+  caller's arrays (``update_arrays``) at every call; ``planner_effort`` is an FFTW flag
+  (``"FFTW_ESTIMATE"`` plans instantly, ``"FFTW_MEASURE"`` is faster for long runs), ``threads`` FFTW threads.
+* ``"scipy"``: ``scipy.fft`` with ``workers=threads``; always available, agrees with pyFFTW to round-off
+  (``scipy.fft`` cannot write into a given buffer, so each call allocates its result).
+
+A backend is not thread-safe (``spectrum`` is shared state); use one per worker process or thread.
+"""
+from __future__ import annotations
+
+import numpy as np
+import scipy.fft
+
+from surfaces._checks import check_choice
+
+BACKENDS = ("pyfftw", "scipy")
+PLANNER_EFFORTS = ("FFTW_ESTIMATE", "FFTW_MEASURE", "FFTW_PATIENT", "FFTW_EXHAUSTIVE")
+_COMPLEX = {np.dtype(np.float64): np.complex128, np.dtype(np.float32): np.complex64}
+
+
+def _check_dtype(dtype) -> np.dtype:
+    dtype = np.dtype(dtype)
+    if dtype not in _COMPLEX:
+        raise ValueError(f"dtype = {dtype} is not supported; choose float64 or float32")
+    return dtype
+
+
+def _check_threads(threads) -> int:
+    if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or threads < 1:
+        raise ValueError(f"threads must be an integer >= 1, got {threads!r}")
+    return int(threads)
+
+
+def spectrum_shape(shape) -> tuple:
+    """Shape of the half spectrum of a real ``shape`` array: ``(n0, n1//2 + 1)``."""
+    return (shape[0], shape[1] // 2 + 1)
+
+
+class ScipyFFT:
+    """``scipy.fft`` backend (always available). See the module docstring for the protocol."""
+
+    name = "scipy"
+
+    def __init__(self, shape, dtype=np.float64, threads=1):
+        self.shape = tuple(int(n) for n in shape)
+        self.dtype = _check_dtype(dtype)
+        self.threads = _check_threads(threads)
+        self.spectrum = np.zeros(spectrum_shape(self.shape), _COMPLEX[self.dtype])
+
+    def empty(self) -> np.ndarray:
+        return np.empty(self.shape, self.dtype)
+
+    def forward(self, real):
+        self.spectrum[...] = scipy.fft.rfft2(real, workers=self.threads)
+
+    def backward(self, out):
+        out[...] = scipy.fft.irfft2(self.spectrum, s=self.shape, norm="forward", workers=self.threads)
+
+
+class PyFFTW:
+    """pyFFTW backend: plans built once on aligned buffers, re-pointed at aligned caller arrays."""
+
+    name = "pyfftw"
+
+    def __init__(self, shape, dtype=np.float64, threads=1, planner_effort="FFTW_ESTIMATE"):
+        import pyfftw
+
+        self._pyfftw = pyfftw
+        self.shape = tuple(int(n) for n in shape)
+        self.dtype = _check_dtype(dtype)
+        self.threads = _check_threads(threads)
+        self.planner_effort = check_choice("planner_effort", planner_effort, PLANNER_EFFORTS)
+        self._scratch = self.empty()              # planning buffer; later the copy target of foreign arrays
+        self.spectrum = pyfftw.empty_aligned(spectrum_shape(self.shape), _COMPLEX[self.dtype])
+        self._forward = pyfftw.FFTW(self._scratch, self.spectrum, axes=(0, 1), direction="FFTW_FORWARD",
+                                    flags=(self.planner_effort,), threads=self.threads)
+        self._backward = pyfftw.FFTW(self.spectrum, self._scratch, axes=(0, 1), direction="FFTW_BACKWARD",
+                                     flags=(self.planner_effort, "FFTW_DESTROY_INPUT"), threads=self.threads)
+
+    def empty(self) -> np.ndarray:
+        """An uninitialised real array of ``shape`` that the plans use in place."""
+        return self._pyfftw.empty_aligned(self.shape, self.dtype)
+
+    def _usable(self, array) -> bool:
+        return (array.dtype == self.dtype and array.shape == self.shape and array.flags.c_contiguous
+                and array.ctypes.data % self._pyfftw.simd_alignment == 0)
+
+    def forward(self, real):
+        if not self._usable(real):
+            np.copyto(self._scratch, real)
+            real = self._scratch
+        self._forward.update_arrays(real, self.spectrum)
+        self._forward.execute()
+
+    def backward(self, out):
+        target = out if self._usable(out) and out.flags.writeable else self._scratch
+        self._backward.update_arrays(self.spectrum, target)
+        self._backward.execute()
+        if target is not out:
+            np.copyto(out, target)
+
+
+def make_backend(name, shape, dtype=np.float64, threads=1, planner_effort="FFTW_ESTIMATE"):
+    """Backend ``name`` (``"pyfftw"`` or ``"scipy"``) for real transforms of ``shape``."""
+    check_choice("backend", name, BACKENDS)
+    if name == "pyfftw":
+        return PyFFTW(shape, dtype, threads, planner_effort)
+    check_choice("planner_effort", planner_effort, PLANNER_EFFORTS)
+    return ScipyFFT(shape, dtype, threads)
