@@ -1,6 +1,6 @@
 """Reproduce the seed paper's Figs. 3, 4, 5, 9, 10, 11 (PNG + CSV each) and print its checkpoint table.
 
-    python experiments/paper_figures.py [--fast] [--output DIR]
+    python experiments/paper_figures.py [--fast] [--output DIR]   # after pip install -e . (or PYTHONPATH=.)
 
 A thin wrapper over :func:`roughcontact.paper.reproduce`; ``--fast`` uses few points per curve.
 """

@@ -94,6 +94,15 @@ def test_stiffness_eqs_7_8_by_finite_differences(name):
     assert law.stiffness_derivative(area) == pytest.approx(fd_slope, rel=1e-7)
 
 
+@pytest.mark.parametrize("n", [0.8, 1.0, 1.41, 3.0])
+def test_eq11_half_space_exponents_give_s_proportional_to_sqrt_a(n):
+    """m = 2n/(n + 2) (Eq. 11) makes S ∝ √A via Eq. 7, as for any compact axisymmetric half-space contact."""
+    law = PowerLawContact(m=2 * n / (n + 2), alpha=1e-4, n=n, beta=1e-3)
+    area = np.geomspace(1e-8, 1e-3, 7)
+    ratio = law.stiffness(area) / np.sqrt(area)
+    np.testing.assert_allclose(ratio, ratio[0], rtol=1e-12)
+
+
 # -- inversion, pull-off, zero load ----------------------------------------------------------------------------
 @pytest.mark.parametrize("name", sorted(LAWS))
 @pytest.mark.parametrize("w", [0.0, 1e-6, 0.132, 10.0])
