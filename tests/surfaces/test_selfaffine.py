@@ -262,3 +262,13 @@ def test_bad_spectrum_and_grid():
         surfaces.fourier_synthesis(GRID, lambda q: -q, rng=0)
     with pytest.raises(TypeError, match="rng"):
         surfaces.self_affine(GRID, hurst=0.8, rms_height=1e-6, rng="seed")
+
+
+def test_block_processing_does_not_change_the_field():
+    """The spectrum is assembled in row blocks (256 by default); any block size gives the same field."""
+    from surfaces.selfaffine import _synthesise_periodic
+    grid = surfaces.Grid((37, 30), (L, L))
+    spectrum = SelfAffinePSD(0.8, 1e-20, L, L / 4, None)
+    whole, _ = _synthesise_periodic(grid, spectrum, np.random.default_rng(1), None, None)
+    blocked, _ = _synthesise_periodic(grid, spectrum, np.random.default_rng(1), None, None, block_rows=5)
+    assert np.array_equal(whole, blocked)
