@@ -88,6 +88,53 @@ class SavkoorBriggsPeeling:
                              "normal force is below pull-off); valid range |F_T| <= F_T,c")
         return np.pi * (3 * self.radius / (4 * self.E_star) * (shifted + np.sqrt(discriminant))) ** (2 / 3)
 
+    def mixed_mode_area(self, tangential_force, normal_force, work_of_adhesion, lam, form: int = 1,
+                        n_scan: int = 2001) -> np.ndarray:
+        """Apparent area [m²] with the mode-mixity toughness w̃ = w f(ψ) in place of w (Eqs. 29–31, 33).
+
+        With P₁ = 4E*a³/(3R*) and D = P₁ − F_N, G = w f(ψ) reads
+        h(D) = D² + (E*/G*) F_T² − 6πR*w (D + F_N) f(arctan(F_T/D)) = 0; the stable branch is the largest root
+        D > 0, found by a logarithmic scan for the last sign change of h and bisection to machine precision.
+        λ = 1 gives Eq. 31. Raises ``ValueError`` where no root exists (beyond the critical tangential force).
+        """
+        tangential_force, normal_force, w = np.broadcast_arrays(
+            check_finite_array("tangential_force", tangential_force),
+            check_finite_array("normal_force", normal_force),
+            check_finite_array("work_of_adhesion", work_of_adhesion, nonnegative=True))
+        lam = check_real("lam", lam, low=0.0, high=1.0)
+        check_choice("form", form, {1, 2, 3})
+        ratio = self.E_star / self.G_star
+
+        def h(deficit, f_t, f_n, ww):
+            psi = np.arctan2(np.abs(f_t), deficit)
+            return deficit ** 2 + ratio * f_t ** 2 - 6 * np.pi * self.radius * ww * (deficit + f_n) \
+                * hutchinson_suo_toughness(psi, lam, form)
+
+        deficits = np.empty(tangential_force.shape)
+        for index in np.ndindex(tangential_force.shape):
+            f_t, f_n, ww = tangential_force[index], normal_force[index], w[index]
+            if ww == 0 and f_t == 0:                       # Hertz: no adhesion, no tangential load
+                deficits[index] = 0.0
+                continue
+            scale = 6 * np.pi * self.radius * ww + abs(f_n) + abs(f_t) + 1e-300
+            grid = scale * np.geomspace(1e-12, 1e4, n_scan)
+            values = h(grid, f_t, f_n, ww)
+            rising = np.nonzero((values[:-1] <= 0) & (values[1:] > 0))[0]
+            if rising.size == 0:
+                raise ValueError(f"no stable contact for tangential_force = {f_t!r} N at normal_force = {f_n!r} N "
+                                 f"(w = {ww!r} J/m², lam = {lam!r}): beyond the critical tangential force")
+            low, high = grid[rising[-1]], grid[rising[-1] + 1]
+            for _ in range(200):
+                middle = 0.5 * (low + high)
+                if middle in (low, high):
+                    break
+                if h(middle, f_t, f_n, ww) > 0:
+                    high = middle
+                else:
+                    low = middle
+            deficits[index] = high
+        return self.hertz.nonadhesive_area(normal_force + deficits)
+
     def mode_mixity_angle(self, area, normal_force, tangential_force) -> np.ndarray:
         """ψ = arctan(K_II/K_I) = arctan(F_T/(F₁ − F_N)) [rad] (Eq. 33), F₁ the Hertz force at ``area``."""
         area = check_finite_array("area", area, nonnegative=True)

@@ -26,12 +26,14 @@ import numpy as np
 
 from surfaces._checks import check_finite_array, check_positive
 
+from ..results import SavableResult
+
 #: 1 mm in m, for the seed's mm-based parameter sets.
 MILLIMETRE = 1e-3
 
 
 @dataclass(frozen=True)
-class PullOff:
+class PullOff(SavableResult):
     """Pull-off point of an adhesive power-law contact (global minimum of F_N(A), Eq. 9).
 
     ``force`` [N] is negative (tensile), ``area`` [m²] and ``indentation`` [m] at that point,

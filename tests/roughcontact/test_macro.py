@@ -203,13 +203,13 @@ def test_presets_in_si():
     assert (apparent.m, apparent.alpha, apparent.n, apparent.beta) == pytest.approx((0.37, 91.9e-6, 1.0, 64.4e-3))
 
 
-def test_pickle_round_trip():
+def test_pickle_round_trip(tmp_path):
     law = PowerLawContact.table1_ridge()
     assert pickle.loads(pickle.dumps(law)) == law
     pull_off = law.pull_off([0.1, 0.2])
-    copy = pickle.loads(pickle.dumps(pull_off))
-    for field in ("force", "area", "indentation", "work_of_adhesion"):
-        np.testing.assert_array_equal(getattr(copy, field), getattr(pull_off, field))
+    for copy in (pickle.loads(pickle.dumps(pull_off)), type(pull_off).load(pull_off.save(tmp_path / "p.npz"))):
+        for field in ("force", "area", "indentation", "work_of_adhesion"):
+            np.testing.assert_array_equal(getattr(copy, field), getattr(pull_off, field))
     peeling = SavkoorBriggsPeeling.incompressible_on_rigid(R, E_STAR)
     assert pickle.loads(pickle.dumps(peeling)) == peeling
 
@@ -257,6 +257,28 @@ def test_critical_tangential_force_is_where_dg_da_vanishes():
     slope = (PEELING.energy_release_rate(area * (1 + h), force, critical)
              - PEELING.energy_release_rate(area * (1 - h), force, critical)) / (2 * h * area)
     assert abs(slope * area / w) < 1e-4
+
+
+def test_mixed_mode_area_reduces_to_eq31_and_solves_g_equals_w_tilde():
+    w, force = 0.132, 0.5
+    critical = float(PEELING.critical_tangential_force(force, w))
+    tangential = np.linspace(0.0, 0.95 * critical, 5)
+    for form in (1, 2, 3):
+        # λ = 1: f ≡ 1, Eq. 31; bisection to machine precision, area ∝ P₁^(2/3)
+        np.testing.assert_allclose(PEELING.mixed_mode_area(tangential, force, w, 1.0, form),
+                                   PEELING.area(tangential, force, w), rtol=1e-12)
+        # λ = 0.3: G(A) = w f(ψ(A)) from the independent Eq. 29 and Eq. 33 evaluations
+        area = PEELING.mixed_mode_area(tangential, force, w, 0.3, form)
+        psi = PEELING.mode_mixity_angle(area, force, tangential)
+        np.testing.assert_allclose(PEELING.energy_release_rate(area, force, tangential),
+                                   w * hutchinson_suo_toughness(psi, 0.3, form), rtol=1e-9)
+        assert np.all(area >= PEELING.area(tangential, force, w) * (1 - 1e-12))   # toughening resists peeling
+    # mode-II toughening lets the contact survive beyond the Savkoor-Briggs critical force
+    assert np.isfinite(PEELING.mixed_mode_area(1.05 * critical, force, w, 0.3, 2))
+    with pytest.raises(ValueError, match="critical"):
+        PEELING.mixed_mode_area(1.05 * critical, force, w, 1.0, 1)
+    assert PEELING.mixed_mode_area(0.0, force, 0.0, 0.5) == pytest.approx(float(PEELING.hertz.nonadhesive_area(force)),
+                                                                         rel=1e-14)
 
 
 def test_mode_mixity_angle():
