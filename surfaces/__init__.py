@@ -1,14 +1,37 @@
 """surfaces — physical height fields on grids: generation and statistics (numpy/scipy only).
 
 Knows nothing of contact mechanics; ``roughcontact`` consumes it. All lengths are in metres.
+Grid, HeightField and the statistics are numpy-only and imported eagerly; the generators (which use
+``scipy.fft``/``scipy.ndimage``) load on first use (PEP 562), so ``import surfaces`` stays cheap for
+``roughcontact.electrostatics`` and ``roughcontact.macro``.
 """
+import importlib
+
 from .grid import Grid
 from .heightfield import HeightField
 from .statistics import psd, rms_curvature, rms_height, rms_slope
-from .selfaffine import SelfAffinePSD, fourier_synthesis, self_affine
-from .shapes import fingertip
 
 __version__ = "0.1.0"
 
+# public name -> submodule that defines it (loaded lazily)
+_LAZY = {
+    "SelfAffinePSD": "selfaffine",
+    "fourier_synthesis": "selfaffine",
+    "self_affine": "selfaffine",
+    "fingertip": "shapes",
+}
+
 __all__ = ["Grid", "HeightField", "psd", "rms_curvature", "rms_height", "rms_slope", "__version__",
-           "SelfAffinePSD", "fourier_synthesis", "self_affine", "fingertip"]
+           *_LAZY]
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'surfaces' has no attribute {name!r}")
+
+
+def __dir__():
+    return __all__

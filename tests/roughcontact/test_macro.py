@@ -1,7 +1,5 @@
 """Shull's compliance method for power-law contacts (seed Eqs. 1–14) and peeling (Eqs. 29–33)."""
 import pickle
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -212,14 +210,6 @@ def test_pickle_round_trip(tmp_path):
             np.testing.assert_array_equal(getattr(copy, field), getattr(pull_off, field))
     peeling = SavkoorBriggsPeeling.incompressible_on_rigid(R, E_STAR)
     assert pickle.loads(pickle.dumps(peeling)) == peeling
-
-
-def test_import_is_light():
-    code = ("import sys, time; t = time.perf_counter(); import roughcontact.macro; t = time.perf_counter() - t; "
-            "bad = [m for m in sys.modules if m.split('.')[0] in ('numba', 'pyfftw')]; print(t, bad)")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split(" ", 1)
-    assert out[1].strip() == "[]"
-    assert float(out[0]) < 1.0      # target 0.5 s (~0.1 s measured); generous for a loaded CI machine
 
 
 # -- peeling (Eqs. 29-33) ------------------------------------------------------------------------------------
