@@ -1,0 +1,114 @@
+"""Westergaard sinusoid (plane strain, (n, 1) grid) and Johnson–Greenwood–Higginson bi-sinusoid.
+
+References: roughcontact.reference (Westergaard 1939; Johnson 1985 §13.2; Johnson, Greenwood & Higginson
+1985). Profile h = h0 cos(2πx/λ) on a periodic grid; p* = π E* h0/λ (1-D), √2 π E* Δ/λ (bi-sinusoid).
+"""
+import numpy as np
+import pytest
+
+from roughcontact import ElasticHalfSpace, solve_contact
+from roughcontact import reference as ref
+from surfaces import Grid, HeightField
+
+LAMBDA, H0, E_STAR, N = 1e-3, 1e-6, 1e6, 8192
+P_STAR = np.pi * E_STAR * H0 / LAMBDA
+LOADS = [0.01, 0.05, 0.2, 0.5, 0.8, 0.95]
+
+
+@pytest.fixture(scope="module")
+def sinusoid():
+    grid = Grid((N, 1), (LAMBDA, LAMBDA / N), periodic=True)
+    x = grid.coordinates()[0]
+    return HeightField(grid, H0 * np.cos(2 * np.pi * x / LAMBDA)[:, None]), ElasticHalfSpace(grid, E_star=E_STAR), x
+
+
+@pytest.fixture(scope="module")
+def solutions(sinusoid):
+    field, half, _ = sinusoid
+    return {s: solve_contact(field, half, mean_pressure=s * P_STAR, tol=1e-10) for s in LOADS + [0.99]}
+
+
+def test_full_contact_pressure_reference():
+    assert ref.westergaard_full_contact_pressure(H0, LAMBDA, E_STAR) == pytest.approx(P_STAR, rel=1e-15)
+
+
+@pytest.mark.parametrize("s", LOADS)
+def test_half_width_mean_gap_pressure_energy(solutions, sinusoid, s):
+    _, _, x = sinusoid
+    result = solutions[s]
+    p_mean = s * P_STAR
+    assert result.converged and result.mean_pressure == pytest.approx(p_mean, rel=1e-12)
+    # bar: 0.5 %. Half-width from the counted contact set: ±1 pixel per edge ≤ 0.2 % at s = 0.01 on 8192 px
+    half_width = result.contact_fraction * LAMBDA / 2
+    assert half_width == pytest.approx(ref.westergaard_contact_half_width(p_mean, H0, LAMBDA, E_STAR), rel=2.5e-3)
+    # bar: 0.5 %; measured ≤ 1.3e-6 (s = 0.95)
+    assert result.mean_gap == pytest.approx(ref.westergaard_mean_gap(p_mean, H0, LAMBDA, E_STAR), rel=1e-4)
+    # pressure away from the √ edges: measured ≤ 3e-6 p*
+    a = ref.westergaard_contact_half_width(p_mean, H0, LAMBDA, E_STAR)
+    distance = (x + LAMBDA / 2) % LAMBDA - LAMBDA / 2
+    core = np.abs(distance) < 0.9 * a
+    error = np.abs(result.pressure[:, 0] - ref.westergaard_pressure(x, p_mean, H0, LAMBDA, E_STAR))[core]
+    assert error.max() < 2e-5 * P_STAR
+    # energy per area (¼ − ½ ln s) s² h0 p*; measured ≤ 2e-7
+    assert result.elastic_energy / result.params["grid"].area == pytest.approx(
+        ref.westergaard_elastic_energy_density(p_mean, H0, LAMBDA, E_STAR), rel=1e-5)
+
+
+def test_physics_consistency(solutions):
+    for result in solutions.values():
+        assert (result.gap >= 0).all() and (result.pressure >= 0).all()
+        assert np.all(result.pressure * result.gap == 0)                     # complementarity
+        assert np.all(result.gap[result.contact] == 0)
+
+
+def test_converges_near_full_contact(solutions):
+    result = solutions[0.99]
+    assert result.converged and result.iterations < 1000
+    assert result.mean_gap == pytest.approx(ref.westergaard_mean_gap(0.99 * P_STAR, H0, LAMBDA, E_STAR), rel=1e-3)
+
+
+@pytest.mark.parametrize("s", [1.0, 1.05, 2.0])
+def test_full_contact_reached_and_reported(sinusoid, s):
+    field, half, x = sinusoid
+    result = solve_contact(field, half, mean_pressure=s * P_STAR, tol=1e-10)
+    assert result.converged
+    if s == 1.0:    # at exactly p* the valley carries zero pressure: at most that pixel is out of contact
+        assert result.contact_fraction >= 1 - 1 / N
+    else:           # beyond p*: p = p̄ + p* cos(2πx/λ) > 0 everywhere (Φ = 2/(E* q) inverted exactly)
+        assert result.contact_fraction == 1.0 and result.mean_gap == 0.0
+        expected = s * P_STAR + P_STAR * np.cos(2 * np.pi * x / LAMBDA)
+        np.testing.assert_allclose(result.pressure[:, 0], expected, rtol=0, atol=1e-9 * P_STAR)
+
+
+# -- bi-sinusoid -------------------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def bisinusoid():
+    n, delta = 256, 1e-6
+    grid = Grid((n, n), (LAMBDA, LAMBDA), periodic=True)
+    x, y = grid.meshgrid()
+    field = HeightField(grid, delta * np.cos(2 * np.pi * x / LAMBDA) * np.cos(2 * np.pi * y / LAMBDA))
+    return field, ElasticHalfSpace(grid, E_star=E_STAR), ref.bisinusoid_full_contact_pressure(delta, LAMBDA, E_STAR)
+
+
+@pytest.mark.parametrize("s", [0.002, 0.005])
+def test_bisinusoid_low_load_area(bisinusoid, s):
+    """A/λ² → 0.7616 (p̄/p*)^(2/3): measured ratio 1.04 and 1.03 on 256² (pixelation of ~12 px contacts)."""
+    field, half, p_star = bisinusoid
+    result = solve_contact(field, half, mean_pressure=s * p_star, tol=1e-9)
+    assert result.converged
+    assert result.contact_fraction / ref.bisinusoid_area_low_load(s) == pytest.approx(1.0, abs=0.06)
+
+
+@pytest.mark.parametrize("s", [0.95, 0.97])
+def test_bisinusoid_near_full_contact_area(bisinusoid, s):
+    """1 − A/λ² → (3/(2π))(1 − p̄/p*): measured ratio 1.003 and 0.991 on 256²."""
+    field, half, p_star = bisinusoid
+    result = solve_contact(field, half, mean_pressure=s * p_star, tol=1e-9)
+    assert result.converged
+    assert (1 - result.contact_fraction) / (1 - ref.bisinusoid_area_near_full_contact(s)) == pytest.approx(1.0, abs=0.04)
+
+
+def test_bisinusoid_full_contact(bisinusoid):
+    field, half, p_star = bisinusoid
+    result = solve_contact(field, half, mean_pressure=1.01 * p_star, tol=1e-9)
+    assert result.converged and result.contact_fraction == 1.0
