@@ -1,0 +1,171 @@
+"""Extreme and invalid inputs of the contact solver: it must stay right, or report, or refuse loudly."""
+import warnings
+
+import numpy as np
+import pytest
+
+from roughcontact import ElasticHalfSpace, solve_contact
+from roughcontact import reference as ref
+from roughcontact.interactions import HardWall, Interaction
+from roughcontact.results import ConvergenceWarning
+from surfaces import Grid, HeightField
+
+E_STAR = 1e6
+
+
+def bump(grid, radius):
+    """Paraboloid cap h = −r²/(2R) [m] with its apex on the central pixel (n//2, m//2)."""
+    x, y = grid.meshgrid()
+    (dx, dy), (nx, ny) = grid.spacing, grid.shape
+    return HeightField(grid, -((x - nx // 2 * dx) ** 2 + (y - ny // 2 * dy) ** 2) / (2 * radius))
+
+
+def check_physics(result, tol=1e-9):
+    assert np.isfinite(result.pressure).all() and np.isfinite(result.gap).all()
+    assert (result.pressure >= 0).all() and (result.gap >= 0).all()
+    assert np.all(result.pressure * result.gap == 0)
+    assert result.mean_pressure >= 0 and np.isfinite(result.elastic_energy)
+
+
+@pytest.mark.parametrize("periodic", [True, False])
+def test_single_contact_point(periodic):
+    """A tiny load on a sphere touches one pixel; force balance still holds to round-off."""
+    grid = Grid((33, 33), (1e-3, 1e-3), periodic=periodic)
+    field = bump(grid, 1e-2)
+    result = solve_contact(field, ElasticHalfSpace(grid, E_star=E_STAR), mean_pressure=1e-6, tol=1e-10)
+    assert result.converged and np.count_nonzero(result.contact) == 1
+    assert result.contact[16, 16] and result.mean_pressure == pytest.approx(1e-6, rel=1e-12)
+    check_physics(result)
+
+
+@pytest.mark.parametrize("shape, periodic", [((63, 45), False), ((45, 63), True), ((31, 64), False),
+                                             ((17, 3), True)])
+def test_odd_and_non_square_grids(shape, periodic):
+    """The Hertz force on a sphere is independent of the grid orientation/size once converged."""
+    length = 1e-3 * np.array(shape) / max(shape)
+    grid = Grid(shape, tuple(length), periodic=periodic)
+    field = bump(grid, 5e-3)
+    half = ElasticHalfSpace(grid, E_star=E_STAR)
+    result = solve_contact(field, half, mean_pressure=50.0, tol=1e-10)
+    assert result.converged and 0 < result.contact_fraction < 1
+    assert result.mean_pressure == pytest.approx(50.0, rel=1e-12)
+    check_physics(result)
+    transposed = solve_contact(HeightField(Grid(shape[::-1], tuple(length[::-1]), periodic), field.heights.T),
+                               ElasticHalfSpace(Grid(shape[::-1], tuple(length[::-1]), periodic), E_star=E_STAR),
+                               mean_pressure=50.0, tol=1e-10)
+    np.testing.assert_allclose(transposed.pressure, result.pressure.T, rtol=0, atol=1e-7 * result.pressure.max())
+
+
+def test_flat_surface_periodic_is_uniform_full_contact():
+    grid = Grid((16, 12), (1e-3, 1e-3), periodic=True)
+    result = solve_contact(HeightField(grid, np.full(grid.shape, 3e-6)), ElasticHalfSpace(grid, E_star=E_STAR),
+                           mean_pressure=1e3)
+    assert result.converged and result.contact_fraction == 1.0 and result.iterations == 0
+    np.testing.assert_allclose(result.pressure, 1e3, rtol=1e-15)
+    assert result.mean_gap == 0.0 and result.elastic_energy == pytest.approx(0.0, abs=1e-30)
+
+
+def test_flat_punch_free_surface():
+    """A flat window pressed on a free half-space is a rigid punch: full contact, pressure rising to the edges,
+    and a uniform displacement."""
+    grid = Grid((32, 32), (1e-3, 1e-3), periodic=False)
+    result = solve_contact(HeightField(grid, np.zeros(grid.shape)), ElasticHalfSpace(grid, E_star=E_STAR),
+                           mean_pressure=1e3, tol=1e-10)
+    assert result.converged and result.contact_fraction == 1.0
+    assert result.pressure[0, 0] > result.pressure[0, 16] > result.pressure[16, 16]
+    np.testing.assert_allclose(result.displacement, result.displacement.mean(), rtol=1e-8)
+
+
+def test_near_full_contact_rough():
+    grid = Grid((64, 64), (1e-3, 1e-3), periodic=True)
+    rng = np.random.default_rng(3)
+    smooth = np.fft.irfft2(np.fft.rfft2(rng.standard_normal(grid.shape))
+                           * (np.hypot(*grid.wavevectors(real=True)) < 2 * np.pi * 8 / 1e-3))
+    field = HeightField(grid, 1e-7 * smooth / smooth.std())
+    result = solve_contact(field, ElasticHalfSpace(grid, E_star=E_STAR), mean_pressure=5e3, tol=1e-9)
+    assert result.converged and 0.97 < result.contact_fraction < 1.0
+    check_physics(result)
+
+
+def test_huge_height_ratio():
+    """1 mm waviness plus 1 nm ripples: nanometre features survive the rounding (float64) and change the
+    pressure; the solution stays physical."""
+    n = 128
+    grid = Grid((n, 1), (1e-2, 1e-2 / n), periodic=True)
+    x = grid.coordinates()[0][:, None]
+    coarse = HeightField(grid, 1e-3 * np.cos(2 * np.pi * x / 1e-2))
+    fine = coarse + HeightField(grid, 1e-9 * np.cos(2 * np.pi * 16 * x / 1e-2))
+    half = ElasticHalfSpace(grid, E_star=E_STAR)
+    p_star = ref.westergaard_full_contact_pressure(1e-3, 1e-2, E_STAR)
+    results = [solve_contact(f, half, mean_pressure=0.5 * p_star, tol=1e-12) for f in (coarse, fine)]
+    for result in results:
+        assert result.converged
+        check_physics(result)
+    assert np.abs(results[1].pressure - results[0].pressure).max() > 0
+
+
+def test_non_convergence_is_reported_and_warned():
+    grid = Grid((64, 64), (1e-3, 1e-3), periodic=True)
+    field = bump(grid, 1e-3)
+    with pytest.warns(ConvergenceWarning, match="not converged after 2 iterations"):
+        result = solve_contact(field, ElasticHalfSpace(grid, E_star=E_STAR), mean_pressure=1e3, maxiter=2)
+    assert not result.converged and result.iterations == 2 and len(result.residuals) == 3
+    assert "not converged" in result.message
+    check_physics(result)
+    assert result.mean_pressure == pytest.approx(1e3, rel=1e-12)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        solve_contact(field, ElasticHalfSpace(grid, E_star=E_STAR), mean_pressure=1e3, maxiter=2, warn=False)
+
+
+def test_no_contact_for_non_positive_penetration():
+    grid = Grid((16, 16), (1e-3, 1e-3), periodic=False)
+    result = solve_contact(bump(grid, 1e-2), ElasticHalfSpace(grid, E_star=E_STAR), penetration=0.0)
+    assert result.converged and result.contact_fraction == 0 and not result.pressure.any()
+
+
+@pytest.mark.parametrize("heights, word", [(np.nan, "height_field"), (np.inf, "height_field")])
+def test_nan_and_inf_heights(heights, word):
+    grid = Grid((8, 8), (1e-3, 1e-3))
+    values = np.zeros(grid.shape)
+    values[3, 4] = heights
+    with pytest.raises(ValueError, match=word):
+        solve_contact(values, ElasticHalfSpace(grid, E_star=E_STAR), mean_pressure=1.0)
+
+
+@pytest.mark.parametrize("kwargs, exc, word", [
+    ({"mean_pressure": 0.0}, ValueError, "mean_pressure"),
+    ({"mean_pressure": -1.0}, ValueError, "mean_pressure"),
+    ({"total_force": float("nan")}, ValueError, "total_force"),
+    ({"mean_pressure": 1.0, "penetration": 1e-6}, ValueError, "exactly one"),
+    ({}, ValueError, "exactly one"),
+    ({"mean_pressure": 1.0, "tol": 0.0}, ValueError, "tol"),
+    ({"mean_pressure": 1.0, "maxiter": -1}, ValueError, "maxiter"),
+    ({"mean_pressure": 1.0, "x0": np.ones((4, 4))}, ValueError, "x0"),
+    ({"mean_pressure": 1.0, "x0": -np.ones((8, 8))}, ValueError, "x0"),
+    ({"mean_pressure": 1.0, "callback": 3}, TypeError, "callback"),
+    ({"mean_pressure": 1.0, "interaction": Interaction()}, ValueError, "interaction"),
+])
+def test_bad_solver_input(kwargs, exc, word):
+    grid = Grid((8, 8), (1e-3, 1e-3))
+    with pytest.raises(exc, match=word):
+        solve_contact(np.zeros(grid.shape), ElasticHalfSpace(grid, E_star=E_STAR), **kwargs)
+
+
+def test_grid_mismatch_and_wrong_half_space():
+    grid = Grid((8, 8), (1e-3, 1e-3))
+    other = HeightField(Grid((8, 8), (2e-3, 2e-3)), np.zeros((8, 8)))
+    with pytest.raises(ValueError, match="grid"):
+        solve_contact(other, ElasticHalfSpace(grid, E_star=E_STAR), mean_pressure=1.0)
+    with pytest.raises(TypeError, match="half"):
+        solve_contact(other, E_STAR, mean_pressure=1.0)
+
+
+def test_hard_wall_interaction_law():
+    wall = HardWall()
+    assert wall.hard_wall
+    np.testing.assert_array_equal(wall.energy([0.0, 1e-9, -1e-12]), [0.0, 0.0, np.inf])
+    np.testing.assert_array_equal(wall.traction([0.0, 1e-6]), [0.0, 0.0])
+    np.testing.assert_array_equal(wall.stiffness([1e-6]), [0.0])
+    with pytest.raises(ValueError, match="gap"):
+        wall.traction([-1e-9])
