@@ -40,21 +40,28 @@ _REFRESH = 50          # exact recomputation of u at least every _REFRESH CG ste
 # -- fused pointwise kernels (flat contiguous views; accumulators in float64) --------------------------------
 @njit(cache=True)
 def _gap_moments(p, u, h, alpha, shift):
-    """For g = α u − h + shift: Σ g and Σ g² over the contact set p > 0, its size, and the largest −g
-    outside it (−inf if there is none). ``α`` is the pending load normalisation of p and u (PK step (g))."""
+    """For g = α u − h + shift: Σ g and Σ g² over the contact set p > 0 and its size. ``α`` is the pending
+    load normalisation of p and u (PK step (g))."""
     sum_g = 0.0
     sum_g2 = 0.0
     count = 0
-    outside = -np.inf
     for i in range(p.size):
-        g = alpha * u[i] - h[i] + shift
         if p[i] > 0:
+            g = alpha * u[i] - h[i] + shift
             sum_g += g
             sum_g2 += g * g
             count += 1
-        elif -g > outside:
-            outside = -g
-    return sum_g, sum_g2, count, outside
+    return sum_g, sum_g2, count
+
+
+@njit(cache=True)
+def _largest_penetration(p, u, h, alpha, shift):
+    """max(−g) over the points outside the contact set (0 if none penetrates), g = α u − h + shift."""
+    largest = 0.0
+    for i in range(p.size):
+        if p[i] <= 0:
+            largest = max(largest, h[i] - shift - alpha * u[i])
+    return largest
 
 
 @njit(cache=True)
@@ -87,33 +94,32 @@ def _direction_moments(p, t, r):
 
 
 @njit(cache=True)
-def _projected_step(p, t, u, h, r, alpha, shift, tau):
+def _projected_step(p, t, u, h, alpha, shift, tau):
     """PK steps (e)–(f) on the normalised fields α p, α u: p ← max(α p − τ t, 0), and p ← −τ g where that
-    is 0 and the wall is penetrated (g = α u − h + shift < 0).
-
-    Also u ← α u − τ r, the displacement after the step if the contact set did not change. Returns Σ p and
-    the numbers of points that left and entered the contact set.
+    is 0 and the wall is penetrated (g = α u − h + shift < 0). Returns Σ p and the numbers of points that
+    left and entered the contact set.
     """
     total = 0.0
     left = 0
     entered = 0
-    for i in range(p.size):
+    for i in range(p.size):              # branch-free body: the loop is memory-bound, not compute-bound
         previous = alpha * p[i]
-        displacement = alpha * u[i]
         value = previous - tau * t[i]
-        if value <= 0.0:
-            reentry = -tau * (displacement - h[i] + shift)
-            if reentry > 0.0:
-                value = reentry
-                entered += 1
-            else:
-                value = 0.0
-            if previous > 0.0:
-                left += 1
+        reentry = -tau * (alpha * u[i] - h[i] + shift)
+        clipped = value <= 0.0
+        value = max(reentry, 0.0) if clipped else value
+        entered += clipped and reentry > 0.0
+        left += clipped and previous > 0.0
         p[i] = value
         total += value
-        u[i] = displacement - tau * r[i]
     return total, left, entered
+
+
+@njit(cache=True)
+def _displacement_step(u, r, alpha, tau):
+    """u ← α u − τ r: the displacement after a step that left the contact set unchanged (u = K p stays exact)."""
+    for i in range(u.size):
+        u[i] = alpha * u[i] - tau * r[i]
 
 
 @njit(cache=True)
@@ -170,11 +176,10 @@ class ContactResult(SavableResult):
 
 @dataclass(frozen=True)
 class SolverState:
-    """What a ``callback`` sees after each CG step: iteration, relative residual, contact fraction."""
+    """What a ``callback`` sees after each CG step: iteration, relative rms gap error, contact fraction."""
 
     iteration: int
     residual: float
-    penetration_error: float
     contact_fraction: float
 
 
@@ -293,29 +298,29 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     beta_allowed, previous_squared, tau, reported = False, 1.0, 0.0, 0
     while True:
         # (a)-(b) gap moments on the contact set; load control centres the gap there (flat position = shift)
-        sum_g, sum_g2, n_contact, outside = _gap_moments(p, u, h, alpha, shift)
+        sum_g, sum_g2, n_contact = _gap_moments(p, u, h, alpha, shift)
         if load_control and n_contact:
             correction = -sum_g / n_contact
             squared = max(sum_g2 - sum_g * sum_g / n_contact, 0.0)
             if n_contact * correction ** 2 > 1e6 * squared:  # moments about a stale shift lost precision
                 shift += correction
-                sum_g, squared, n_contact, outside = _gap_moments(p, u, h, alpha, shift)
+                sum_g, squared, n_contact = _gap_moments(p, u, h, alpha, shift)
                 correction = -sum_g / n_contact
             shift += correction
-            outside -= correction
         else:
             squared = sum_g2
         residual = math.sqrt(squared / n_contact) / gap_scale if n_contact else math.inf
-        penetration_error = max(outside, 0.0) / gap_scale
         if callback is not None and iterations > reported:
             reported = iterations
             try:
-                callback(SolverState(iterations, residual, penetration_error, n_contact / n_points))
+                callback(SolverState(iterations, residual, n_contact / n_points))
             except StopIteration:
                 residuals.append(residual)
                 halted = True
                 message = f"halted by callback after {iterations} iterations (relative rms gap error {residual:.3g})"
                 break
+        # the penetration outside the contact set is checked only once the contact set is converged
+        penetration_error = _largest_penetration(p, u, h, alpha, shift) / gap_scale if residual <= tol else math.nan
         if residual <= tol and penetration_error <= tol:
             if not exact:                                   # accept only on an exactly recomputed u
                 convolve(p, u)
@@ -326,8 +331,9 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
             break
         residuals.append(residual)
         if iterations >= maxiter:
-            message = (f"not converged after {iterations} iterations: relative rms gap error {residual:.3g}, "
-                       f"penetration error {penetration_error:.3g} (tol {tol:g})")
+            message = f"not converged after {iterations} iterations: relative rms gap error {residual:.3g} (tol {tol:g})"
+            if residual <= tol:
+                message += f", but a penetration {penetration_error:.3g} outside the contact set"
             break
         iterations += 1
         if n_contact == 0:                                  # displacement control lost all contact: restart
@@ -346,16 +352,18 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
                 tau = sum_gt / curvature
             elif tau == 0.0:                                # t = 0 on a gap-free contact set: re-entry only
                 tau = 1.0 / half.pixel_compliance
-            # (e)-(f) projected step, re-entry of penetrated points; u ← u − τ r provisionally
-            total, left, entered = _projected_step(p, t, u, h, r, alpha, shift, tau)
+            # (e)-(f) projected step and re-entry of penetrated points
+            total, left, entered = _projected_step(p, t, u, h, alpha, shift, tau)
             beta_allowed = entered == 0
+            step_incremental = left == 0 and entered == 0 and since_exact < _REFRESH and total > 0
+            if step_incremental:                            # u ← α u − τ K t: exact without a convolution
+                _displacement_step(u, r, alpha, tau)
             alpha = 1.0
             if load_control:                                # (g), applied lazily through alpha
                 if total > 0:
                     alpha = mean_pressure * n_points / total
                 else:
                     p[:] = mean_pressure
-            step_incremental = left == 0 and entered == 0 and since_exact < _REFRESH and total > 0
         if step_incremental:
             exact, since_exact = False, since_exact + 1
         else:                                               # contact set changed: recompute u exactly

@@ -19,6 +19,7 @@ along x.
 from __future__ import annotations
 
 import numpy as np
+from numba import njit
 
 from surfaces import Grid
 from surfaces._checks import check_choice, check_finite_array, check_positive, check_real
@@ -43,6 +44,14 @@ def love_pixel_displacement(x, y, dx, dy, E_star):
     a, b = dx / 2, dy / 2
     return (antiderivative(x + a, y + b) - antiderivative(x + a, y - b)
             - antiderivative(x - a, y + b) + antiderivative(x - a, y - b)) / (np.pi * E_star)
+
+
+@njit(cache=True)
+def _apply_multiplier(spectrum, multiplier):
+    """spectrum ← spectrum · Φ (complex times real, in place, no temporary)."""
+    for i in range(spectrum.shape[0]):
+        for j in range(spectrum.shape[1]):
+            spectrum[i, j] = spectrum[i, j] * multiplier[i, j]
 
 
 class ElasticHalfSpace:
@@ -210,7 +219,7 @@ class ElasticHalfSpace:
         fft = self._fft
         if self.periodic:
             fft.forward(pressure)
-            np.multiply(fft.spectrum, self._multiplier, out=fft.spectrum)
+            _apply_multiplier(fft.spectrum, self._multiplier)
             fft.backward(out)
             return out
         nx, ny = self.grid.shape
@@ -219,7 +228,7 @@ class ElasticHalfSpace:
         padded[:nx, ny:] = 0
         padded[:nx, :ny] = pressure
         fft.forward(padded)
-        np.multiply(fft.spectrum, self._multiplier, out=fft.spectrum)
+        _apply_multiplier(fft.spectrum, self._multiplier)
         fft.backward(padded)
         np.copyto(out, padded[:nx, :ny])
         return out
