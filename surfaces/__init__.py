@@ -19,6 +19,10 @@ _LAZY = {
     "fourier_synthesis": "selfaffine",
     "self_affine": "selfaffine",
     "fingertip": "shapes",
+    **dict.fromkeys(["fingerprint", "parallel_ridges", "ridge_pattern", "RidgePattern", "ridge_profile"],
+                    "ridges"),
+    **dict.fromkeys(["dominant_wavelength", "orientation_field", "OrientationField", "angular_difference",
+                     "detect_pores", "DetectedPores"], "texture"),
 }
 
 __all__ = ["Grid", "HeightField", "psd", "rms_curvature", "rms_height", "rms_slope", "__version__",
