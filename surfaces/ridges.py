@@ -301,13 +301,16 @@ class _Steering:
 
     def weight(self, k, j):
         """Weights of bin (orientation k, frequency j) and whether the upper orientation neighbour wraps."""
-        lower_k = self.theta_lower
-        w = np.where(lower_k == k, 1.0 - self.theta_weight, 0.0).astype(np.float32)
-        from_below = lower_k == (k - 1) % self.n_theta
+        w = np.zeros(self.theta_lower.shape, dtype=np.float32)
+        lower = self.theta_lower == k
+        w[lower] = 1.0 - self.theta_weight[lower]
+        from_below = self.theta_lower == (k - 1) % self.n_theta
         w[from_below] = self.theta_weight[from_below]
         if self.q_lower is not None:
-            wq = np.where(self.q_lower == j, 1.0 - self.q_weight, 0.0)
-            wq[self.q_lower == j - 1] = self.q_weight[self.q_lower == j - 1]
+            wq = np.zeros_like(w)
+            lower, upper = self.q_lower == j, self.q_lower == j - 1
+            wq[lower] = 1.0 - self.q_weight[lower]
+            wq[upper] = self.q_weight[upper]
             w *= wq
         # pixels near θ = π take bin 0 as their upper neighbour with the normal reversed
         wrapped = from_below & (k == 0)
