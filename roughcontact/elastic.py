@@ -54,6 +54,15 @@ def _apply_multiplier(spectrum, multiplier):
             spectrum[i, j] = spectrum[i, j] * multiplier[i, j]
 
 
+@njit(cache=True)
+def _pressure_work(pressure, displacement):
+    """Σ p u in float64 (no temporary; numpy's dot would go through a possibly multi-threaded BLAS)."""
+    total = 0.0
+    for i in range(pressure.size):
+        total += float(pressure[i]) * float(displacement[i])
+    return total
+
+
 class ElasticHalfSpace:
     """Surface Green's function of the elastic body on ``grid``, applied by FFT on pre-planned buffers.
 
@@ -243,6 +252,7 @@ class ElasticHalfSpace:
 
     def elastic_energy(self, pressure, displacement) -> float:
         """Stored elastic energy U = ½ ∫ p u dA [J] of a pressure [Pa] and its displacement [m]."""
-        p = np.asarray(pressure, dtype=np.float64).ravel()
-        u = np.asarray(displacement, dtype=np.float64).ravel()
-        return 0.5 * self.grid.pixel_area * float(np.dot(p, u))
+        p, u = np.ravel(pressure), np.ravel(displacement)
+        if p.shape != u.shape:
+            raise ValueError(f"pressure and displacement differ in size: {p.size} vs {u.size}")
+        return 0.5 * self.grid.pixel_area * _pressure_work(p, u)
