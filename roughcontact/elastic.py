@@ -110,7 +110,7 @@ class ElasticHalfSpace:
         self.transform_shape = (nx, ny) if self.periodic else (2 * nx, 2 * ny)
         self._fft = make_backend(backend, self.transform_shape, dtype, threads, planner_effort)
         self.dtype = self._fft.dtype
-        self._padded = None if self.periodic else self._fft.empty()     # free surface: 2nx × 2ny work array
+        self._padded = None if self.periodic else self._fft.work_array()   # free surface: 2nx × 2ny
         self._multiplier = self._fourier_multiplier().astype(self.dtype)
         self._multiplier.flags.writeable = False
 

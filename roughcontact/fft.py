@@ -55,9 +55,16 @@ class ScipyFFT:
         self.dtype = _check_dtype(dtype)
         self.threads = _check_threads(threads)
         self.spectrum = np.zeros(spectrum_shape(self.shape), _COMPLEX[self.dtype])
+        self._work = None
 
     def empty(self) -> np.ndarray:
         return np.empty(self.shape, self.dtype)
+
+    def work_array(self) -> np.ndarray:
+        """A real array of ``shape`` owned by the backend, for a caller's padding (allocated once)."""
+        if self._work is None:
+            self._work = self.empty()
+        return self._work
 
     def forward(self, real):
         self.spectrum[...] = scipy.fft.rfft2(real, workers=self.threads)
@@ -89,6 +96,11 @@ class PyFFTW:
     def empty(self) -> np.ndarray:
         """An uninitialised real array of ``shape`` that the plans use in place."""
         return self._pyfftw.empty_aligned(self.shape, self.dtype)
+
+    def work_array(self) -> np.ndarray:
+        """The aligned planning buffer, lent to a caller for its padding (saves one transform-sized array);
+        while the caller uses it, foreign arrays must not be passed to :meth:`forward`/:meth:`backward`."""
+        return self._scratch
 
     def _usable(self, array) -> bool:
         return (array.dtype == self.dtype and array.shape == self.shape and array.flags.c_contiguous
