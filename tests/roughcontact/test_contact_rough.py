@@ -136,3 +136,22 @@ def test_warm_start_from_array_is_rescaled(rough):
                           tol=1e-9)
     assert again.converged and again.iterations <= 2
     np.testing.assert_allclose(again.pressure, result.pressure, rtol=0, atol=1e-6 * result.pressure.max())
+
+
+def test_agrees_with_tamaas(rough):
+    """Same surface, load and E* in Tamaas' Polonsky–Keer–Rey solver (optional `bench` extra): contact
+    fraction identical, mean gap to 1e-9 (measured 4e-12 at 512²), pressure field to 1e-7 of its maximum."""
+    tm = pytest.importorskip("tamaas")
+    field, _, result = rough
+    model = tm.ModelFactory.createModel(tm.model_type.basic_2d, list(field.grid.lengths), list(field.grid.shape))
+    model.E, model.nu = E_STAR, 0.0                       # Tamaas' E/(1 − ν²) is our E*
+    heights = np.array(field.heights)
+    solver = tm.PolonskyKeerRey(model, heights, 1e-12)
+    solver.max_iter = 10000
+    solver.solve(result.mean_pressure)
+    traction, displacement = np.array(model.traction), np.array(model.displacement)
+    assert np.mean(traction > 0) == result.contact_fraction
+    gap = displacement - heights
+    gap -= gap[traction > 0].mean()
+    assert result.mean_gap == pytest.approx(gap.mean(), rel=1e-9)
+    np.testing.assert_allclose(result.pressure, traction, rtol=0, atol=1e-7 * traction.max())
