@@ -40,7 +40,7 @@ RIDGE_WIDTH_RATIO = 1.5         # ridge width / furrow width: 0.27 mm ridges, 0.
 PORE_DENSITY = 5.0e6            # [1/m²] = 500 cm⁻² (palm glands 518 cm⁻², Taylor & Machado-Moreira 2013)
 PORE_DIAMETER = 120e-6          # [m] opening diameter, 88–220 µm (Ashbaugh 1999)
 PORE_DEPTH = 20e-6              # [m] dimple depth seen by a flat counter-face (modelling choice, see docs)
-SEED_DENSITY = 0.25e6           # [1/m²] growth seeds per area (one per 4 mm²); sets the minutiae density
+SEED_DENSITY = 0.25e6           # [1/m²] growth seeds per area (one per 4 mm²), see docs (minutiae)
 
 _MIN_PIXELS_PER_PERIOD = 4.0    # below this the ridge profile cannot be resolved
 _PIXELS_PER_PERIOD = 8.0        # resolution of the coarse growth grid
@@ -486,7 +486,8 @@ def fingerprint(grid: Grid, pattern: str = "left_loop", ridge_period=RIDGE_PERIO
     ridge_width_ratio : ridge width / furrow width at mid-height, in [0.43, 2.33] (default 1.5).
     pore_density : sweat pores per area [1/m²] on ridge crests (default 5e6 = 500 cm⁻²); 0 for none.
     pore_diameter, pore_depth : opening diameter (default 120 µm) and depth (default 20 µm) of the dimples [m].
-    seed_density : growth seeds per area [1/m²] (default one per 4 mm²); more seeds, more minutiae.
+    seed_density : growth seeds per area [1/m²] (default one per 4 mm²); where fronts from different seeds
+        meet, minutiae form (the density depends only weakly on it, see docs).
     cores, deltas, rotation : singular points (x, y) [m] and θ∞ [rad]; see :func:`ridge_pattern`.
     rng : int seed or ``numpy.random.Generator``. workers : FFT threads for ``scipy.fft`` (−1 = all cores).
 
