@@ -7,11 +7,12 @@ Construction (SFinGe-like, Cappelli et al. ICPR 2000; references in ``docs/finge
    single-valued doubled-angle vector ``exp(2iθ)``. The generation domain is periodic (FFT); the zero-pole
    field is made periodic by blending it with its periodic images in a seam band (outside the window on
    non-periodic grids).
-2. **Ridge growth**: a few random seeds are grown by iterated orientation-steered Gabor filtering and clipping,
+2. **Ridge growth**: random noise is grown by iterated orientation-steered Gabor filtering and clipping,
    ``f ← clip(γ Σ_k w_k(x) [G_k * f](x) / max|…|, −1, 1)``, with an FFT filter bank of ``K`` orientations
-   (and of ridge frequencies when the period varies) interpolated linearly per pixel. Where growth fronts with
-   different phases meet, minutiae (ridge endings, bifurcations) form. The growth runs on a coarse grid of
-   about ``_PIXELS_PER_PERIOD`` pixels per ridge period.
+   (and of ridge frequencies when the period varies) interpolated linearly per pixel: first with broad
+   filters (independent ridge domains nucleate; where domains of different phase meet, minutiae — ridge
+   endings, bifurcations — remain), then with a narrow radial band that pins the ridge period. The growth
+   runs on a coarse grid of about ``_PIXELS_PER_PERIOD`` pixels per ridge period.
 3. **Phase and cross-section**: the analytic (one-sided) Gabor bank applied once to the grown pattern and
    interpolated exactly (zero-padded spectrum) to the full grid gives the local ridge phase ψ (0 on crests,
    π in furrows). The height is the smooth profile ``h = H/2 (1 + cos(ψ + a sin ψ))``, whose warp ``a`` sets the
@@ -40,16 +41,15 @@ RIDGE_WIDTH_RATIO = 1.5         # ridge width / furrow width: 0.27 mm ridges, 0.
 PORE_DENSITY = 5.0e6            # [1/m²] = 500 cm⁻² (palm glands 518 cm⁻², Taylor & Machado-Moreira 2013)
 PORE_DIAMETER = 120e-6          # [m] opening diameter, 88–220 µm (Ashbaugh 1999)
 PORE_DEPTH = 20e-6              # [m] dimple depth seen by a flat counter-face (modelling choice, see docs)
-SEED_DENSITY = 0.25e6           # [1/m²] growth seeds per area (one per 4 mm²), see docs (minutiae)
 
 _MIN_PIXELS_PER_PERIOD = 4.0    # below this the ridge profile cannot be resolved
 _PIXELS_PER_PERIOD = 8.0        # resolution of the coarse growth grid
 _N_ORIENTATIONS = 16            # orientation bins of the Gabor bank (11.25° apart)
-_RADIAL_BANDWIDTH = 0.1         # Gaussian std of the Gabor lobe along q, relative to the ridge wavenumber
-_ANGULAR_BANDWIDTH = 0.4        # Gaussian std of the lobe in direction [rad] (≈ 23°)
+# Growth stages (radial std of the Gabor lobe relative to the ridge wavenumber, angular std [rad], iterations):
+# broad filters nucleate ridge domains (and so minutiae), then a narrow radial band pins the period.
+_GROWTH_STAGES = ((0.25, 0.3, 20), (0.1, 0.4, 20))
 _FREQUENCY_STEP = 1.1           # ratio of neighbouring ridge-frequency bins when the period varies
 _GROWTH_GAIN = 3.0              # γ: over-amplification before clipping (SFinGe-style growth)
-_GROWTH_ITERATIONS = 40         # enough for fronts from seeds ~2 mm apart to meet and relax
 _SEAM_PERIODS = 3.0             # width of the periodic blending band of the orientation field, in periods
 _TAPER = 0.3                    # ridge amplitude (relative to its median) below which the profile fades
 
@@ -271,17 +271,17 @@ def _bins(values, low, high, spacing, periodic_bins=None):
     return lower, (t - lower).astype(np.float32)
 
 
-def _gabor_lobe(qx, qy, angle, wavenumber):
+def _gabor_lobe(qx, qy, angle, wavenumber, radial, angular):
     """One lobe of the Gabor transfer function centred at ``wavenumber·n(angle)`` (peak 1), polar separable.
 
-    Gaussian in ``|q| − |wavenumber|`` and in the angle between ``q`` and ``sign(wavenumber)·n``, so that the
-    radial peak sits at ``|wavenumber|`` in every direction (no frequency bias when bins are interpolated).
+    Gaussian in ``|q| − |wavenumber|`` (std ``radial·|wavenumber|``) and in the angle between ``q`` and
+    ``sign(wavenumber)·n`` (std ``angular`` [rad]), so that the radial peak sits at ``|wavenumber|`` in every
+    direction (no frequency bias when bins are interpolated).
     """
     q = np.hypot(qx, qy)
     normal = angle + 0.5 * np.pi + (np.pi if wavenumber < 0 else 0.0)   # ridge normal for ridge direction
     off_axis = np.angle(np.exp(1j * (np.arctan2(qy, qx) - normal)))
-    return np.exp(-0.5 * (((q - abs(wavenumber)) / (_RADIAL_BANDWIDTH * abs(wavenumber))) ** 2
-                          + (off_axis / _ANGULAR_BANDWIDTH) ** 2))
+    return np.exp(-0.5 * (((q - abs(wavenumber)) / (radial * abs(wavenumber))) ** 2 + (off_axis / angular) ** 2))
 
 
 class _Steering:
@@ -317,22 +317,21 @@ class _Steering:
         return w, wrapped
 
 
-def _grow(steering, qx, qy, shape, n_seeds, rng):
-    """Iterated steered Gabor filtering and clipping from ``n_seeds`` random seeds (real field in [−1, 1])."""
-    field = np.zeros(shape)
-    seeds = (rng.integers(0, shape[0], n_seeds), rng.integers(0, shape[1], n_seeds))
-    field[seeds] = rng.choice([-1.0, 1.0], n_seeds)
-    transfer = [[_gabor_lobe(qx, qy, a, q) + _gabor_lobe(qx, qy, a, -q) for q in steering.wavenumbers]
-                for a in steering.angles]
+def _grow(steering, qx, qy, shape, rng):
+    """Iterated steered Gabor filtering and clipping of white noise, in ``_GROWTH_STAGES`` (field in [−1, 1])."""
+    field = rng.standard_normal(shape)
     weights = [[steering.weight(k, j)[0] for j in range(len(steering.wavenumbers))]
                for k in range(steering.n_theta)]
-    for _ in range(_GROWTH_ITERATIONS):
-        spectrum = scipy.fft.rfft2(field)
-        filtered = np.zeros(shape)
-        for k in range(steering.n_theta):
-            for j in range(len(steering.wavenumbers)):
-                filtered += weights[k][j] * scipy.fft.irfft2(transfer[k][j] * spectrum, s=shape)
-        field = np.clip(_GROWTH_GAIN * filtered / np.abs(filtered).max(), -1.0, 1.0)
+    for radial, angular, iterations in _GROWTH_STAGES:
+        transfer = [[_gabor_lobe(qx, qy, a, q, radial, angular) + _gabor_lobe(qx, qy, a, -q, radial, angular)
+                     for q in steering.wavenumbers] for a in steering.angles]
+        for _ in range(iterations):
+            spectrum = scipy.fft.rfft2(field)
+            filtered = np.zeros(shape)
+            for k in range(steering.n_theta):
+                for j in range(len(steering.wavenumbers)):
+                    filtered += weights[k][j] * scipy.fft.irfft2(transfer[k][j] * spectrum, s=shape)
+            field = np.clip(_GROWTH_GAIN * filtered / np.abs(filtered).max(), -1.0, 1.0)
     return field
 
 
@@ -346,7 +345,7 @@ def _embed(coarse_spectrum, full_shape):
 
 
 def _analytic_ridges(grown, coarse_grid, steering, full_grid, workers):
-    """Steered analytic Gabor response ``z = c + i s`` of ``grown``, interpolated to ``full_grid`` (complex64)."""
+    """Steered analytic response ``z = c + i s`` of ``grown`` (last-stage filters), interpolated to ``full_grid``."""
     spectrum = scipy.fft.fft2(grown)
     qx, qy = coarse_grid.wavevectors()
     slices = _embed(spectrum, full_grid.shape)
@@ -358,7 +357,7 @@ def _analytic_ridges(grown, coarse_grid, steering, full_grid, workers):
             selected = weight > 0
             if not selected.any():
                 continue
-            lobe = 2.0 * _gabor_lobe(qx, qy, angle, q) * spectrum
+            lobe = 2.0 * _gabor_lobe(qx, qy, angle, q, *_GROWTH_STAGES[-1][:2]) * spectrum
             buffer[...] = 0
             for (src_x, dst_x) in slices[0]:
                 for (src_y, dst_y) in slices[1]:
@@ -474,8 +473,8 @@ def _pad_to_domain(values, domain_shape, offsets):
 def fingerprint(grid: Grid, pattern: str = "left_loop", ridge_period=RIDGE_PERIOD,
                 ridge_height: float = RIDGE_HEIGHT, ridge_width_ratio: float = RIDGE_WIDTH_RATIO,
                 pore_density: float = PORE_DENSITY, pore_diameter: float = PORE_DIAMETER,
-                pore_depth: float = PORE_DEPTH, seed_density: float = SEED_DENSITY,
-                cores=None, deltas=None, rotation: float = 0.0, rng=None, workers: int = -1) -> HeightField:
+                pore_depth: float = PORE_DEPTH, cores=None, deltas=None, rotation: float = 0.0, rng=None,
+                workers: int = -1) -> HeightField:
     """Synthetic fingerprint height field [m], zero mean, crests towards the counter-face.
 
     Parameters (SI; defaults and sources in ``docs/fingerprint.md``)
@@ -486,8 +485,6 @@ def fingerprint(grid: Grid, pattern: str = "left_loop", ridge_period=RIDGE_PERIO
     ridge_width_ratio : ridge width / furrow width at mid-height, in [0.43, 2.33] (default 1.5).
     pore_density : sweat pores per area [1/m²] on ridge crests (default 5e6 = 500 cm⁻²); 0 for none.
     pore_diameter, pore_depth : opening diameter (default 120 µm) and depth (default 20 µm) of the dimples [m].
-    seed_density : growth seeds per area [1/m²] (default one per 4 mm²); where fronts from different seeds
-        meet, minutiae form (the density depends only weakly on it, see docs).
     cores, deltas, rotation : singular points (x, y) [m] and θ∞ [rad]; see :func:`ridge_pattern`.
     rng : int seed or ``numpy.random.Generator``. workers : FFT threads for ``scipy.fft`` (−1 = all cores).
 
@@ -505,7 +502,6 @@ def fingerprint(grid: Grid, pattern: str = "left_loop", ridge_period=RIDGE_PERIO
     pore_diameter = check_real("pore_diameter", pore_diameter, low=0.0, low_open=True,
                                high=ridge_fraction(ratio) * float(np.min(period)))
     pore_depth = check_real("pore_depth", pore_depth, low=0.0)
-    seed_density = check_positive("seed_density", seed_density)
     seed = rng if isinstance(rng, (int, np.integer)) or rng is None else None
     rng = np.random.default_rng(rng)
 
@@ -530,8 +526,7 @@ def fingerprint(grid: Grid, pattern: str = "left_loop", ridge_period=RIDGE_PERIO
 
     coarse_steering = steering_on(coarse)
     qx, qy = coarse.wavevectors(real=True)
-    n_seeds = max(1, int(round(seed_density * domain.area)))
-    grown = _grow(coarse_steering, qx, qy, coarse.shape, n_seeds, rng)
+    grown = _grow(coarse_steering, qx, qy, coarse.shape, rng)
 
     z = _analytic_ridges(grown, coarse, steering_on(domain), domain, workers)[window]
     amplitude = np.abs(z)
@@ -546,6 +541,6 @@ def fingerprint(grid: Grid, pattern: str = "left_loop", ridge_period=RIDGE_PERIO
         "generator": "surfaces.fingerprint", "pattern": model.pattern,
         "ridge_period": period if np.ndim(period) == 0 else "map", "ridge_height": ridge_height,
         "ridge_width_ratio": ratio, "pore_density": pore_density, "pore_diameter": pore_diameter,
-        "pore_depth": pore_depth, "seed_density": seed_density, "cores": model.cores, "deltas": model.deltas,
+        "pore_depth": pore_depth, "cores": model.cores, "deltas": model.deltas,
         "rotation": model.rotation, "seam_width": seam, "seed": None if seed is None else int(seed),
         "pore_centres": pores.tolist()})
