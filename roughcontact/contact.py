@@ -89,6 +89,41 @@ def _conjugate_direction(u, h, p, alpha, shift, beta, t):
 
 
 @njit(cache=True)
+def _masked_gap(u, h, p, alpha, shift, out):
+    """out ← g = α u − h + shift on the contact set, 0 elsewhere (the residual to precondition)."""
+    for i in range(p.size):
+        out[i] = alpha * u[i] - h[i] + shift if p[i] > 0 else 0.0
+
+
+@njit(cache=True)
+def _preconditioned_moments(u, h, p, alpha, shift, z):
+    """Σ z and Σ g z over the contact set, for the preconditioned residual z = M g."""
+    sum_z = 0.0
+    sum_gz = 0.0
+    for i in range(p.size):
+        if p[i] > 0:
+            sum_z += z[i]
+            sum_gz += (alpha * u[i] - h[i] + shift) * z[i]
+    return sum_z, sum_gz
+
+
+@njit(cache=True)
+def _preconditioned_direction(u, h, p, alpha, shift, z, z_mean, beta, t):
+    """Preconditioned PK step (c): t ← (z − z̄) + β t on the contact set, 0 elsewhere. Returns Σ g t, Σ t."""
+    sum_gt = 0.0
+    sum_t = 0.0
+    for i in range(p.size):
+        if p[i] > 0:
+            direction = z[i] - z_mean + beta * t[i]
+            t[i] = direction
+            sum_gt += (alpha * u[i] - h[i] + shift) * direction
+            sum_t += direction
+        else:
+            t[i] = 0.0
+    return sum_gt, sum_t
+
+
+@njit(cache=True)
 def _direction_moments(p, t, r):
     """Σ r and Σ r t over the contact set, for r = K t (PK step (d))."""
     sum_r = 0.0
@@ -222,7 +257,7 @@ def _initial_pressure(x0, heights, half, mean_pressure, flat_position):
 
 def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, total_force=None,
                   penetration=None, tol=1e-8, maxiter=10000, x0=None, callback=None,
-                  interaction: Interaction | None = None, warn=True) -> ContactResult:
+                  preconditioned=None, interaction: Interaction | None = None, warn=True) -> ContactResult:
     """Press ``height_field`` onto a rigid flat and solve for pressure, displacement and gap.
 
     Parameters
@@ -241,6 +276,11 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
         Warm start: a previous result or a pressure field [Pa] (rescaled to the requested load).
     callback : callable, optional
         ``callback(SolverState)`` after every step; raising ``StopIteration`` halts (``converged=False``).
+    preconditioned : bool, optional
+        Precondition the conjugate gradients with the inverse kernel K⁻¹: one more convolution per step,
+        fewer steps. Default (None): on periodic grids, where it saved 20–75 % of the convolutions
+        (rough surfaces, Westergaard); not on free surfaces, where the padded convolutions are 4× dearer
+        and it cost 10–35 % more (``docs/solver.md``).
     interaction : Interaction, optional
         Surface interaction law; only :class:`~roughcontact.interactions.HardWall` (the default) so far.
     warn : bool
@@ -263,6 +303,7 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     if callback is not None and not callable(callback):
         raise TypeError(f"callback must be callable, got {type(callback).__name__}")
     grid = half.grid
+    preconditioned = half.periodic if preconditioned is None else bool(preconditioned)
     heights = _heights(height_field, half)
     if total_force is not None:
         mean_pressure = check_positive("total_force", total_force) / grid.area
@@ -273,6 +314,7 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     flat_position = None if load_control else h_max - check_real("penetration", penetration)
 
     params = {"E_star": half.E_star, "grid": grid, "tol": tol, "maxiter": int(maxiter), "method": METHOD,
+              "preconditioned": bool(preconditioned),
               "control": next(iter(given)), "requested": float(next(iter(given.values()))),
               "interaction": type(interaction).__name__, "kernel": half.description, "version": __version__}
 
@@ -347,10 +389,24 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
             p[:] = _initial_pressure(None, heights, half, None, flat_position).reshape(-1)
             alpha, beta_allowed, step_incremental = 1.0, False, False
         else:
-            # (c) conjugate direction; (d) step length from the one convolution r = K t
-            beta = squared / previous_squared if beta_allowed else 0.0
-            previous_squared = squared
-            sum_gt, sum_t = _conjugate_direction(u, h, p, alpha, shift, beta, t)
+            # (c) conjugate direction, optionally preconditioned: z = M g with M = K⁻¹ (one convolution)
+            if preconditioned:
+                _masked_gap(u, h, p, alpha, shift, r)
+                half.stiffness_into(r.reshape(grid.shape), r.reshape(grid.shape))
+                convolutions += 1
+                sum_z, descent = _preconditioned_moments(u, h, p, alpha, shift, r)
+                z_mean = sum_z / n_contact if load_control else 0.0
+            else:
+                descent = squared
+            beta = descent / previous_squared if beta_allowed and previous_squared > 0 else 0.0
+            previous_squared = descent
+            if preconditioned:
+                sum_gt, sum_t = _preconditioned_direction(u, h, p, alpha, shift, r, z_mean, beta, t)
+                if sum_gt <= 0 and beta > 0:                # not a descent direction: restart
+                    sum_gt, sum_t = _preconditioned_direction(u, h, p, alpha, shift, r, z_mean, 0.0, t)
+            else:
+                sum_gt, sum_t = _conjugate_direction(u, h, p, alpha, shift, beta, t)
+            # (d) step length from the convolution r = K t
             convolve(t, r)
             convolutions += 1
             sum_r, sum_rt = _direction_moments(p, t, r)

@@ -111,8 +111,11 @@ class ElasticHalfSpace:
         self._fft = make_backend(backend, self.transform_shape, dtype, threads, planner_effort)
         self.dtype = self._fft.dtype
         self._padded = None if self.periodic else self._fft.work_array()   # free surface: 2nx × 2ny
-        self._multiplier = self._fourier_multiplier().astype(self.dtype)
+        compliance = self._fourier_multiplier()
+        self._multiplier = compliance.astype(self.dtype)
         self._multiplier.flags.writeable = False
+        self._stiffness = self._inverse_multiplier(compliance).astype(self.dtype)
+        self._stiffness.flags.writeable = False
 
     # -- construction helpers ------------------------------------------------------------------------------
     @staticmethod
@@ -174,6 +177,16 @@ class ElasticHalfSpace:
             multiplier[0, 0] = float(self.compliance(np.array([0.0]))[0])   # finite uniform compression
         return multiplier / n_total
 
+    def _inverse_multiplier(self, compliance) -> np.ndarray:
+        """1/Φ on the transform grid (with the 1/N of the FFT pair); modes with Φ = 0 get the smallest
+        stiffness of the others, so the preconditioner is positive definite."""
+        n_total = self.transform_shape[0] * self.transform_shape[1]
+        positive = compliance > 0
+        stiffness = np.zeros_like(compliance)
+        stiffness[positive] = 1.0 / (compliance[positive] * n_total * n_total)
+        stiffness[~positive] = stiffness[positive].min() if positive.any() else 1.0 / n_total
+        return stiffness
+
     def _free_surface_multiplier(self) -> np.ndarray:
         """FFT of the Love pixel influence coefficients laid out for the padded (linear) convolution."""
         nx, ny = self.grid.shape
@@ -225,19 +238,31 @@ class ElasticHalfSpace:
         No allocation; with arrays from :meth:`empty` (periodic grids) no copy either. Free surface: p is
         placed in the corner of the zero-padded 2n buffer and u read back from the same corner.
         """
+        return self._convolve(pressure, out, self._multiplier)
+
+    def stiffness_into(self, displacement: np.ndarray, out: np.ndarray) -> np.ndarray:
+        """Write the pressure [Pa] that the inverse multiplier 1/Φ assigns to ``displacement`` [m] into ``out``.
+
+        The exact inverse of K on a periodic grid (except for the q = 0 mode, given the smallest stiffness
+        of the other modes when Φ(0) = 0); on a free surface the inverse of the padded operator. Used as the
+        conjugate-gradient preconditioner; ``out`` may be ``displacement``.
+        """
+        return self._convolve(displacement, out, self._stiffness)
+
+    def _convolve(self, source, out, multiplier):
         fft = self._fft
         if self.periodic:
-            fft.forward(pressure)
-            _apply_multiplier(fft.spectrum, self._multiplier)
+            fft.forward(source)
+            _apply_multiplier(fft.spectrum, multiplier)
             fft.backward(out)
             return out
         nx, ny = self.grid.shape
         padded = self._padded
         padded[nx:, :] = 0                                      # backward() filled the padding last time
         padded[:nx, ny:] = 0
-        padded[:nx, :ny] = pressure
+        padded[:nx, :ny] = source
         fft.forward(padded)
-        _apply_multiplier(fft.spectrum, self._multiplier)
+        _apply_multiplier(fft.spectrum, multiplier)
         fft.backward(padded)
         np.copyto(out, padded[:nx, :ny])
         return out

@@ -155,3 +155,26 @@ def test_agrees_with_tamaas(rough):
     gap -= gap[traction > 0].mean()
     assert result.mean_gap == pytest.approx(gap.mean(), rel=1e-9)
     np.testing.assert_allclose(result.pressure, traction, rtol=0, atol=1e-7 * traction.max())
+
+
+@pytest.mark.parametrize("periodic", [True, False])
+def test_plain_and_preconditioned_pk_agree(rough, periodic):
+    """Plain Polonsky–Keer and the K⁻¹-preconditioned variant converge to the same contact solution, the
+    preconditioned one in fewer steps (deterministic counts; measured 56 → 25 steps periodic, 39 → 22 free).
+    The default is preconditioned on periodic grids only."""
+    field, half, _ = rough
+    if not periodic:
+        grid = Grid((128, 96), (L, 0.75 * L), periodic=False)
+        field = self_affine(grid, hurst=0.8, rms_slope=SLOPE, short_cutoff=8 * L / 128, rng=1)
+        half = ElasticHalfSpace(grid, E_star=E_STAR)
+    load = 0.02 * E_STAR * SLOPE
+    default = solve_contact(field, half, mean_pressure=load, tol=1e-9)
+    assert default.params["preconditioned"] == periodic
+    plain = solve_contact(field, half, mean_pressure=load, tol=1e-9, preconditioned=False)
+    preconditioned = solve_contact(field, half, mean_pressure=load, tol=1e-9, preconditioned=True)
+    assert plain.converged and preconditioned.converged
+    assert preconditioned.iterations < plain.iterations
+    assert plain.contact_fraction == preconditioned.contact_fraction
+    np.testing.assert_allclose(plain.pressure, preconditioned.pressure, rtol=0,
+                               atol=1e-6 * preconditioned.pressure.max())
+    assert plain.mean_gap == pytest.approx(preconditioned.mean_gap, rel=1e-8)
