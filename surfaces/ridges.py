@@ -30,6 +30,7 @@ import scipy.fft
 from ._checks import check_choice, check_finite_array, check_positive, check_real
 from .grid import Grid
 from .heightfield import HeightField
+from .selfaffine import _generator
 
 PATTERNS = ("arch", "tented_arch", "left_loop", "right_loop", "whorl")
 _ALIASES = {"loop": "left_loop"}
@@ -486,7 +487,8 @@ def fingerprint(grid: Grid, pattern: str = "left_loop", ridge_period=RIDGE_PERIO
     pore_density : sweat pores per area [1/m²] on ridge crests (default 5e6 = 500 cm⁻²); 0 for none.
     pore_diameter, pore_depth : opening diameter (default 120 µm) and depth (default 20 µm) of the dimples [m].
     cores, deltas, rotation : singular points (x, y) [m] and θ∞ [rad]; see :func:`ridge_pattern`.
-    rng : int seed or ``numpy.random.Generator``. workers : FFT threads for ``scipy.fft`` (−1 = all cores).
+    rng : None, int seed or ``numpy.random.Generator`` (an int seed, or the fresh one drawn for None, is
+        stored in the metadata). workers : FFT threads for ``scipy.fft`` (−1 = all cores).
 
     The metadata records all parameters, the singular points and the pore centres [m]. On a periodic grid
     the ridges are continuous across the boundary and the orientation field is blended with its periodic
@@ -502,8 +504,7 @@ def fingerprint(grid: Grid, pattern: str = "left_loop", ridge_period=RIDGE_PERIO
     pore_diameter = check_real("pore_diameter", pore_diameter, low=0.0, low_open=True,
                                high=ridge_fraction(ratio) * float(np.min(period)))
     pore_depth = check_real("pore_depth", pore_depth, low=0.0)
-    seed = rng if isinstance(rng, (int, np.integer)) or rng is None else None
-    rng = np.random.default_rng(rng)
+    rng, seed = _generator(rng)
 
     seam = _SEAM_PERIODS * float(np.max(period))
     domain, offsets = _generation_grid(grid, seam)
@@ -542,5 +543,5 @@ def fingerprint(grid: Grid, pattern: str = "left_loop", ridge_period=RIDGE_PERIO
         "ridge_period": period if np.ndim(period) == 0 else "map", "ridge_height": ridge_height,
         "ridge_width_ratio": ratio, "pore_density": pore_density, "pore_diameter": pore_diameter,
         "pore_depth": pore_depth, "cores": model.cores, "deltas": model.deltas,
-        "rotation": model.rotation, "seam_width": seam, "seed": None if seed is None else int(seed),
+        "rotation": model.rotation, "seam_width": seam, "seed": seed,
         "pore_centres": pores.tolist()})

@@ -157,6 +157,10 @@ def test_determinism_and_no_global_rng():
     assert not np.array_equal(a.heights, c.heights)
     assert all(np.array_equal(s, t) if isinstance(s, np.ndarray) else s == t
                for s, t in zip(state, np.random.get_state()))
+    fresh = surfaces.fingerprint(g, "whorl", rng=None)               # a fresh seed, recorded: reproducible
+    assert np.array_equal(surfaces.fingerprint(g, "whorl", rng=fresh.metadata["seed"]).heights, fresh.heights)
+    with pytest.raises(TypeError, match="rng"):
+        surfaces.fingerprint(g, "whorl", rng="seven")
 
 
 def test_save_load_roundtrip(tmp_path):
