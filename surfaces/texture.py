@@ -119,7 +119,8 @@ def detect_pores(field: HeightField, pore_diameter: float = PORE_DIAMETER, min_d
     lie on the crest, in the top quarter between the local furrow and crest levels (minimum and maximum over
     one :func:`dominant_wavelength`), which rejects furrows where ``t`` is uncertain (minutiae). Passing pixels
     closer than a quarter pore diameter are one pore (joined across periodic edges), located at its lowest
-    pixel. ``min_depth`` defaults to a quarter of the default pore depth (5 µm).
+    pixel. ``min_depth`` defaults to a quarter of the default pore depth (5 µm); on a rough field it must
+    clear the roughness (about 4× its rms height, see ``docs/fingerprint.md``).
     """
     field = _as_field(field)
     grid = field.grid
