@@ -92,7 +92,10 @@ def _conjugate_direction(u, h, p, alpha, shift, beta, t):
 def _masked_gap(u, h, p, alpha, shift, out):
     """out ← g = α u − h + shift on the contact set, 0 elsewhere (the residual to precondition)."""
     for i in range(p.size):
-        out[i] = alpha * u[i] - h[i] + shift if p[i] > 0 else 0.0
+        if p[i] > 0:
+            out[i] = alpha * u[i] - h[i] + shift
+        else:
+            out[i] = 0.0
 
 
 @njit(cache=True)
