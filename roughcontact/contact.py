@@ -9,7 +9,9 @@ contact set I_c = {p > 0} with the mean gap on I_c removed (load control), proje
 of penetrated points (I_ol, with a CG restart). The displacement is carried along incrementally,
 u ← α (u − τ K t), so an iteration costs **one** convolution K t while the contact set is unchanged; when a
 point leaves or enters the contact set (or every ``_REFRESH`` steps, and before accepting convergence) u is
-recomputed exactly (one more convolution). Convergence criterion, with ``gap_scale`` the rms height of h:
+recomputed exactly (one more convolution). Optionally (default on periodic grids) the CG is preconditioned
+with the inverse kernel, z = K⁻¹ g: one more convolution per step, fewer steps. Convergence criterion,
+with ``gap_scale`` the rms height of h:
 
     sqrt(<(g − ḡ_c)²>_{I_c}) ≤ tol · gap_scale   and   max(−g outside I_c) ≤ tol · gap_scale,
 
