@@ -10,6 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.ndimage
 import scipy.signal
+import scipy.spatial
 
 from ._checks import check_positive, check_real
 from .ridges import PORE_DEPTH, PORE_DIAMETER
@@ -117,14 +118,19 @@ def detect_pores(field: HeightField, pore_diameter: float = PORE_DIAMETER, min_d
     ``R = 0.75 pore_diameter`` [m] lies just outside a pore of that opening diameter. A furrow or a flank is
     level along ``t`` and a crest is a maximum there, so only closed pits pass; both points ``±R t`` must also
     lie on the crest, in the top quarter between the local furrow and crest levels (minimum and maximum over
-    one :func:`dominant_wavelength`), which rejects furrows where ``t`` is uncertain (minutiae). Passing pixels
-    closer than a quarter pore diameter are one pore (joined across periodic edges), located at its lowest
-    pixel. ``min_depth`` defaults to a quarter of the default pore depth (5 µm); on a rough field it must
+    one :func:`dominant_wavelength`), which rejects furrows where ``t`` is uncertain (minutiae). Each pore is
+    a lowest passing pixel; passing pixels within one diameter of it (minimum image on periodic axes)
+    belong to it (distinct pores are at least 1.25 diameters apart, as :func:`fingerprint` places them).
+    The pore must span at least 3 pixels. ``min_depth`` defaults to a quarter of the default pore depth (5 µm); on a rough field it must
     clear the roughness (about 4× its rms height, see ``docs/fingerprint.md``).
     """
     field = _as_field(field)
     grid = field.grid
     pore_diameter = check_positive("pore_diameter", pore_diameter)
+    pixel = max(grid.spacing)
+    if pore_diameter < 3 * pixel:
+        raise ValueError(f"pore_diameter = {pore_diameter!r} m spans fewer than 3 pixels of {pixel:g} m; "
+                         f"valid range [{3 * pixel:g}, inf) m on this grid")
     min_depth = 0.25 * PORE_DEPTH if min_depth is None else check_positive("min_depth", min_depth)
     if orientation is None:
         orientation = orientation_field(field)
@@ -141,33 +147,18 @@ def detect_pores(field: HeightField, pore_diameter: float = PORE_DIAMETER, min_d
     size = np.maximum(1, np.rint(dominant_wavelength(field) / spacing)).astype(int)
     crest = scipy.ndimage.maximum_filter(h, size=size, mode=mode)
     furrow = scipy.ndimage.minimum_filter(h, size=size, mode=mode)
-    pits = (h < surroundings - min_depth) & (surroundings > furrow + 0.75 * (crest - furrow))
-    join = np.maximum(1, np.rint(0.25 * pore_diameter / spacing)).astype(int)
-    joined = scipy.ndimage.binary_dilation(pits, np.ones(tuple(2 * join + 1), dtype=bool))
-    labels = _merge_periodic_labels(scipy.ndimage.label(joined)[0] * pits, grid.periodic)
-    groups = np.unique(labels[labels > 0])
-    lowest = scipy.ndimage.minimum_position(h, labels, groups)
-    centres = np.array(lowest, dtype=float).reshape(-1, 2) * spacing
-    return DetectedPores(centres, int(groups.size), groups.size / grid.area)
-
-
-def _merge_periodic_labels(labels: np.ndarray, periodic) -> np.ndarray:
-    """Relabel so that groups touching across a periodic edge share one label."""
-    parent = np.arange(labels.max() + 1)
-
-    def root(a):
-        while parent[a] != a:
-            parent[a] = parent[parent[a]]
-            a = parent[a]
-        return a
-
-    for axis, wraps in enumerate(periodic):
-        if not wraps or labels.shape[axis] == 1:
+    pits = np.argwhere((h < surroundings - min_depth) & (surroundings > furrow + 0.75 * (crest - furrow)))
+    # one pore per pit: take the lowest pit pixel, drop the pit pixels within one diameter, repeat
+    positions = pits * spacing
+    order = np.argsort(h[tuple(pits.T)], kind="stable")
+    box = [length if periodic else 3 * length for length, periodic in zip(grid.lengths, grid.periodic)]
+    tree = scipy.spatial.cKDTree(positions, boxsize=box)
+    taken = np.zeros(len(pits), dtype=bool)
+    centres = []
+    for index in order:
+        if taken[index]:
             continue
-        first, last = np.take(labels, 0, axis=axis), np.take(labels, -1, axis=axis)
-        for a, b in zip(first[(first > 0) & (last > 0)], last[(first > 0) & (last > 0)]):
-            ra, rb = root(a), root(b)
-            if ra != rb:
-                parent[max(ra, rb)] = min(ra, rb)
-    roots = np.array([root(a) for a in range(parent.size)])
-    return roots[labels]
+        centres.append(positions[index])
+        taken[tree.query_ball_point(positions[index], pore_diameter)] = True
+    centres = np.array(centres, dtype=float).reshape(-1, 2)
+    return DetectedPores(centres, len(centres), len(centres) / grid.area)

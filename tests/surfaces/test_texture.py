@@ -157,5 +157,7 @@ def test_detect_pores_bad_input():
     field = ridges_with_pits(True, [])
     with pytest.raises(ValueError, match="pore_diameter"):
         surfaces.detect_pores(field, pore_diameter=0.0)
+    with pytest.raises(ValueError, match="pore_diameter.*3 pixels"):
+        surfaces.detect_pores(field, pore_diameter=50e-6)            # 2.6 pixels of 19.5 µm
     with pytest.raises(ValueError, match="min_depth"):
         surfaces.detect_pores(field, min_depth=float("nan"))
