@@ -8,6 +8,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.fft
 import scipy.ndimage
 import scipy.signal
 import scipy.spatial
@@ -68,11 +69,21 @@ class OrientationField:
     window: float
 
 
+def _gaussian_smooth(values: np.ndarray, sigma, periodic) -> np.ndarray:
+    """Gaussian filter of std ``sigma`` [pixels] by FFT: wrapped on periodic axes, mirrored (3σ) otherwise."""
+    pad = [(0, 0) if wraps else (int(np.ceil(3 * s)),) * 2 for s, wraps in zip(sigma, periodic)]
+    padded = np.pad(values, pad, mode="symmetric")
+    spectrum = scipy.ndimage.fourier_gaussian(scipy.fft.rfft2(padded), sigma, n=padded.shape[-1])
+    smoothed = scipy.fft.irfft2(spectrum, s=padded.shape)
+    return smoothed[tuple(slice(before, before + n) for (before, _), n in zip(pad, values.shape))]
+
+
 def orientation_field(field: HeightField, window=None) -> OrientationField:
     """Structure-tensor ridge orientation (Kass & Witkin 1987; Bazen & Gerez 2002) of a height field.
 
     ``J = G_w * (∇h ∇hᵀ)`` with central-difference gradients and a Gaussian of standard deviation ``window``
-    [m] (default: the :func:`dominant_wavelength`, which averages over one ridge and one furrow). The gradient
+    [m] (default: the :func:`dominant_wavelength`, which averages over one ridge and one furrow), applied by FFT
+    (wrapped on periodic axes, mirrored on the others). The gradient
     points across the ridges, so ``θ = ½ atan2(2Jxy, Jxx − Jyy) + π/2`` (mod π).
     """
     field = _as_field(field)
@@ -82,12 +93,7 @@ def orientation_field(field: HeightField, window=None) -> OrientationField:
     window = dominant_wavelength(field) if window is None else check_positive("window", window)
     gx, gy = _gradients(field)
     sigma = (window / grid.spacing[0], window / grid.spacing[1])
-    mode = ["wrap" if periodic else "reflect" for periodic in grid.periodic]
-
-    def smooth(values):
-        return scipy.ndimage.gaussian_filter(values, sigma, mode=mode, truncate=3.0)
-
-    jxx, jyy, jxy = smooth(gx * gx), smooth(gy * gy), smooth(gx * gy)
+    jxx, jyy, jxy = (_gaussian_smooth(values, sigma, grid.periodic) for values in (gx * gx, gy * gy, gx * gy))
     anisotropy = np.hypot(jxx - jyy, 2 * jxy)
     angle = np.mod(0.5 * np.arctan2(2 * jxy, jxx - jyy) + 0.5 * np.pi, np.pi)
     coherence = anisotropy / np.maximum(jxx + jyy, np.finfo(float).tiny)
