@@ -471,6 +471,23 @@ def _pad_to_domain(values, domain_shape, offsets):
     return np.pad(values, [(o, n - w - o) for o, n, w in zip(offsets, domain_shape, values.shape)], mode="edge")
 
 
+def _steering(model, target: Grid, seam, origin, period, period_map) -> _Steering:
+    """Orientation and ridge-wavenumber (2π/period) bins on ``target`` (the coarse or full generation grid).
+
+    ``period_map`` is the period map on the full generation domain (None for a constant ``period``); it is
+    sampled at the nearest full-domain pixel of each ``target`` pixel.
+    """
+    theta = _periodised_orientation(model, target, seam, origin)
+    if period_map is None:
+        return _Steering(theta, None, [2 * np.pi / period])
+    sample = tuple(np.round(np.arange(m) * (n / m)).astype(int) for m, n in zip(target.shape, period_map.shape))
+    local = period_map[np.ix_(*sample)]
+    q_min, q_max = 2 * np.pi / local.max(), 2 * np.pi / local.min()
+    n_q = 1 + int(np.ceil(np.log(q_max / q_min) / np.log(_FREQUENCY_STEP)))
+    wavenumbers = q_min * (q_max / q_min) ** (np.arange(n_q) / max(n_q - 1, 1))
+    return _Steering(theta, 2 * np.pi / local, list(wavenumbers))
+
+
 def fingerprint(grid: Grid, pattern: str = "left_loop", ridge_period=RIDGE_PERIOD,
                 ridge_height: float = RIDGE_HEIGHT, ridge_width_ratio: float = RIDGE_WIDTH_RATIO,
                 pore_density: float = PORE_DENSITY, pore_diameter: float = PORE_DIAMETER,
@@ -511,25 +528,12 @@ def fingerprint(grid: Grid, pattern: str = "left_loop", ridge_period=RIDGE_PERIO
     coarse = _coarse_grid(domain, float(np.min(period)))
     window = tuple(slice(o, o + n) for o, n in zip(offsets, grid.shape))
 
-    # orientation and frequency (wavenumber 2π/period) on the coarse and full generation grids
     origin = tuple(o * d for o, d in zip(offsets, grid.spacing))
-
-    def steering_on(target):
-        theta = _periodised_orientation(model, target, seam, origin)
-        if np.ndim(period) == 0:
-            return _Steering(theta, None, [2 * np.pi / period])
-        full = _pad_to_domain(period, domain.shape, offsets)
-        sample = tuple(np.round(np.arange(m) * (n / m)).astype(int) for m, n in zip(target.shape, domain.shape))
-        local = full[np.ix_(*sample)]
-        q_min, q_max = 2 * np.pi / local.max(), 2 * np.pi / local.min()
-        n_q = 1 + int(np.ceil(np.log(q_max / q_min) / np.log(_FREQUENCY_STEP)))
-        return _Steering(theta, 2 * np.pi / local, list(q_min * (q_max / q_min) ** (np.arange(n_q) / max(n_q - 1, 1))))
-
-    coarse_steering = steering_on(coarse)
+    period_map = None if np.ndim(period) == 0 else _pad_to_domain(period, domain.shape, offsets)
     qx, qy = coarse.wavevectors(real=True)
-    grown = _grow(coarse_steering, qx, qy, coarse.shape, rng)
-
-    z = _analytic_ridges(grown, coarse, steering_on(domain), domain, workers)[window]
+    grown = _grow(_steering(model, coarse, seam, origin, period, period_map), qx, qy, coarse.shape, rng)
+    full_steering = _steering(model, domain, seam, origin, period, period_map)
+    z = _analytic_ridges(grown, coarse, full_steering, domain, workers)[window]
     amplitude = np.abs(z)
     cos_phase = z.real / np.maximum(amplitude, 1e-30)
     taper = np.clip(amplitude / (_TAPER * np.median(amplitude)), 0.0, 1.0)

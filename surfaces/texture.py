@@ -127,8 +127,9 @@ def detect_pores(field: HeightField, pore_diameter: float = PORE_DIAMETER, min_d
     one :func:`dominant_wavelength`), which rejects furrows where ``t`` is uncertain (minutiae). Each pore is
     a lowest passing pixel; passing pixels within one diameter of it (minimum image on periodic axes)
     belong to it (distinct pores are at least 1.25 diameters apart, as :func:`fingerprint` places them).
-    The pore must span at least 3 pixels. ``min_depth`` defaults to a quarter of the default pore depth (5 µm); on a rough field it must
-    clear the roughness (about 4× its rms height, see ``docs/fingerprint.md``).
+    The pore must span at least 3 pixels. ``min_depth`` defaults to a quarter of the default pore depth
+    (5 µm); on a rough field it must clear the roughness (about 4× its rms height, see
+    ``docs/fingerprint.md``).
     """
     field = _as_field(field)
     grid = field.grid
