@@ -532,8 +532,8 @@ def fingerprint(grid: Grid, pattern: str = "left_loop", ridge_period=RIDGE_PERIO
     period_map = None if np.ndim(period) == 0 else _pad_to_domain(period, domain.shape, offsets)
     qx, qy = coarse.wavevectors(real=True)
     grown = _grow(_steering(model, coarse, seam, origin, period, period_map), qx, qy, coarse.shape, rng)
-    full_steering = _steering(model, domain, seam, origin, period, period_map)
-    z = _analytic_ridges(grown, coarse, full_steering, domain, workers)[window]
+    z = _analytic_ridges(grown, coarse, _steering(model, domain, seam, origin, period, period_map), domain,
+                         workers)[window]
     amplitude = np.abs(z)
     cos_phase = z.real / np.maximum(amplitude, 1e-30)
     taper = np.clip(amplitude / (_TAPER * np.median(amplitude)), 0.0, 1.0)
