@@ -5,7 +5,7 @@ Submodules are imported lazily (PEP 562), so ``import roughcontact`` and the pur
 """
 from __future__ import annotations
 
-import importlib
+from surfaces._lazy import lazy_attributes
 
 from ._version import __version__
 
@@ -20,16 +20,4 @@ _LAZY = {
     "ContactResult": "contact",
 }
 
-__all__ = sorted(_LAZY) + ["__version__"]
-
-
-def __getattr__(name):
-    if name in _LAZY:
-        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'roughcontact' has no attribute {name!r}")
-
-
-def __dir__():
-    return __all__
+__getattr__, __dir__, __all__ = lazy_attributes(__name__, _LAZY, ["__version__"])

@@ -5,8 +5,7 @@ Grid, HeightField and the statistics are numpy-only and imported eagerly; the ge
 ``scipy.fft``/``scipy.ndimage``) load on first use (PEP 562), so ``import surfaces`` stays cheap for
 ``roughcontact.electrostatics`` and ``roughcontact.macro``.
 """
-import importlib
-
+from ._lazy import lazy_attributes
 from .grid import Grid
 from .heightfield import HeightField
 from .statistics import psd, rms_curvature, rms_height, rms_slope
@@ -25,17 +24,5 @@ _LAZY = {
                      "detect_pores", "DetectedPores"], "texture"),
 }
 
-__all__ = ["Grid", "HeightField", "psd", "rms_curvature", "rms_height", "rms_slope", "__version__",
-           *_LAZY]
-
-
-def __getattr__(name):
-    if name in _LAZY:
-        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'surfaces' has no attribute {name!r}")
-
-
-def __dir__():
-    return __all__
+__getattr__, __dir__, __all__ = lazy_attributes(
+    __name__, _LAZY, ["Grid", "HeightField", "psd", "rms_curvature", "rms_height", "rms_slope", "__version__"])
