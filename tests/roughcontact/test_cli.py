@@ -32,3 +32,11 @@ def test_unknown_command_is_an_error():
     with pytest.raises(SystemExit) as exit_info:
         main(["frobnicate"])
     assert exit_info.value.code == 2
+
+
+def test_figures_command_runs_the_library_reproduction(tmp_path, capsys):
+    assert main(["figures", "--fast", "--output", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "| quantity | quoted | computed |" in out          # the checkpoint table is printed
+    assert (tmp_path / "checkpoints.csv").exists()
+    assert len(list(tmp_path.glob("*.png"))) >= 6
