@@ -1,0 +1,261 @@
+"""Peer benchmark of the FFT contact solver against the FFT floor, Tamaas and ContactMechanics (a script).
+
+    python experiments/bench_contact.py                          # 256² … 2048², peers if importable
+    python experiments/bench_contact.py --sizes 256 512 --csv bench.csv --threads 1
+    python experiments/bench_contact.py --fast                   # tiny grids, no peers, seconds
+
+(from the repository root after ``pip install -e .[bench]``, or with ``PYTHONPATH=.``). All numbers come from
+one run on one machine; see ``docs/benchmarks.md`` for the method, the peer conventions and measured values.
+
+Sections (column ``section`` of the table and the CSV):
+
+* ``fft_floor``: one rfft2 + irfft2 pair [s], pyFFTW (plan made once, reused) and ``scipy.fft``.
+* ``solve``: our time to solution, iterations, convolutions per iteration, time per iteration and its ratio
+  to (convolutions per iteration × pyFFTW pair); seeded self-affine surface at p̄ = 0.01 E*.
+* ``peer``: the same problem solved by Tamaas (``PolonskyKeerRey``) and ContactMechanics
+  (``minimize_proxy``), time ratio to ours, relative differences of contact fraction and mean gap.
+* ``sweep``: a 20-step load sweep (p̄ = 0.0005 … 0.01 E*) with and without warm start; the ratio.
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import os
+import time
+
+import numpy as np
+import scipy.fft
+
+import surfaces
+from roughcontact import ElasticHalfSpace, load_path, solve_contact
+
+LENGTH = 1e-3            # periodic square window [m]
+E_STAR = 1e6             # contact modulus [Pa] (results scale with p̄/E*; only the ratio matters)
+PRESSURE = 0.01 * E_STAR  # mean pressure of the time-to-solution runs [Pa]
+HURST, RMS_SLOPE, CUTOFF_PIXELS = 0.8, 0.1, 4
+SWEEP_STEPS = 20
+COLUMNS = ("section", "solver", "n", "time_s", "iterations", "convolutions_per_iteration",
+           "time_per_iteration_s", "ratio", "contact_fraction", "mean_gap_m", "rel_diff_contact_fraction",
+           "rel_diff_mean_gap", "converged", "note")
+
+
+def rough_surface(n: int) -> surfaces.HeightField:
+    """Seeded self-affine surface on an n² periodic grid: H = 0.8, rms slope 0.1, short cutoff 4 pixels."""
+    grid = surfaces.Grid((n, n), (LENGTH, LENGTH), periodic=True)
+    return surfaces.self_affine(grid, hurst=HURST, rms_slope=RMS_SLOPE, short_cutoff=CUTOFF_PIXELS * LENGTH / n,
+                                rng=0)
+
+
+def best_time(run, repeat: int) -> float:
+    """Best wall time [s] of ``repeat`` calls of ``run()`` (after one untimed warm-up call)."""
+    run()
+    times = []
+    for _ in range(repeat):
+        start = time.perf_counter()
+        run()
+        times.append(time.perf_counter() - start)
+    return min(times)
+
+
+def fft_floor(n: int, threads: int, planner: str, repeat: int) -> dict:
+    """Time [s] of one rfft2 + irfft2 pair on an n² float64 array: pyFFTW with its plans reused, scipy.fft."""
+    floors = {}
+    real = np.random.default_rng(0).random((n, n))
+    try:
+        import pyfftw
+    except ImportError:
+        pyfftw = None
+    if pyfftw is not None:
+        a = pyfftw.empty_aligned((n, n), "float64")
+        b = pyfftw.empty_aligned((n, n // 2 + 1), "complex128")
+        forward = pyfftw.FFTW(a, b, axes=(0, 1), flags=(planner,), threads=threads)
+        backward = pyfftw.FFTW(b, a, axes=(0, 1), direction="FFTW_BACKWARD",
+                               flags=(planner, "FFTW_DESTROY_INPUT"), threads=threads)
+        a[...] = real
+
+        def pair():
+            forward()
+            backward()
+        floors["pyfftw"] = best_time(pair, repeat)
+    floors["scipy"] = best_time(lambda: scipy.fft.irfft2(scipy.fft.rfft2(real, workers=threads), s=(n, n),
+                                                         workers=threads), repeat)
+    return floors
+
+
+def row(**values) -> dict:
+    return {column: values.get(column, "") for column in COLUMNS}
+
+
+def relative_difference(value, reference) -> float:
+    return abs(value - reference) / abs(reference)
+
+
+def mean_gap_from(displacement_minus_height: np.ndarray, contact: np.ndarray) -> float:
+    """Mean gap [m] of a peer solution: g = (u − h) − s, with s fixed by g = 0 on the contact set."""
+    return float(displacement_minus_height.mean() - displacement_minus_height[contact].mean())
+
+
+def solve_tamaas(heights: np.ndarray, tol: float):
+    """Tamaas 2.x: ``basic_2d`` model with E = E*, ν = 0 (its E* = E/(1 − ν²)); heights peaks-positive as
+    ours; ``solve(p̄)`` takes the mean pressure [Pa]; ``model.traction`` is the pressure (compressive > 0) and
+    ``model.displacement`` the surface displacement, so g = u − h − s. Returns (time, cf, mean gap, iterations)."""
+    import tamaas as tm
+    n = heights.shape[0]
+    model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [LENGTH, LENGTH], [n, n])
+    model.E, model.nu = E_STAR, 0.0
+    solver = tm.PolonskyKeerRey(model, heights.copy(), tol)
+    start = time.perf_counter()
+    solver.solve(PRESSURE)
+    seconds = time.perf_counter() - start
+    pressure = np.array(model.traction).reshape(n, n)
+    contact = pressure > 0
+    gap = mean_gap_from(np.array(model.displacement).reshape(n, n) - heights, contact)
+    return seconds, contact.mean(), gap, ""
+
+
+def solve_contactmechanics(heights: np.ndarray, tol: float):
+    """ContactMechanics: ``PeriodicFFTElasticHalfSpace(young=E*)`` (its ``young`` *is* the contact modulus),
+    ``make_system(topography, substrate)``, ``minimize_proxy(external_force=p̄ L², pentol=tol·h_rms)``;
+    ``jac`` are pixel forces (compressive > 0), ``x`` the displacement with the rigid offset, so
+    g = x − h − offset. Returns (time, cf, mean gap, iterations)."""
+    from ContactMechanics import PeriodicFFTElasticHalfSpace, make_system
+    from SurfaceTopography import Topography
+    n = heights.shape[0]
+    substrate = PeriodicFFTElasticHalfSpace((n, n), E_STAR, physical_sizes=(LENGTH, LENGTH))
+    system = make_system(Topography(heights, physical_sizes=(LENGTH, LENGTH), periodic=True), substrate)
+    start = time.perf_counter()
+    result = system.minimize_proxy(external_force=PRESSURE * LENGTH**2, pentol=tol * heights.std(),
+                                   maxiter=100000)
+    seconds = time.perf_counter() - start
+    contact = result.jac > 0
+    gap = mean_gap_from(np.asarray(result.x) - heights, contact)
+    return seconds, contact.mean(), gap, int(result.nit)
+
+
+PEERS = {"tamaas": solve_tamaas, "ContactMechanics": solve_contactmechanics}
+
+
+def peer_available(name: str) -> str:
+    """'' if the peer imports, else the reason it does not."""
+    try:
+        if name == "tamaas":
+            import tamaas as tm
+            tm.set_log_level(tm.LogLevel.error)
+        else:
+            import ContactMechanics  # noqa: F401
+            import SurfaceTopography  # noqa: F401
+    except Exception as error:        # any import failure (missing compiled extension, ...) means "skip"
+        return f"{type(error).__name__}: {error}"
+    return ""
+
+
+def run(sizes, threads, tol, planner, sweep_size, repeat, peers, write):
+    """Run every section, calling ``write(row)`` for each result row."""
+    for n in sizes:
+        floors = fft_floor(n, threads, planner, repeat)
+        for backend, seconds in floors.items():
+            write(row(section="fft_floor", solver=backend, n=n, time_s=seconds, note="rfft2+irfft2 pair"))
+        surface = rough_surface(n)
+        ours = None
+        for backend in ("pyfftw", "scipy"):
+            if backend == "pyfftw" and "pyfftw" not in floors:
+                continue
+            half = ElasticHalfSpace(surface.grid, E_star=E_STAR, backend=backend, threads=threads,
+                                    planner_effort=planner)
+            solve_contact(surface, half, mean_pressure=PRESSURE, tol=1e-2, maxiter=5, warn=False)   # JIT/plans
+            result = solve_contact(surface, half, mean_pressure=PRESSURE, tol=tol)
+            per_iteration = result.wall_time / max(result.iterations, 1)
+            convolutions = result.params["convolutions"] / max(result.iterations, 1)
+            write(row(section="solve", solver=f"roughcontact[{backend}]", n=n, time_s=result.wall_time,
+                      iterations=result.iterations, convolutions_per_iteration=convolutions,
+                      time_per_iteration_s=per_iteration, ratio=per_iteration / (convolutions * floors[backend]),
+                      contact_fraction=result.contact_fraction, mean_gap_m=result.mean_gap,
+                      converged=result.converged,
+                      note="ratio = time per iteration / (convolutions per iteration x own-backend pair)"))
+            ours = ours or result
+        for name in peers:
+            reason = peer_available(name)
+            if reason:
+                write(row(section="peer", solver=name, n=n, note=f"not importable: {reason}"))
+                continue
+            seconds, fraction, gap, iterations = PEERS[name](surface.heights, tol)
+            write(row(section="peer", solver=name, n=n, time_s=seconds, iterations=iterations,
+                      ratio=seconds / ours.wall_time, contact_fraction=fraction, mean_gap_m=gap,
+                      rel_diff_contact_fraction=relative_difference(fraction, ours.contact_fraction),
+                      rel_diff_mean_gap=relative_difference(gap, ours.mean_gap),
+                      note="ratio = peer time / our time (pyfftw); differences relative to ours"))
+    surface = rough_surface(sweep_size)
+    half = ElasticHalfSpace(surface.grid, E_star=E_STAR, threads=threads, planner_effort=planner)
+    pressures = PRESSURE * np.arange(1, SWEEP_STEPS + 1) / SWEEP_STEPS
+    sweeps = {}
+    for warm_start in (False, True):
+        start = time.perf_counter()
+        results = list(load_path(surface, half, pressures, warm_start=warm_start, tol=tol))
+        sweeps[warm_start] = (time.perf_counter() - start, results)
+    (cold_time, cold), (warm_time, warm) = sweeps[False], sweeps[True]
+    for warm_start, (seconds, results) in sweeps.items():
+        write(row(section="sweep", solver="warm start" if warm_start else "cold start", n=sweep_size,
+                  time_s=seconds, iterations=sum(r.iterations for r in results),
+                  ratio=cold_time / seconds, contact_fraction=results[-1].contact_fraction,
+                  mean_gap_m=results[-1].mean_gap, converged=all(r.converged for r in results),
+                  rel_diff_contact_fraction=max(relative_difference(w.contact_fraction, c.contact_fraction)
+                                                for w, c in zip(warm, cold)),
+                  rel_diff_mean_gap=max(relative_difference(w.mean_gap, c.mean_gap) for w, c in zip(warm, cold)),
+                  note=f"{SWEEP_STEPS} steps to {PRESSURE / E_STAR:g} E*; ratio = cold time / this time; "
+                       "differences: max over steps, warm vs cold"))
+
+
+def format_row(values: dict) -> str:
+    def cell(value, width, fmt):
+        return f"{value:{width}{fmt}}" if isinstance(value, (float, np.floating)) else f"{str(value):>{width}s}"
+    return " ".join([f"{values['section']:9s}", f"{values['solver']:22s}", cell(values["n"], 5, "d"),
+                     cell(values["time_s"], 10, ".4g"), cell(values["iterations"], 6, "d"),
+                     cell(values["convolutions_per_iteration"], 6, ".3f"),
+                     cell(values["time_per_iteration_s"], 10, ".4g"), cell(values["ratio"], 7, ".3g"),
+                     cell(values["contact_fraction"], 10, ".6g"), cell(values["mean_gap_m"], 11, ".6g"),
+                     cell(values["rel_diff_contact_fraction"], 9, ".2g"), cell(values["rel_diff_mean_gap"], 9, ".2g"),
+                     f" {values['note']}"])
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--sizes", type=int, nargs="+", default=[256, 512, 1024, 2048], help="grid sizes n (n²)")
+    parser.add_argument("--fast", action="store_true", help="tiny grids (32², 64²), no peers: a smoke run")
+    parser.add_argument("--csv", default="bench_contact.csv", help="CSV output path")
+    parser.add_argument("--threads", type=int, default=1, help="FFT threads (ours, the floor; Tamaas via OpenMP)")
+    parser.add_argument("--tol", type=float, default=1e-10,
+                        help="our tol = Tamaas tol; ContactMechanics pentol = tol x rms height")
+    parser.add_argument("--planner", default="FFTW_MEASURE", help="FFTW planner effort (floor and solver)")
+    parser.add_argument("--sweep-size", type=int, default=512, help="grid size of the load sweep")
+    parser.add_argument("--repeat", type=int, default=5, help="timed repeats of the FFT floor (best reported)")
+    parser.add_argument("--no-peers", action="store_true", help="skip Tamaas and ContactMechanics")
+    args = parser.parse_args(argv)
+    if args.fast:
+        args.sizes, args.sweep_size, args.repeat, args.no_peers = [32, 64], 32, 2, True
+        args.planner = "FFTW_ESTIMATE"
+    peers = [] if args.no_peers else list(PEERS)
+    if "tamaas" in peers and peer_available("tamaas") == "":
+        import tamaas as tm
+        tm.initialize(args.threads)
+    print(f"load average {os.getloadavg()[0]:.2f} {os.getloadavg()[1]:.2f} {os.getloadavg()[2]:.2f}; "
+          f"{os.cpu_count()} cores; threads {args.threads}; tol {args.tol:g}; planner {args.planner}")
+    header = {column: column for column in COLUMNS}
+    header.update(section="section", solver="solver", n="n", time_s="time [s]", iterations="iters",
+                  convolutions_per_iteration="conv/it", time_per_iteration_s="s/iter", ratio="ratio",
+                  contact_fraction="A/A0", mean_gap_m="<g> [m]", rel_diff_contact_fraction="dA/A",
+                  rel_diff_mean_gap="d<g>/<g>", note="note")
+    print(format_row(header))
+    with open(args.csv, "w", newline="") as stream:
+        writer = csv.DictWriter(stream, fieldnames=COLUMNS)
+        writer.writeheader()
+
+        def write(values):
+            writer.writerow(values)
+            stream.flush()
+            print(format_row(values), flush=True)
+        run(args.sizes, args.threads, args.tol, args.planner, args.sweep_size, args.repeat, peers, write)
+    print(f"load average at the end {os.getloadavg()[0]:.2f}; CSV: {args.csv}")
+
+
+if __name__ == "__main__":
+    main()

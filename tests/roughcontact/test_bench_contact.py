@@ -1,0 +1,54 @@
+"""The peer benchmark runs in fast mode and its numbers are self-consistent (no timing is asserted)."""
+import csv
+import importlib.util
+from pathlib import Path
+
+import pytest
+
+SCRIPT = Path(__file__).resolve().parents[2] / "experiments" / "bench_contact.py"
+
+
+@pytest.fixture(scope="module")
+def rows(tmp_path_factory):
+    spec = importlib.util.spec_from_file_location("bench_contact", SCRIPT)
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    path = tmp_path_factory.mktemp("bench") / "bench.csv"
+    bench.main(["--fast", "--csv", str(path)])
+    with open(path, newline="") as stream:
+        return list(csv.DictReader(stream))
+
+
+def select(rows, section, solver=None):
+    return [r for r in rows if r["section"] == section and (solver is None or r["solver"] == solver)]
+
+
+def test_every_section_and_size_present(rows):
+    for n in ("32", "64"):
+        assert {r["solver"] for r in select(rows, "fft_floor") if r["n"] == n} >= {"pyfftw", "scipy"}
+        assert {r["solver"] for r in select(rows, "solve") if r["n"] == n} == {"roughcontact[pyfftw]",
+                                                                           "roughcontact[scipy]"}
+    assert {r["solver"] for r in select(rows, "sweep")} == {"cold start", "warm start"}
+    assert not select(rows, "peer")                     # --fast skips the peers
+    assert all(float(r["time_s"]) > 0 for r in rows)
+
+
+def test_backends_agree_and_converge(rows):
+    # same problem, FFT backends differing by round-off: results agree far below the 1e-10 solver tolerance
+    for n in ("32", "64"):
+        a, b = (next(r for r in select(rows, "solve", f"roughcontact[{k}]") if r["n"] == n) for k in ("pyfftw", "scipy"))
+        assert a["converged"] == b["converged"] == "True"
+        assert a["contact_fraction"] == b["contact_fraction"]
+        assert float(a["mean_gap_m"]) == pytest.approx(float(b["mean_gap_m"]), rel=1e-9)
+        # Polonsky-Keer needs between 1 (plain step) and 3 (preconditioned step + contact-set change) convolutions
+        assert 1 <= float(a["convolutions_per_iteration"]) <= 3
+        assert 0.1 < float(a["contact_fraction"]) < 0.5     # 0.01 E* at rms slope 0.1: κ p/(E* h') ≈ 0.2
+
+
+def test_warm_start_sweep_same_answers_fewer_iterations(rows):
+    cold, warm = select(rows, "sweep", "cold start")[0], select(rows, "sweep", "warm start")[0]
+    assert cold["converged"] == warm["converged"] == "True"
+    # both solves converge to tol 1e-10 on the gap: mean gaps agree to 1e-8; the contact sets may differ by a
+    # few boundary pixels carrying ~0 pressure (1 pixel = 1e-3 of a 32² grid)
+    assert float(warm["rel_diff_mean_gap"]) < 1e-8 and float(warm["rel_diff_contact_fraction"]) < 5e-3
+    assert int(warm["iterations"]) < int(cold["iterations"])
