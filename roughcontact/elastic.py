@@ -10,7 +10,8 @@ Fourier multipliers Φ(q) [m/Pa] with ũ(q) = Φ(q) p̃(q) (u positive into the 
   u(x, y) = 1/(π E*) Σ± F(x ± dx/2, y ± dy/2), F(X, Y) = X asinh(Y/|X|) + Y asinh(X/|Y|)
   (DC-FFT, Liu, Wang & Liu 2000, Wear 243:101; Hockney 1970) — the linear, not circular, convolution;
 * a layer of thickness t on a rigid base or on a softer half-space: Φ(q) from :mod:`roughcontact.layered`.
-  A finite Φ(0) (layer on a rigid base) is kept, so <u> = Φ(0) <p>; an infinite one is set to 0.
+  On a rigid base the uniform (q = 0) mode is the uniaxial-strain compression t/M (see
+  :attr:`ElasticHalfSpace.uniform_compliance`), so <u> = <p> t/M; on a half-space it is set to 0.
 
 Periodicity comes from the grid and is never changed: a 2-D grid must be periodic on both axes or on none
 (mixed periodicity raises ``ValueError``); a profile (shape ``(n, 1)``, plane strain) must be periodic
@@ -174,8 +175,20 @@ class ElasticHalfSpace:
         positive = q > 0
         multiplier[positive] = self.compliance(q[positive])
         if self.layer is not None and self.layer["kind"] == "layer on rigid base":
-            multiplier[0, 0] = float(self.compliance(np.array([0.0]))[0])   # finite uniform compression
+            multiplier[0, 0] = self.uniform_compliance
         return multiplier / n_total
+
+    @property
+    def uniform_compliance(self) -> float:
+        """⟨u⟩/⟨p⟩ [m/Pa] of a periodic layer on a rigid base: the uniaxial-strain column t/M,
+        M = E*(1 − ν)²/(1 − 2ν), whatever the bottom condition (by symmetry a uniform load on a laterally
+        periodic layer moves nothing sideways; it is not the q → 0 limit of the frictionless Φ(q), t/E*, for
+        which the layer can spread over a long wavelength). 0 for the half-space and the layer on a
+        half-space (q = 0 mode undetermined, set to 0)."""
+        if self.layer is None or self.layer["kind"] != "layer on rigid base":
+            return 0.0
+        nu = self.layer["poisson"]
+        return self.layer["thickness"] * (1 - 2 * nu) / (self.E_star * (1 - nu) ** 2)
 
     def _inverse_multiplier(self, compliance) -> np.ndarray:
         """1/Φ on the transform grid (with the 1/N of the FFT pair); modes with Φ = 0 get the smallest

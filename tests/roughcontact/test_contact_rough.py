@@ -178,3 +178,26 @@ def test_plain_and_preconditioned_pk_agree(rough, periodic):
     np.testing.assert_allclose(plain.pressure, preconditioned.pressure, rtol=0,
                                atol=1e-6 * preconditioned.pressure.max())
     assert plain.mean_gap == pytest.approx(preconditioned.mean_gap, rel=1e-8)
+
+
+@pytest.mark.parametrize("layer", [
+    {"thickness": 1e-4, "poisson": 0.3},                                       # stratum-corneum-like slab
+    {"thickness": 1e-4, "poisson": 0.3, "bottom": "frictionless"},
+    {"thickness": 2.5e-4, "poisson": 0.45, "substrate_E_star": 1e4, "substrate_poisson": 0.49},
+])
+def test_layered_contact(layer):
+    """Layered bodies: plain and preconditioned PK agree; on a rigid base ⟨u⟩ = p̄ t/M enters the mean gap."""
+    grid = Grid((64, 64), (L, L), periodic=True)
+    field = self_affine(grid, hurst=0.8, rms_slope=SLOPE, short_cutoff=8 * L / 64, rng=2)
+    half = ElasticHalfSpace(grid, E_star=E_STAR, **layer)
+    load = 0.05 * E_STAR * SLOPE
+    results = [solve_contact(field, half, mean_pressure=load, tol=1e-10, preconditioned=flag) for flag in (True, False)]
+    for result in results:
+        assert result.converged and (result.gap >= 0).all() and np.all(result.pressure * result.gap == 0)
+    assert results[0].contact_fraction == results[1].contact_fraction
+    assert results[0].mean_gap == pytest.approx(results[1].mean_gap, rel=1e-8)
+    result = results[0]
+    assert result.displacement.mean() == pytest.approx(load * half.uniform_compliance, rel=1e-9, abs=1e-20)
+    flat_position = field.heights.max() - result.penetration
+    expected_gap = flat_position - field.heights.mean() + result.displacement.mean()
+    assert result.mean_gap == pytest.approx(expected_gap, rel=1e-7)

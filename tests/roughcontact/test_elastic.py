@@ -175,3 +175,17 @@ def test_stiffness_inverts_the_displacement(periodic):
     else:
         interior = (slice(4, -4), slice(4, -4))    # measured correlation 0.996 here, 0.38 over the window
         assert np.corrcoef(recovered[interior].ravel(), pressure[interior].ravel())[0, 1] > 0.99
+
+
+@pytest.mark.parametrize("bottom", ["bonded", "frictionless"])
+@pytest.mark.parametrize("poisson", [0.3, 0.5])
+def test_layer_on_rigid_base_uniform_compression(bottom, poisson):
+    """A uniform pressure on a periodic layer on a rigid base compresses it in uniaxial strain:
+    ⟨u⟩ = p t/M, M = E(1 − ν)/((1 + ν)(1 − 2ν)) = E*(1 − ν)²/(1 − 2ν) (0 for ν = 0.5), for either bottom."""
+    grid = Grid((16, 16), (1e-3, 1e-3), periodic=True)
+    thickness, pressure = 1e-4, 1e3
+    young = E_STAR * (1 - poisson ** 2)
+    constrained = young * (1 - poisson) / ((1 + poisson) * (1 - 2 * poisson)) if poisson < 0.5 else np.inf
+    half = ElasticHalfSpace(grid, E_star=E_STAR, thickness=thickness, poisson=poisson, bottom=bottom)
+    u = half.displacement(np.full(grid.shape, pressure))
+    np.testing.assert_allclose(u, pressure * thickness / constrained, rtol=1e-12, atol=1e-25)
