@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from surfaces._checks import check_choice, check_positive, check_real
+from surfaces._checks import check_choice, check_finite_array, check_positive, check_real
 
 __all__ = ["layer_on_rigid_base_compliance", "layer_on_half_space_compliance"]
 
@@ -36,14 +36,6 @@ def _sinh_excess(y):
     return np.where(small, np.exp(-ys) * series, direct)
 
 
-def _check_q(q):
-    q = np.asarray(q, dtype=float)
-    if not np.isfinite(q).all() or (q < 0).any():
-        bad = q[~(np.isfinite(q) & (q >= 0))].flat[0]
-        raise ValueError(f"q must be finite and >= 0 everywhere [rad/m], found {bad!r}; valid range [0, inf)")
-    return q
-
-
 def _check_poisson(name, value):
     return check_real(name, value, low=-1.0, high=0.5, low_open=True)
 
@@ -62,7 +54,7 @@ def _bonded_ratio(X, mu, nu_, one_minus_mn):
     e = root_e * root_e
     one_minus_e = -np.expm1(-2.0 * X)
     one_minus_e2 = -np.expm1(-4.0 * X)
-    # 1 − mn e² − 4mXe = (1 − mn) + m[(n − 1)(1 − e²) + (1 − e² − 4Xe)],  1 − e² − 4Xe = 2e^{−2X}(sinh 2X − 2X)
+    # 1 − 4mXe − mn e² = (1 − mn) + m[(n − 1)(1 − e²) + (1 − e² − 4Xe)],  1 − e² − 4Xe = 2e^{−2X}(sinh 2X − 2X)
     numerator = one_minus_mn + m * ((n - 1.0) * one_minus_e2 + 2.0 * _sinh_excess(2.0 * X))
     # (1−e)² − 4X²e = [(1−e) − 2Xe^{−X}][(1−e) + 2Xe^{−X}] = 2 e^{−X}(sinh X − X)·[(1−e) + 2Xe^{−X}]
     bending = 2.0 * _sinh_excess(X) * (one_minus_e + 2.0 * X * root_e)
@@ -91,7 +83,7 @@ def layer_on_rigid_base_compliance(q, E_star, poisson, thickness, bottom="bonded
     bottom : {"bonded", "frictionless"}
         Interface with the rigid base.
     """
-    q = _check_q(q)
+    q = check_finite_array("q", q, nonnegative=True)
     E_star = check_positive("E_star", E_star)
     nu = _check_poisson("poisson", poisson)
     t = check_positive("thickness", thickness)
@@ -130,7 +122,7 @@ def layer_on_half_space_compliance(q, E_star, poisson, thickness, substrate_E_st
     substrate_E_star, substrate_poisson : float
         Contact modulus [Pa] and Poisson ratio (in (−1, 0.5]) of the half-space below.
     """
-    q = _check_q(q)
+    q = check_finite_array("q", q, nonnegative=True)
     E_star = check_positive("E_star", E_star)
     nu = _check_poisson("poisson", poisson)
     t = check_positive("thickness", thickness)
