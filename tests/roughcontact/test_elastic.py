@@ -1,5 +1,4 @@
 """ElasticHalfSpace: periodic multiplier, free-surface Love coefficients, energy, backends, bad input."""
-import importlib.util
 import pickle
 
 import numpy as np
@@ -142,8 +141,6 @@ def test_grid_type_and_pressure_shape():
         half.displacement(np.full((8, 8), np.nan))
 
 
-@pytest.mark.skipif(importlib.util.find_spec("roughcontact.layered") is None,
-                    reason="roughcontact.layered not yet written (concurrent helper)")
 def test_layered_limits_equal_half_space_results():
     """Thick layer → half-space of the layer; thin stiff layer on a soft half-space → the substrate."""
     grid = Grid((32, 32), (1e-3, 1e-3), periodic=True)
