@@ -28,7 +28,7 @@ import numpy as np
 from numba import njit
 
 from surfaces import HeightField
-from surfaces._checks import check_finite_array, check_positive, check_real
+from surfaces._checks import check_finite_array, check_integer, check_positive, check_real
 
 from ._version import __version__
 from .elastic import ElasticHalfSpace
@@ -303,8 +303,7 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     if len(given) != 1:
         raise ValueError(f"give exactly one of mean_pressure, total_force, penetration; got {sorted(given) or 'none'}")
     tol = check_real("tol", tol, low=0.0, high=1.0, low_open=True, high_open=True)
-    if isinstance(maxiter, bool) or not isinstance(maxiter, (int, np.integer)) or maxiter < 0:
-        raise ValueError(f"maxiter must be an integer >= 0, got {maxiter!r}")
+    check_integer("maxiter", maxiter, low=0)
     if callback is not None and not callable(callback):
         raise TypeError(f"callback must be callable, got {type(callback).__name__}")
     grid = half.grid

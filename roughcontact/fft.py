@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.fft
 
-from surfaces._checks import check_choice
+from surfaces._checks import check_choice, check_integer
 
 BACKENDS = ("pyfftw", "scipy")
 PLANNER_EFFORTS = ("FFTW_ESTIMATE", "FFTW_MEASURE", "FFTW_PATIENT", "FFTW_EXHAUSTIVE")
@@ -35,9 +35,7 @@ def _check_dtype(dtype) -> np.dtype:
 
 
 def _check_threads(threads) -> int:
-    if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or threads < 1:
-        raise ValueError(f"threads must be an integer >= 1, got {threads!r}")
-    return int(threads)
+    return check_integer("threads", threads, low=1)
 
 
 def spectrum_shape(shape) -> tuple:

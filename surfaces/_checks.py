@@ -39,6 +39,16 @@ def check_positive(name: str, value, *, allow_none=False):
     return check_real(name, value, low=0.0, low_open=True, allow_none=allow_none)
 
 
+def check_integer(name: str, value, *, low=None, high=None) -> int:
+    """Return ``int(value)`` after checking it is an integer (not a bool) in ``[low, high]``."""
+    lo = "-inf" if low is None else str(low)
+    hi = "inf" if high is None else str(high)
+    if (isinstance(value, bool) or not isinstance(value, (int, np.integer))
+            or (low is not None and value < low) or (high is not None and value > high)):
+        raise ValueError(f"{name} must be an integer in [{lo}, {hi}], got {value!r}")
+    return int(value)
+
+
 def check_finite_array(name: str, values, *, nonnegative=False, dtype=np.float64) -> np.ndarray:
     """Return ``values`` as a float array after checking there is no NaN/inf (and no negative entry)."""
     try:

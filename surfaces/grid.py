@@ -11,7 +11,7 @@ from functools import cached_property
 
 import numpy as np
 
-from ._checks import check_positive
+from ._checks import check_integer, check_positive
 
 
 @dataclass(frozen=True, eq=True)
@@ -40,8 +40,7 @@ class Grid:
         if len(lengths) != 2:
             raise ValueError(f"lengths must have two entries (Lx, Ly) in metres, got {self.lengths!r}")
         for axis, n in enumerate(shape):
-            if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
-                raise ValueError(f"shape[{axis}] must be an integer >= 1, got {n!r}")
+            check_integer(f"shape[{axis}]", n, low=1)
         periodic = self.periodic
         periodic = (bool(periodic),) * 2 if np.ndim(periodic) == 0 else tuple(bool(p) for p in periodic)
         if len(periodic) != 2:
@@ -124,8 +123,7 @@ class Grid:
 
     def refined(self, factor: int) -> "Grid":
         """Same physical window with ``factor`` times more pixels per axis (profiles stay profiles)."""
-        if not isinstance(factor, (int, np.integer)) or factor < 1:
-            raise ValueError(f"factor must be an integer >= 1, got {factor!r}")
+        check_integer("factor", factor, low=1)
         ny = self.shape[1] if self.is_profile else self.shape[1] * factor
         return Grid((self.shape[0] * factor, ny), self.lengths, self.periodic)
 

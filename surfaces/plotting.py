@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._checks import check_choice
+from ._checks import check_choice, check_integer
 from .heightfield import HeightField
 from .statistics import psd
 
@@ -50,8 +50,7 @@ def plot_profile(field: HeightField, ax=None, axis: int = 0, index=None, **line_
     other = 1 - axis
     n_other = field.grid.shape[other]
     index = n_other // 2 if index is None else index
-    if not isinstance(index, (int, np.integer)) or not 0 <= index < n_other:
-        raise ValueError(f"index must be an integer in [0, {n_other - 1}], got {index!r}")
+    check_integer("index", index, low=0, high=n_other - 1)
     ax = _axes(ax)
     heights = np.take(field.heights, index, axis=other)
     (line,) = ax.plot(field.grid.coordinates()[axis] * _MM, heights * _UM, **line_kwargs)

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._checks import check_choice
+from ._checks import check_choice, check_integer
 from .heightfield import HeightField
 
 
@@ -115,8 +115,8 @@ def psd(field: HeightField, bins=None, window=None) -> tuple:
     """
     field = _as_field(field)
     grid = field.grid
-    if bins is not None and (isinstance(bins, bool) or not isinstance(bins, (int, np.integer)) or bins < 1):
-        raise ValueError(f"bins must be an integer >= 1 (or None), got {bins!r}")
+    if bins is not None:
+        check_integer("bins", bins, low=1)
     h = (field.heights - field.heights.mean()) * _window(field, window)
     power = np.abs(np.fft.fft2(h) / h.size) ** 2
     if grid.is_profile:
