@@ -40,27 +40,23 @@ _REFRESH = 50          # exact recomputation of u at least every _REFRESH CG ste
 
 
 # -- fused pointwise kernels (flat contiguous views; accumulators in float64) --------------------------------
-# The projected step reads every array anyway; letting its sums be reassociated (vectorised) removes the
-# serial add chain that limits it on cache-resident grids (3.4x at 256^2). The other kernels touch u and h
-# only on the contact set and stay scalar: vectorised (if-converted) they would stream u and h in full,
-# which doubled their time at 1024^2. No other fast-math flag is used.
-_REDUCTION = {"reassoc"}
+# The contact set I_c is carried as a sorted index list, so the passes that only concern I_c (gap moments,
+# conjugate direction, direction moments, preconditioner input) cost O(|I_c|), not a sweep over the grid;
+# the direction t (and the preconditioner input) is kept zero outside I_c. Per plain iteration only one pass
+# streams whole grids: the re-entry scan, fused with the incremental displacement update u ← α u − τ K t.
 
 
 @njit(cache=True)
-def _gap_moments(p, u, h, alpha, shift):
-    """For g = α u − h + shift: Σ g and Σ g² over the contact set p > 0 and its size. ``α`` is the pending
-    load normalisation of p and u (PK step (g))."""
+def _gap_moments(index, n_contact, u, h, alpha, shift):
+    """Σ g and Σ g² over the contact set, g = α u − h + shift (α: the pending load normalisation, PK step (g))."""
     sum_g = 0.0
     sum_g2 = 0.0
-    count = 0
-    for i in range(p.size):
-        if p[i] > 0:
-            g = alpha * u[i] - h[i] + shift
-            sum_g += g
-            sum_g2 += g * g
-            count += 1
-    return sum_g, sum_g2, count
+    for k in range(n_contact):
+        i = index[k]
+        g = alpha * u[i] - h[i] + shift
+        sum_g += g
+        sum_g2 += g * g
+    return sum_g, sum_g2
 
 
 @njit(cache=True)
@@ -74,99 +70,121 @@ def _largest_penetration(p, u, h, alpha, shift):
 
 
 @njit(cache=True)
-def _conjugate_direction(u, h, p, alpha, shift, beta, t):
-    """PK step (c): t ← g + β t on the contact set, 0 elsewhere (g = α u − h + shift). Returns Σ g t, Σ t."""
+def _conjugate_direction(index, n_contact, u, h, alpha, shift, beta, t):
+    """PK step (c): t ← g + β t on the contact set (t = 0 elsewhere already). Returns Σ g t, Σ t."""
     sum_gt = 0.0
     sum_t = 0.0
-    for i in range(p.size):
-        if p[i] > 0:
-            g = alpha * u[i] - h[i] + shift
-            direction = g + beta * t[i]
-            t[i] = direction
-            sum_gt += g * direction
-            sum_t += direction
-        else:
-            t[i] = 0.0
+    for k in range(n_contact):
+        i = index[k]
+        g = alpha * u[i] - h[i] + shift
+        direction = g + beta * t[i]
+        t[i] = direction
+        sum_gt += g * direction
+        sum_t += direction
     return sum_gt, sum_t
 
 
 @njit(cache=True)
-def _masked_gap(u, h, p, alpha, shift, out):
-    """out ← g = α u − h + shift on the contact set, 0 elsewhere (the residual to precondition)."""
-    for i in range(p.size):
-        if p[i] > 0:
-            out[i] = alpha * u[i] - h[i] + shift
-        else:
-            out[i] = 0.0
+def _masked_gap(index, n_contact, u, h, alpha, shift, out):
+    """out ← g = α u − h + shift on the contact set (``out`` = 0 elsewhere already): the residual to precondition."""
+    for k in range(n_contact):
+        i = index[k]
+        out[i] = alpha * u[i] - h[i] + shift
 
 
 @njit(cache=True)
-def _preconditioned_moments(u, h, p, alpha, shift, z):
+def _preconditioned_moments(index, n_contact, u, h, alpha, shift, z):
     """Σ z and Σ g z over the contact set, for the preconditioned residual z = M g."""
     sum_z = 0.0
     sum_gz = 0.0
-    for i in range(p.size):
-        if p[i] > 0:
-            sum_z += z[i]
-            sum_gz += (alpha * u[i] - h[i] + shift) * z[i]
+    for k in range(n_contact):
+        i = index[k]
+        sum_z += z[i]
+        sum_gz += (alpha * u[i] - h[i] + shift) * z[i]
     return sum_z, sum_gz
 
 
 @njit(cache=True)
-def _preconditioned_direction(u, h, p, alpha, shift, z, z_mean, beta, t):
-    """Preconditioned PK step (c): t ← (z − z̄) + β t on the contact set, 0 elsewhere. Returns Σ g t, Σ t."""
+def _preconditioned_direction(index, n_contact, u, h, alpha, shift, z, z_mean, beta, t):
+    """Preconditioned PK step (c): t ← (z − z̄) + β t on the contact set. Returns Σ g t, Σ t."""
     sum_gt = 0.0
     sum_t = 0.0
-    for i in range(p.size):
-        if p[i] > 0:
-            direction = z[i] - z_mean + beta * t[i]
-            t[i] = direction
-            sum_gt += (alpha * u[i] - h[i] + shift) * direction
-            sum_t += direction
-        else:
-            t[i] = 0.0
+    for k in range(n_contact):
+        i = index[k]
+        direction = z[i] - z_mean + beta * t[i]
+        t[i] = direction
+        sum_gt += (alpha * u[i] - h[i] + shift) * direction
+        sum_t += direction
     return sum_gt, sum_t
 
 
 @njit(cache=True)
-def _direction_moments(p, t, r):
+def _direction_moments(index, n_contact, t, r):
     """Σ r and Σ r t over the contact set, for r = K t (PK step (d))."""
     sum_r = 0.0
     sum_rt = 0.0
-    for i in range(p.size):
-        if p[i] > 0:
-            sum_r += r[i]
-            sum_rt += r[i] * t[i]
+    for k in range(n_contact):
+        i = index[k]
+        sum_r += r[i]
+        sum_rt += r[i] * t[i]
     return sum_r, sum_rt
 
 
-@njit(cache=True, fastmath=_REDUCTION)
-def _projected_step(p, t, u, h, alpha, shift, tau):
-    """PK steps (e)–(f) on the normalised fields α p, α u: p ← max(α p − τ t, 0), and p ← −τ g where that
-    is 0 and the wall is penetrated (g = α u − h + shift < 0). Returns Σ p and the numbers of points that
-    left and entered the contact set.
-    """
+@njit(cache=True)
+def _contact_step(index, n_contact, p, t, residual_input, alpha, tau):
+    """PK step (e) on the contact set: p ← max(α p − τ t, 0). A point that leaves gets t = 0 (and 0 in
+    ``residual_input``, the preconditioner's input), keeping both zero outside the set. Returns Σ p and the
+    number of points that left."""
     total = 0.0
     left = 0
-    entered = 0
-    for i in range(p.size):              # branch-free body: the loop is memory-bound, not compute-bound
-        previous = alpha * p[i]
-        value = previous - tau * t[i]
-        reentry = -tau * (alpha * u[i] - h[i] + shift)
-        clipped = value <= 0.0
-        value = max(reentry, 0.0) if clipped else value
-        entered += clipped and reentry > 0.0
-        left += clipped and previous > 0.0
-        p[i] = value
-        total += value
-    return total, left, entered
+    for k in range(n_contact):
+        i = index[k]
+        value = alpha * p[i] - tau * t[i]
+        if value > 0.0:
+            p[i] = value
+            total += value
+        else:
+            p[i] = 0.0
+            t[i] = 0.0
+            residual_input[i] = 0.0
+            left += 1
+    return total, left
 
 
 @njit(cache=True)
-def _displacement_step(u, r, alpha, tau):
-    """u ← α u − τ r: the displacement after a step that left the contact set unchanged (u = K p stays exact)."""
-    for i in range(u.size):
-        u[i] = alpha * u[i] - tau * r[i]
+def _reentry_scan(p, u, h, r, alpha, shift, tau, update_displacement, index):
+    """PK step (f) over the grid: a point with p = 0 where the wall is penetrated (g = α u − h + shift < 0)
+    re-enters with p = −τ g. Rebuilds the sorted contact index list; with ``update_displacement`` also applies
+    u ← α u − τ r (exact when the contact set is unchanged). Returns the new set size, Σ p of the points that
+    entered and their number."""
+    n_contact = 0
+    total = 0.0
+    entered = 0
+    for i in range(p.size):
+        g = alpha * u[i] - h[i] + shift
+        if update_displacement:
+            u[i] = alpha * u[i] - tau * r[i]
+        if p[i] > 0.0:
+            index[n_contact] = i
+            n_contact += 1
+        elif g < 0.0:
+            p[i] = -tau * g
+            total += p[i]
+            entered += 1
+            index[n_contact] = i
+            n_contact += 1
+    return n_contact, total, entered
+
+
+@njit(cache=True)
+def _contact_index(p, index):
+    """Sorted indices of p > 0 into ``index``; returns their number."""
+    n_contact = 0
+    for i in range(p.size):
+        if p[i] > 0.0:
+            index[n_contact] = i
+            n_contact += 1
+    return n_contact
 
 
 @njit(cache=True)
@@ -260,6 +278,13 @@ def _initial_pressure(x0, heights, half, mean_pressure, flat_position):
     return (overlap * (half.E_star / contact_size)).astype(half.dtype)
 
 
+def _restart(p, t, z_in, index) -> int:
+    """Start the conjugate gradients afresh from p: t = 0, preconditioner input 0, I_c = {p > 0}; its size."""
+    t[:] = 0.0
+    z_in[:] = 0.0
+    return _contact_index(p, index)
+
+
 def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, total_force=None,
                   penetration=None, tol=1e-8, maxiter=10000, x0=None, callback=None,
                   preconditioned=None, interaction: Interaction | None = None, warn=True) -> ContactResult:
@@ -328,10 +353,12 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
         zeros = np.zeros(n_points, half.dtype)
         return _result(zeros, zeros.copy(), h, flat_position, half, params, 0, [0.0], True,
                        "no contact: penetration <= 0", start, 0)
-    # the four grid-sized work arrays (aligned: the periodic FFT uses them in place)
+    # grid-sized work arrays (aligned: the periodic FFT uses them in place); t and z_in stay 0 outside I_c
     p, u, t, r = (half.empty().reshape(-1) for _ in range(4))
+    z_in = half.empty().reshape(-1) if preconditioned else t
+    index = np.empty(n_points, np.int32 if n_points < 2 ** 31 else np.int64)   # the contact set I_c, sorted
     p[:] = _initial_pressure(x0, heights, half, mean_pressure, flat_position).reshape(-1)
-    t[:] = 0.0
+    n_contact = _restart(p, t, z_in, index)
 
     def convolve(source, out):
         half.displacement_into(source.reshape(grid.shape), out.reshape(grid.shape))
@@ -351,13 +378,13 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     beta_allowed, previous_squared, tau, reported = False, 1.0, 0.0, 0
     while True:
         # (a)-(b) gap moments on the contact set; load control centres the gap there (flat position = shift)
-        sum_g, sum_g2, n_contact = _gap_moments(p, u, h, alpha, shift)
+        sum_g, sum_g2 = _gap_moments(index, n_contact, u, h, alpha, shift)
         if load_control and n_contact:
             correction = -sum_g / n_contact
             squared = max(sum_g2 - sum_g * sum_g / n_contact, 0.0)
             if n_contact * correction ** 2 > 1e6 * squared:  # moments about a stale shift lost precision
                 shift += correction
-                sum_g, squared, n_contact = _gap_moments(p, u, h, alpha, shift)
+                sum_g, squared = _gap_moments(index, n_contact, u, h, alpha, shift)
                 correction = -sum_g / n_contact
             shift += correction
         else:
@@ -392,45 +419,51 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
         if n_contact == 0:                                  # displacement control lost all contact: restart
             p[:] = _initial_pressure(None, heights, half, None, flat_position).reshape(-1)
             alpha, beta_allowed, step_incremental = 1.0, False, False
+            n_contact = _restart(p, t, z_in, index)
         else:
             # (c) conjugate direction, optionally preconditioned: z = M g with M = K⁻¹ (one convolution)
             if preconditioned:
-                _masked_gap(u, h, p, alpha, shift, r)
-                half.stiffness_into(r.reshape(grid.shape), r.reshape(grid.shape))
+                _masked_gap(index, n_contact, u, h, alpha, shift, z_in)
+                half.stiffness_into(z_in.reshape(grid.shape), r.reshape(grid.shape))
                 convolutions += 1
-                sum_z, descent = _preconditioned_moments(u, h, p, alpha, shift, r)
+                sum_z, descent = _preconditioned_moments(index, n_contact, u, h, alpha, shift, r)
                 z_mean = sum_z / n_contact if load_control else 0.0
             else:
                 descent = squared
             beta = descent / previous_squared if beta_allowed and previous_squared > 0 else 0.0
             previous_squared = descent
             if preconditioned:
-                sum_gt, sum_t = _preconditioned_direction(u, h, p, alpha, shift, r, z_mean, beta, t)
+                sum_gt, sum_t = _preconditioned_direction(index, n_contact, u, h, alpha, shift, r, z_mean, beta, t)
                 if sum_gt <= 0 and beta > 0:                # not a descent direction: restart
-                    sum_gt, sum_t = _preconditioned_direction(u, h, p, alpha, shift, r, z_mean, 0.0, t)
+                    sum_gt, sum_t = _preconditioned_direction(index, n_contact, u, h, alpha, shift, r, z_mean,
+                                                              0.0, t)
             else:
-                sum_gt, sum_t = _conjugate_direction(u, h, p, alpha, shift, beta, t)
+                sum_gt, sum_t = _conjugate_direction(index, n_contact, u, h, alpha, shift, beta, t)
             # (d) step length from the convolution r = K t
             convolve(t, r)
             convolutions += 1
-            sum_r, sum_rt = _direction_moments(p, t, r)
+            sum_r, sum_rt = _direction_moments(index, n_contact, t, r)
             curvature = sum_rt - (sum_r / n_contact) * sum_t if load_control else sum_rt
             if curvature > 0:
                 tau = sum_gt / curvature
             elif tau == 0.0:                                # t = 0 on a gap-free contact set: re-entry only
                 tau = 1.0 / half.pixel_compliance
-            # (e)-(f) projected step and re-entry of penetrated points
-            total, left, entered = _projected_step(p, t, u, h, alpha, shift, tau)
+            # (e) projected step on I_c, (f) re-entry of penetrated points, with u ← α u − τ K t fused in
+            # when no point left (exact if none enters either; otherwise u is recomputed below)
+            total, left = _contact_step(index, n_contact, p, t, z_in, alpha, tau)
+            update = left == 0 and since_exact < _REFRESH
+            n_contact, total_entered, entered = _reentry_scan(p, u, h, r, alpha, shift, tau, update, index)
+            total += total_entered
             beta_allowed = entered == 0
-            step_incremental = left == 0 and entered == 0 and since_exact < _REFRESH and total > 0
-            if step_incremental:                            # u ← α u − τ K t: exact without a convolution
-                _displacement_step(u, r, alpha, tau)
+            step_incremental = update and entered == 0 and total > 0
             alpha = 1.0
             if load_control:                                # (g), applied lazily through alpha
                 if total > 0:
                     alpha = mean_pressure * n_points / total
-                else:
+                else:                                       # every point left: start again from uniform p
                     p[:] = mean_pressure
+                    n_contact = _restart(p, t, z_in, index)
+                    beta_allowed = False
         if step_incremental:
             exact, since_exact = False, since_exact + 1
         else:                                               # contact set changed: recompute u exactly
