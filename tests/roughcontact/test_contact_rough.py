@@ -19,20 +19,44 @@ def rough():
 
 
 def test_small_load_area_coefficient():
-    """A/A0 = κ p̄/(E* h'_rms) at small load (Hyun et al. 2004; Prodanov et al. 2014: κ ≈ 2).
+    """A/A0 = κ p̄/(E* h'_rms) at small load with κ in issue 4's band [1.6, 2.3] (Hyun et al. 2004: κ ≈ 2).
 
-    Counted contact pixels over-estimate the area of small contacts, and κ falls slowly with the spectral
-    breadth (Yastrebov et al. 2017). Measured with this solver (hurst 0.8, λ_s = 8 px, λ_r = L/8, p̄ = 0.01
-    E* h'): κ = 2.43 (512²), 2.33 (1024²); 2.40 at 2048², p̄ = 0.005 E* h'. The issue's bar [1.6, 2.3] is met
-    only from 1024² at p̄ ≥ 0.02 E* h' (2.29); here the 512² value is held to [1.6, 2.5].
+    docs/contact_area.md (experiments/contact_area_coefficient.py): pixel counting adds a perimeter term that
+    falls as Δx/λ_s (Yastrebov et al. 2017), κ falls slowly with the breadth λ_r/λ_s, and one surface with 16
+    roll-off cells scatters by ±0.11 (16 seeds), so a resolved, broad case averaged over seeds is tested:
+    λ_s = 16 px, λ_r = 16 λ_s = L/4, p̄ = 0.01 E* h', seeds 0–3: κ = 2.40, 2.26, 2.29, 1.99, mean 2.24
+    (16 seeds: 2.27 ± 0.03; pixel bias at 16 px +0.08, resolved limit 2.19). λ_s = 4 px gives 2.46 (fails).
     """
-    grid = Grid((512, 512), (L, L), periodic=True)
-    field = self_affine(grid, hurst=0.8, rms_slope=SLOPE, short_cutoff=8 * L / 512, rolloff=L / 8, rng=0)
-    assert rms_slope(field) == pytest.approx(SLOPE, rel=1e-9)
+    grid = Grid((1024, 1024), (L, L), periodic=True)
+    half = ElasticHalfSpace(grid, E_star=E_STAR)
     load = 0.01 * E_STAR * SLOPE
-    result = solve_contact(field, ElasticHalfSpace(grid, E_star=E_STAR), mean_pressure=load, tol=1e-8)
-    kappa = result.contact_fraction / (load / (E_STAR * SLOPE))
-    assert result.converged and 1.6 <= kappa <= 2.5
+    kappas = []
+    for seed in range(4):
+        field = self_affine(grid, hurst=0.8, rms_slope=SLOPE, short_cutoff=16 * L / 1024, rolloff=L / 4, rng=seed)
+        assert rms_slope(field) == pytest.approx(SLOPE, rel=1e-9)
+        result = solve_contact(field, half, mean_pressure=load, tol=1e-8)
+        assert result.converged
+        kappas.append(result.contact_fraction / (load / (E_STAR * SLOPE)))
+    assert 1.6 <= np.mean(kappas) <= 2.3
+
+
+def test_area_coefficient_falls_with_resolution_of_short_cutoff():
+    """One surface (λ_s = L/32, λ_r = L/4, seed 0) on 128², 256², 512²: λ_s = 4, 8, 16 px, p̄ = 0.01 E* h'.
+
+    Pixel counting over-estimates the area by a perimeter term ∝ Δx, so κ falls and converges at first order:
+    measured κ = 2.81, 2.55, 2.47, steps 0.26 and 0.09 (step ratio 2.2–3.0 over seeds 0–3; 2 for exact first
+    order; the perimeter-corrected κ stays at 2.32–2.35 on all three grids, docs/contact_area.md).
+    """
+    kappas = []
+    for n in (128, 256, 512):
+        grid = Grid((n, n), (L, L), periodic=True)
+        field = self_affine(grid, hurst=0.8, rms_slope=SLOPE, short_cutoff=L / 32, rolloff=L / 4, rng=0)
+        load = 0.01 * E_STAR * SLOPE
+        result = solve_contact(field, ElasticHalfSpace(grid, E_star=E_STAR), mean_pressure=load, tol=1e-8)
+        assert result.converged
+        kappas.append(result.contact_fraction / (load / (E_STAR * SLOPE)))
+    coarse_step, fine_step = kappas[0] - kappas[1], kappas[1] - kappas[2]
+    assert coarse_step > 1.5 * fine_step > 0
 
 
 def test_physics_consistency(rough):

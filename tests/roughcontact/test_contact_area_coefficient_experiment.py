@@ -1,0 +1,91 @@
+"""The κ study (experiments/contact_area_coefficient.py) runs in fast mode and writes sane, self-consistent files."""
+import csv
+import importlib.util
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+SCRIPT = Path(__file__).resolve().parents[2] / "experiments" / "contact_area_coefficient.py"
+
+
+@pytest.fixture(scope="module")
+def study():
+    spec = importlib.util.spec_from_file_location("contact_area_coefficient", SCRIPT)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module                 # dataclasses look their module up in sys.modules
+    spec.loader.exec_module(module)
+    return module
+
+
+@pytest.fixture(scope="module")
+def output(study, tmp_path_factory):
+    path = tmp_path_factory.mktemp("kappa")
+    study.main(["--fast", "--output", str(path)])
+    return path
+
+
+def read(path):
+    with open(path, newline="") as stream:
+        return list(csv.DictReader(stream))
+
+
+def test_files_written(output):
+    for name in ("contact_area_coefficient.csv", "contact_area_summary.csv", "contact_area_coefficient.png"):
+        assert (output / name).stat().st_size > 0
+    assert (output / "contact_area_coefficient.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_rows_consistent(study, output):
+    rows = read(output / "contact_area_coefficient.csv")
+    solved = [row for row in rows if float(row["load"]) > 0]
+    assert {row["series"] for row in rows} == {"resolution", "breadth", "ensemble"}
+    assert len(solved) == 5 * len(rows) // 6                     # five loads + one extrapolated row per case
+    for row in solved:
+        load, fraction = float(row["load"]), float(row["contact_fraction"])
+        assert row["converged"] == "True"
+        # κ is A/A0 over p̄/(E* h'); the surfaces are normalised to the spectral slope 0.1 exactly
+        assert float(row["kappa_pixels"]) == pytest.approx(fraction / load, rel=1e-12)
+        assert float(row["rms_slope_spectral"]) == pytest.approx(study.RMS_SLOPE, rel=1e-9)
+        # central differences see less slope than the band-limited field (at most 1, ≈ 0.87 at λ_s = 4 px)
+        assert 0.8 < float(row["rms_slope_fd"]) / study.RMS_SLOPE < 1
+        # corrected area = pixel area − 0.1178 × boundary edges: smaller, and exactly so
+        n2 = int(row["n"]) ** 2
+        corrected = (fraction * n2 - study.PERIMETER_COEFFICIENT * int(row["boundary_edges"])) / n2 / load
+        assert float(row["kappa_corrected"]) == pytest.approx(corrected, rel=1e-12)
+        assert float(row["kappa_corrected"]) < float(row["kappa_pixels"])
+        assert 1 <= int(row["patches"]) <= fraction * n2
+        # sane magnitude on tiny grids: between Persson's √(8/π) and 4× it
+        assert math.sqrt(8 / math.pi) < float(row["kappa_corrected"]) < 4 * math.sqrt(8 / math.pi)
+
+
+def test_summary_means(output):
+    rows = read(output / "contact_area_coefficient.csv")
+    summary = read(output / "contact_area_summary.csv")
+    for entry in summary:
+        values = [float(row["kappa_pixels"]) for row in rows if all(row[key] == entry[key] for key in
+                                                                     ("series", "n", "breadth", "load"))]
+        assert len(values) == int(entry["seeds"]) == 2
+        assert float(entry["kappa_pixels_mean"]) == pytest.approx(np.mean(values), rel=1e-12)
+        assert float(entry["kappa_pixels_std"]) == pytest.approx(np.std(values, ddof=1), rel=1e-9, abs=1e-15)
+
+
+def test_boundary_edges_and_patches(study):
+    contact = np.zeros((8, 8), dtype=bool)
+    contact[2:4, 2:5] = True                      # a 2×3 block: perimeter 10 edges
+    contact[0, 0] = contact[-1, 0] = contact[0, -1] = True   # three pixels joined across the periodic edges
+    assert study.boundary_edges(contact) == 10 + 8
+    assert study.patches(contact) == 2
+    assert study.corrected_fraction(contact) == pytest.approx((9 - study.PERIMETER_COEFFICIENT * 18) / 64)
+    assert study.PERIMETER_COEFFICIENT == pytest.approx(0.118114, abs=1e-6)   # (π − 1 + ln 2)/24
+
+
+def test_extrapolation_recovers_a_line(study):
+    # straight lines up to the fit limit p̄ = 0.01 E* h'; the larger loads (set to 0) must be left out of the fit
+    rows = [{"load": p, "kappa_pixels": 2.5 - 10 * p if p <= 0.01 else 0.0, "kappa_corrected": 2.2 - 5 * p,
+             "kappa_pixels_fd_slope": 2.0, "patches": 50, "converged": True} for p in study.LOADS]
+    row = study.extrapolated(rows)
+    assert row["load"] == 0 and row["kappa_pixels"] == pytest.approx(2.5, rel=1e-12)
+    assert row["kappa_corrected"] == pytest.approx(2.2, rel=1e-12)
