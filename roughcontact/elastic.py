@@ -19,6 +19,8 @@ along x.
 """
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 from numba import njit
 
@@ -112,11 +114,8 @@ class ElasticHalfSpace:
         self._fft = make_backend(backend, self.transform_shape, dtype, threads, planner_effort)
         self.dtype = self._fft.dtype
         self._padded = None if self.periodic else self._fft.work_array()   # free surface: 2nx × 2ny
-        compliance = self._fourier_multiplier()
-        self._multiplier = compliance.astype(self.dtype)
+        self._multiplier = self._fourier_multiplier().astype(self.dtype, copy=False)
         self._multiplier.flags.writeable = False
-        self._stiffness = self._inverse_multiplier(compliance).astype(self.dtype)
-        self._stiffness.flags.writeable = False
 
     # -- construction helpers ------------------------------------------------------------------------------
     @staticmethod
@@ -190,24 +189,33 @@ class ElasticHalfSpace:
         nu = self.layer["poisson"]
         return self.layer["thickness"] * (1 - 2 * nu) / (self.E_star * (1 - nu) ** 2)
 
-    def _inverse_multiplier(self, compliance) -> np.ndarray:
+    @functools.cached_property
+    def _stiffness(self) -> np.ndarray:
         """1/Φ on the transform grid (with the 1/N of the FFT pair); modes with Φ = 0 get the smallest
-        stiffness of the others, so the preconditioner is positive definite."""
+        stiffness of the others, so the preconditioner is positive definite. Made on first use (only the
+        preconditioned solver needs it)."""
         n_total = self.transform_shape[0] * self.transform_shape[1]
+        compliance = self._multiplier.astype(np.float64, copy=False)
         positive = compliance > 0
         stiffness = np.zeros_like(compliance)
         stiffness[positive] = 1.0 / (compliance[positive] * n_total * n_total)
         stiffness[~positive] = stiffness[positive].min() if positive.any() else 1.0 / n_total
+        stiffness = stiffness.astype(self.dtype, copy=False)
+        stiffness.flags.writeable = False
         return stiffness
 
     def _free_surface_multiplier(self) -> np.ndarray:
-        """FFT of the Love pixel influence coefficients laid out for the padded (linear) convolution."""
+        """FFT of the Love pixel influence coefficients laid out for the padded (linear) convolution, made
+        row by row in the padded work array and transformed with the half-space's own plan (no 2n × 2n
+        temporaries)."""
         nx, ny = self.grid.shape
         dx, dy = self.grid.spacing
         offsets_x = np.fft.fftfreq(2 * nx, 1.0 / (2 * nx)) * dx     # 0, dx, …, −dx: wrapped distances
         offsets_y = np.fft.fftfreq(2 * ny, 1.0 / (2 * ny)) * dy
-        coefficients = love_pixel_displacement(offsets_x[:, None], offsets_y[None, :], dx, dy, self.E_star)
-        return np.fft.rfft2(coefficients).real   # coefficients are even in x and y → real spectrum
+        for row, offset in zip(self._padded, offsets_x):
+            row[:] = love_pixel_displacement(offset, offsets_y, dx, dy, self.E_star)
+        self._fft.forward(self._padded)
+        return self._fft.spectrum.real.astype(np.float64)   # coefficients are even in x and y → real spectrum
 
     # -- pickling: parameters only ---------------------------------------------------------------------------
     def __getstate__(self):
