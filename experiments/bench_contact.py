@@ -11,10 +11,13 @@ Sections (column ``section`` of the table and the CSV):
 
 * ``fft_floor``: one rfft2 + irfft2 pair [s], pyFFTW (plan made once, reused) and ``scipy.fft``.
 * ``solve``: our time to solution, iterations, convolutions per iteration, time per iteration and its ratio
-  to (convolutions per iteration × pyFFTW pair); seeded self-affine surface at p̄ = 0.01 E*.
+  to (convolutions per iteration × pyFFTW pair); seeded self-affine surface at p̄ = 0.01 E*; preconditioned
+  (the periodic default) and plain Polonsky–Keer; best of ``--solve-repeat`` solves.
+* ``memory``: peak memory of one solve (``tracemalloc``) in float64 grid arrays, half-space object included.
 * ``peer``: the same problem solved by Tamaas (``PolonskyKeerRey``) and ContactMechanics
   (``minimize_proxy``), time ratio to ours, relative differences of contact fraction and mean gap.
-* ``sweep``: a 20-step load sweep (p̄ = 0.0005 … 0.01 E*) with and without warm start; the ratio.
+* ``sweep``: a 20-step load sweep (p̄ = 0.0005 … 0.01 E*) with and without warm start, at each of
+  ``--sweep-tol``; the ratio.
 """
 from __future__ import annotations
 
@@ -22,6 +25,7 @@ import argparse
 import csv
 import os
 import time
+import tracemalloc
 
 import numpy as np
 import scipy.fft
@@ -57,15 +61,50 @@ def best_time(run, repeat: int) -> float:
     return min(times)
 
 
-def fft_floor(n: int, threads: int, planner: str, repeat: int) -> dict:
-    """Time [s] of one rfft2 + irfft2 pair on an n² float64 array: pyFFTW with its plans reused, scipy.fft."""
+def timed_solve(surface, half, tol, preconditioned, repeat):
+    """Best of ``repeat`` solves (after an untimed one that compiles the kernels and warms the plans): the
+    result with the smallest wall time and the best time per iteration [s] from callback time stamps
+    (iterations only: setup and the final gap field excluded)."""
+    best, best_per_iteration = None, np.inf
+    solve_contact(surface, half, mean_pressure=PRESSURE, tol=1e-2, maxiter=5, warn=False)
+    for _ in range(repeat):
+        stamps = []
+        result = solve_contact(surface, half, mean_pressure=PRESSURE, tol=tol, preconditioned=preconditioned,
+                               callback=lambda state: stamps.append(time.perf_counter()))
+        if len(stamps) > 1:
+            best_per_iteration = min(best_per_iteration, (stamps[-1] - stamps[0]) / (len(stamps) - 1))
+        if best is None or result.wall_time < best.wall_time:
+            best = result
+    if not np.isfinite(best_per_iteration):
+        best_per_iteration = best.wall_time / max(best.iterations, 1)
+    return best, best_per_iteration
+
+
+def peak_memory(surface, tol, periodic=True) -> float:
+    """Peak memory of building the half-space and solving once, in float64 grid arrays (``tracemalloc``
+    sees numpy's and pyFFTW's buffers); ``periodic=False``: the same heights on a free surface."""
+    grid = surface.grid if periodic else surfaces.Grid(surface.grid.shape, surface.grid.lengths, periodic=False)
+    heights = surface.heights.copy()
+    tracemalloc.start()
+    try:
+        half = ElasticHalfSpace(grid, E_star=E_STAR)
+        solve_contact(heights, half, mean_pressure=PRESSURE, tol=tol)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    return peak / (surface.heights.size * 8)
+
+
+def fft_floor(n: int, threads: int, planner: str, repeat: int, backend=None) -> dict:
+    """Time [s] of one rfft2 + irfft2 pair on an n² float64 array: pyFFTW with its plans reused, scipy.fft
+    (``backend``: only that one)."""
     floors = {}
     real = np.random.default_rng(0).random((n, n))
     try:
         import pyfftw
     except ImportError:
         pyfftw = None
-    if pyfftw is not None:
+    if pyfftw is not None and backend in (None, "pyfftw"):
         a = pyfftw.empty_aligned((n, n), "float64")
         b = pyfftw.empty_aligned((n, n // 2 + 1), "complex128")
         forward = pyfftw.FFTW(a, b, axes=(0, 1), flags=(planner,), threads=threads)
@@ -77,8 +116,9 @@ def fft_floor(n: int, threads: int, planner: str, repeat: int) -> dict:
             forward()
             backward()
         floors["pyfftw"] = best_time(pair, repeat)
-    floors["scipy"] = best_time(lambda: scipy.fft.irfft2(scipy.fft.rfft2(real, workers=threads), s=(n, n),
-                                                         workers=threads), repeat)
+    if backend in (None, "scipy"):
+        floors["scipy"] = best_time(lambda: scipy.fft.irfft2(scipy.fft.rfft2(real, workers=threads), s=(n, n),
+                                                             workers=threads), repeat)
     return floors
 
 
@@ -149,7 +189,7 @@ def peer_available(name: str) -> str:
     return ""
 
 
-def run(sizes, threads, tol, planner, sweep_size, repeat, peers, write):
+def run(sizes, threads, tol, planner, sweep_size, sweep_tols, repeat, solve_repeat, peers, write):
     """Run every section, calling ``write(row)`` for each result row."""
     for n in sizes:
         floors = fft_floor(n, threads, planner, repeat)
@@ -157,22 +197,26 @@ def run(sizes, threads, tol, planner, sweep_size, repeat, peers, write):
             write(row(section="fft_floor", solver=backend, n=n, time_s=seconds, note="rfft2+irfft2 pair"))
         surface = rough_surface(n)
         ours = None
-        for backend in ("pyfftw", "scipy"):
+        for backend, preconditioned in (("pyfftw", True), ("pyfftw", False), ("scipy", True)):
             if backend == "pyfftw" and "pyfftw" not in floors:
                 continue
             half = ElasticHalfSpace(surface.grid, E_star=E_STAR, backend=backend, threads=threads,
                                     planner_effort=planner)
-            solve_contact(surface, half, mean_pressure=PRESSURE, tol=1e-2, maxiter=5, warn=False)   # JIT/plans
-            result = solve_contact(surface, half, mean_pressure=PRESSURE, tol=tol)
-            per_iteration = result.wall_time / max(result.iterations, 1)
+            result, per_iteration = timed_solve(surface, half, tol, preconditioned, solve_repeat)
+            floor = min(floors[backend], *fft_floor(n, threads, planner, repeat, backend).values())
             convolutions = result.params["convolutions"] / max(result.iterations, 1)
-            write(row(section="solve", solver=f"roughcontact[{backend}]", n=n, time_s=result.wall_time,
-                      iterations=result.iterations, convolutions_per_iteration=convolutions,
-                      time_per_iteration_s=per_iteration, ratio=per_iteration / (convolutions * floors[backend]),
-                      contact_fraction=result.contact_fraction, mean_gap_m=result.mean_gap,
-                      converged=result.converged,
-                      note="ratio = time per iteration / (convolutions per iteration x own-backend pair)"))
+            write(row(section="solve", solver=f"roughcontact[{backend}{'' if preconditioned else ',plain'}]", n=n,
+                      time_s=result.wall_time, iterations=result.iterations,
+                      convolutions_per_iteration=convolutions, time_per_iteration_s=per_iteration,
+                      ratio=per_iteration / (convolutions * floor), contact_fraction=result.contact_fraction,
+                      mean_gap_m=result.mean_gap, converged=result.converged,
+                      note="best of repeats; ratio = time per iteration / (convolutions per iteration x "
+                           "own-backend pair, best of before and after)"))
             ours = ours or result
+        for periodic in (True, False):
+            write(row(section="memory", solver="roughcontact[pyfftw]", n=n, ratio=peak_memory(surface, tol, periodic),
+                      note=f"{'periodic' if periodic else 'free surface (2n x 2n padded FFT)'}: peak traced memory "
+                           "of building the half-space and one solve / one float64 n x n array"))
         for name in peers:
             reason = peer_available(name)
             if reason:
@@ -187,22 +231,24 @@ def run(sizes, threads, tol, planner, sweep_size, repeat, peers, write):
     surface = rough_surface(sweep_size)
     half = ElasticHalfSpace(surface.grid, E_star=E_STAR, threads=threads, planner_effort=planner)
     pressures = PRESSURE * np.arange(1, SWEEP_STEPS + 1) / SWEEP_STEPS
-    sweeps = {}
-    for warm_start in (False, True):
-        start = time.perf_counter()
-        results = list(load_path(surface, half, pressures, warm_start=warm_start, tol=tol))
-        sweeps[warm_start] = (time.perf_counter() - start, results)
-    (cold_time, cold), (warm_time, warm) = sweeps[False], sweeps[True]
-    for warm_start, (seconds, results) in sweeps.items():
-        write(row(section="sweep", solver="warm start" if warm_start else "cold start", n=sweep_size,
-                  time_s=seconds, iterations=sum(r.iterations for r in results),
-                  ratio=cold_time / seconds, contact_fraction=results[-1].contact_fraction,
-                  mean_gap_m=results[-1].mean_gap, converged=all(r.converged for r in results),
-                  rel_diff_contact_fraction=max(relative_difference(w.contact_fraction, c.contact_fraction)
-                                                for w, c in zip(warm, cold)),
-                  rel_diff_mean_gap=max(relative_difference(w.mean_gap, c.mean_gap) for w, c in zip(warm, cold)),
-                  note=f"{SWEEP_STEPS} steps to {PRESSURE / E_STAR:g} E*; ratio = cold time / this time; "
-                       "differences: max over steps, warm vs cold"))
+    for sweep_tol in sweep_tols:
+        sweeps = {}
+        for warm_start in (False, True):
+            start = time.perf_counter()
+            results = list(load_path(surface, half, pressures, warm_start=warm_start, tol=sweep_tol))
+            sweeps[warm_start] = (time.perf_counter() - start, results)
+        (cold_time, cold), (warm_time, warm) = sweeps[False], sweeps[True]
+        for warm_start, (seconds, results) in sweeps.items():
+            write(row(section="sweep", solver="warm start" if warm_start else "cold start", n=sweep_size,
+                      time_s=seconds, iterations=sum(r.iterations for r in results),
+                      ratio=cold_time / seconds, contact_fraction=results[-1].contact_fraction,
+                      mean_gap_m=results[-1].mean_gap, converged=all(r.converged for r in results),
+                      rel_diff_contact_fraction=max(relative_difference(w.contact_fraction, c.contact_fraction)
+                                                    for w, c in zip(warm, cold)),
+                      rel_diff_mean_gap=max(relative_difference(w.mean_gap, c.mean_gap)
+                                            for w, c in zip(warm, cold)),
+                      note=f"tol {sweep_tol:g}; {SWEEP_STEPS} steps to {PRESSURE / E_STAR:g} E*; ratio = cold time / "
+                           "this time; differences: max over steps, warm vs cold"))
 
 
 def format_row(values: dict) -> str:
@@ -228,10 +274,13 @@ def main(argv=None):
     parser.add_argument("--planner", default="FFTW_MEASURE", help="FFTW planner effort (floor and solver)")
     parser.add_argument("--sweep-size", type=int, default=512, help="grid size of the load sweep")
     parser.add_argument("--repeat", type=int, default=5, help="timed repeats of the FFT floor (best reported)")
+    parser.add_argument("--solve-repeat", type=int, default=3, help="timed solves per variant (best reported)")
+    parser.add_argument("--sweep-tol", type=float, nargs="+", default=[1e-8, 1e-10],
+                        help="tolerances of the load sweep")
     parser.add_argument("--no-peers", action="store_true", help="skip Tamaas and ContactMechanics")
     args = parser.parse_args(argv)
     if args.fast:
-        args.sizes, args.sweep_size, args.repeat, args.no_peers = [32, 64], 32, 2, True
+        args.sizes, args.sweep_size, args.repeat, args.solve_repeat, args.no_peers = [32, 64], 32, 2, 1, True
         args.planner = "FFTW_ESTIMATE"
     peers = [] if args.no_peers else list(PEERS)
     if "tamaas" in peers and peer_available("tamaas") == "":
@@ -253,7 +302,8 @@ def main(argv=None):
             writer.writerow(values)
             stream.flush()
             print(format_row(values), flush=True)
-        run(args.sizes, args.threads, args.tol, args.planner, args.sweep_size, args.repeat, peers, write)
+        run(args.sizes, args.threads, args.tol, args.planner, args.sweep_size, args.sweep_tol, args.repeat,
+            args.solve_repeat, peers, write)
     print(f"load average at the end {os.getloadavg()[0]:.2f}; CSV: {args.csv}")
 
 

@@ -26,11 +26,14 @@ def select(rows, section, solver=None):
 def test_every_section_and_size_present(rows):
     for n in ("32", "64"):
         assert {r["solver"] for r in select(rows, "fft_floor") if r["n"] == n} >= {"pyfftw", "scipy"}
-        assert {r["solver"] for r in select(rows, "solve") if r["n"] == n} == {"roughcontact[pyfftw]",
-                                                                           "roughcontact[scipy]"}
+        assert {r["solver"] for r in select(rows, "solve") if r["n"] == n} == {
+            "roughcontact[pyfftw]", "roughcontact[pyfftw,plain]", "roughcontact[scipy]"}
+        assert len([r for r in select(rows, "memory") if r["n"] == n]) == 2
     assert {r["solver"] for r in select(rows, "sweep")} == {"cold start", "warm start"}
     assert not select(rows, "peer")                     # --fast skips the peers
-    assert all(float(r["time_s"]) > 0 for r in rows)
+    assert all(float(r["time_s"]) > 0 for r in rows if r["section"] != "memory")
+    # peak memory in grid arrays: at least p, u and h; the bound is loose on tiny grids (fixed overheads)
+    assert all(3 < float(r["ratio"]) < 100 for r in select(rows, "memory"))
 
 
 def test_backends_agree_and_converge(rows):
@@ -45,10 +48,20 @@ def test_backends_agree_and_converge(rows):
         assert 0.1 < float(a["contact_fraction"]) < 0.5     # 0.01 E* at rms slope 0.1: κ p/(E* h') ≈ 0.2
 
 
+def test_plain_and_preconditioned_agree(rows):
+    for n in ("32", "64"):
+        a, b = (next(r for r in select(rows, "solve", k) if r["n"] == n)
+                for k in ("roughcontact[pyfftw]", "roughcontact[pyfftw,plain]"))
+        assert a["contact_fraction"] == b["contact_fraction"]
+        assert float(a["mean_gap_m"]) == pytest.approx(float(b["mean_gap_m"]), rel=1e-9)   # both to tol 1e-10
+
+
 def test_warm_start_sweep_same_answers_fewer_iterations(rows):
-    cold, warm = select(rows, "sweep", "cold start")[0], select(rows, "sweep", "warm start")[0]
-    assert cold["converged"] == warm["converged"] == "True"
-    # both solves converge to tol 1e-10 on the gap: mean gaps agree to 1e-8; the contact sets may differ by a
-    # few boundary pixels carrying ~0 pressure (1 pixel = 1e-3 of a 32² grid)
-    assert float(warm["rel_diff_mean_gap"]) < 1e-8 and float(warm["rel_diff_contact_fraction"]) < 5e-3
-    assert int(warm["iterations"]) < int(cold["iterations"])
+    colds, warms = select(rows, "sweep", "cold start"), select(rows, "sweep", "warm start")
+    assert len(colds) == len(warms) == 2                # --sweep-tol 1e-8 1e-10
+    for cold, warm, tol in zip(colds, warms, (1e-8, 1e-10)):
+        assert cold["converged"] == warm["converged"] == "True"
+        # both converge to tol on the gap: mean gaps agree to ~100 tol; the contact sets may differ by a few
+        # boundary pixels carrying ~0 pressure (1 pixel = 1e-3 of a 32² grid)
+        assert float(warm["rel_diff_mean_gap"]) < 100 * tol and float(warm["rel_diff_contact_fraction"]) < 5e-3
+        assert int(warm["iterations"]) < int(cold["iterations"])
