@@ -38,13 +38,13 @@ import scipy.sparse.csgraph
 
 import surfaces
 from roughcontact import ElasticHalfSpace, load_path
+from roughcontact.contact import boundary_edges
 
 LENGTH = 1e-3            # periodic square window L [m]
 E_STAR = 1e6             # contact modulus [Pa] (κ depends only on p̄/(E* h'))
 HURST, RMS_SLOPE = 0.8, 0.1
 LOADS = (0.0025, 0.005, 0.01, 0.02, 0.04)       # p̄ / (E* h'_rms)
 EXTRAPOLATION_MAX_LOAD = 0.01                   # κ(p̄) fitted linearly over p̄ ≤ this to get κ at p̄ → 0
-PERIMETER_COEFFICIENT = (math.pi - 1 + math.log(2)) / 24   # Yastrebov et al. 2017, Eq. for the corrected area
 BAND = (1.6, 2.3)                               # issue 4's bar for κ
 TOL = 1e-8
 SERIES = ("resolution", "breadth", "ensemble")
@@ -86,16 +86,6 @@ def rough_surface(case: Case) -> surfaces.HeightField:
                                 rolloff=case.rolloff, rng=case.seed)
 
 
-def boundary_edges(contact: np.ndarray) -> int:
-    """Number M of pixel edges between a contact and a non-contact pixel (periodic in both directions)."""
-    return int(sum(np.count_nonzero(contact != np.roll(contact, 1, axis)) for axis in (0, 1)))
-
-
-def corrected_fraction(contact: np.ndarray) -> float:
-    """Contact fraction with the perimeter correction of Yastrebov et al. (2017): (N − c M)/n², c = 0.1181."""
-    return (np.count_nonzero(contact) - PERIMETER_COEFFICIENT * boundary_edges(contact)) / contact.size
-
-
 def patches(contact: np.ndarray) -> int:
     """Number of contact patches (4-connected, patches touching across the periodic edges merged)."""
     labels, count = scipy.ndimage.label(contact)
@@ -118,7 +108,7 @@ def solve_case(case: Case, loads=LOADS, tol=TOL) -> list:
         kappa = result.contact_fraction / load
         rows.append({**asdict(case), "rolloff_cells": LENGTH / case.rolloff, "load": load,
                      "contact_fraction": result.contact_fraction, "kappa_pixels": kappa,
-                     "kappa_corrected": corrected_fraction(result.contact) / load,
+                     "kappa_corrected": result.corrected_contact_fraction / load,
                      "kappa_pixels_fd_slope": kappa * finite_difference / spectral,
                      "boundary_edges": boundary_edges(result.contact), "patches": patches(result.contact),
                      "rms_slope_spectral": spectral, "rms_slope_fd": finite_difference,

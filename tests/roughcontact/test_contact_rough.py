@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 from roughcontact import ContactResult, ElasticHalfSpace, load_path, solve_contact
+from roughcontact.contact import PERIMETER_CORRECTION, boundary_edges
 from surfaces import Grid, rms_slope, self_affine
 
 L, E_STAR, SLOPE = 1e-3, 1e6, 0.1
@@ -225,3 +226,19 @@ def test_layered_contact(layer):
     flat_position = field.heights.max() - result.penetration
     expected_gap = flat_position - field.heights.mean() + result.displacement.mean()
     assert result.mean_gap == pytest.approx(expected_gap, rel=1e-7)
+
+
+def test_boundary_edges_and_corrected_contact_fraction():
+    """Edge counting by hand on an 8 × 8 mask; the border is crossed only on periodic axes."""
+    contact = np.zeros((8, 8), dtype=bool)
+    contact[2:4, 2:5] = True                                  # a 2 × 3 block: perimeter 10 edges
+    contact[0, 0] = contact[-1, 0] = contact[0, -1] = True    # three pixels joined across the periodic edges
+    assert boundary_edges(contact) == 10 + 8
+    # free on both axes: the three corner pixels are separate, two inner edges each
+    assert boundary_edges(contact, periodic=(False, False)) == 10 + 6
+    assert boundary_edges(np.ones((1, 8), bool)) == 0 and boundary_edges(np.ones((5, 5), bool)) == 0
+    assert PERIMETER_CORRECTION == pytest.approx(0.118114, abs=1e-6)    # (π − 1 + ln 2)/24
+    grid = Grid((8, 8), (L, L), periodic=True)
+    result = solve_contact(np.where(contact, 1e-6, 0.0), ElasticHalfSpace(grid, E_star=E_STAR), penetration=1e-9)
+    assert result.corrected_contact_fraction == pytest.approx(
+        (result.contact.sum() - PERIMETER_CORRECTION * boundary_edges(result.contact)) / 64, rel=1e-15)
