@@ -9,7 +9,9 @@ one run on one machine; see ``docs/benchmarks.md`` for the method, the peer conv
 
 Sections (column ``section`` of the table and the CSV):
 
-* ``fft_floor``: one rfft2 + irfft2 pair [s], pyFFTW (plan made once, reused) and ``scipy.fft``.
+* ``fft_floor``: one rfft2 + irfft2 pair [s], pyFFTW (plan made once, reused) and ``scipy.fft``; and
+  ``pyfftw-rotating``, the pyFFTW pair cycling over six arrays, i.e. reading from memory rather than cache
+  as any solver's convolutions do once its fields exceed the last-level cache.
 * ``solve``: our time to solution, iterations, convolutions per iteration, time per iteration and its ratio
   to (convolutions per iteration × pyFFTW pair); seeded self-affine surface at p̄ = 0.01 E* (``--pressure``);
   preconditioned (the periodic default) and plain Polonsky–Keer; best of ``--solve-repeat`` solves.
@@ -97,9 +99,9 @@ def peak_memory(surface, pressure, tol, periodic=True) -> float:
     return peak / (surface.heights.size * 8)
 
 
-def fft_floor(n: int, threads: int, planner: str, repeat: int, backend=None) -> dict:
+def fft_floor(n: int, threads: int, planner: str, repeat: int, backend=None, rotating=False) -> dict:
     """Time [s] of one rfft2 + irfft2 pair on an n² float64 array: pyFFTW with its plans reused, scipy.fft
-    (``backend``: only that one)."""
+    (``backend``: only that one); ``rotating``: also the pyFFTW pair on arrays that are not in cache."""
     floors = {}
     real = np.random.default_rng(0).random((n, n))
     try:
@@ -118,6 +120,19 @@ def fft_floor(n: int, threads: int, planner: str, repeat: int, backend=None) -> 
             forward()
             backward()
         floors["pyfftw"] = best_time(pair, repeat)
+        if rotating:                                    # the same pair cycling over six n² arrays (48 MB at
+            arrays = [pyfftw.empty_aligned((n, n), "float64") for _ in range(6)]   # 1024²): no cache reuse
+            for array in arrays:
+                array[...] = real
+            turn = iter(range(10 ** 9))
+
+            def rotating_pair():
+                k = next(turn)
+                forward.update_arrays(arrays[k % 6], b)
+                forward.execute()
+                backward.update_arrays(b, arrays[(k + 3) % 6])
+                backward.execute()
+            floors["pyfftw-rotating"] = best_time(rotating_pair, 6 * repeat)
     if backend in (None, "scipy"):
         floors["scipy"] = best_time(lambda: scipy.fft.irfft2(scipy.fft.rfft2(real, workers=threads), s=(n, n),
                                                              workers=threads), repeat)
@@ -194,7 +209,7 @@ def peer_available(name: str) -> str:
 def run(sizes, pressure, threads, tol, planner, sweep_size, sweep_tols, repeat, solve_repeat, peers, write):
     """Run every section, calling ``write(row)`` for each result row."""
     for n in sizes:
-        floors = fft_floor(n, threads, planner, repeat)
+        floors = fft_floor(n, threads, planner, repeat, rotating=True)
         for backend, seconds in floors.items():
             write(row(section="fft_floor", solver=backend, n=n, time_s=seconds, note="rfft2+irfft2 pair"))
         surface = rough_surface(n)
@@ -205,15 +220,17 @@ def run(sizes, pressure, threads, tol, planner, sweep_size, sweep_tols, repeat, 
             half = ElasticHalfSpace(surface.grid, E_star=E_STAR, backend=backend, threads=threads,
                                     planner_effort=planner)
             result, per_iteration = timed_solve(surface, half, pressure, tol, preconditioned, solve_repeat)
-            floor = min(floors[backend], *fft_floor(n, threads, planner, repeat, backend).values())
+            floor = min(floors[backend], fft_floor(n, threads, planner, repeat, backend)[backend])
             convolutions = result.params["convolutions"] / max(result.iterations, 1)
+            uncached = (f"; {per_iteration / (convolutions * floors['pyfftw-rotating']):.3g} against the rotating pair"
+                        if backend == "pyfftw" else "")
             write(row(section="solve", solver=f"roughcontact[{backend}{'' if preconditioned else ',plain'}]", n=n,
                       time_s=result.wall_time, iterations=result.iterations,
                       convolutions_per_iteration=convolutions, time_per_iteration_s=per_iteration,
                       ratio=per_iteration / (convolutions * floor), contact_fraction=result.contact_fraction,
                       mean_gap_m=result.mean_gap, converged=result.converged,
                       note="best of repeats; ratio = time per iteration / (convolutions per iteration x "
-                           "own-backend pair, best of before and after)"))
+                           f"own-backend pair, best of before and after){uncached}"))
             ours = ours or result
         for periodic in (True, False) if n <= 1024 else (True,):      # free 2048²: a 4096² transform, minutes
             write(row(section="memory", solver="roughcontact[pyfftw]", n=n,
