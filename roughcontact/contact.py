@@ -524,17 +524,30 @@ def _result(p, u, h, shift, half, params, iterations, residuals, converged, mess
         message=message, wall_time=time.perf_counter() - start, params=params)
 
 
-def load_path(height_field, half: ElasticHalfSpace, mean_pressures, warm_start=True, **solver_options):
+def load_path(height_field, half: ElasticHalfSpace, mean_pressures, warm_start=True, start=None, progress=False,
+              **solver_options):
     """Yield :func:`solve_contact` results for each of ``mean_pressures`` [Pa] in order.
 
     With ``warm_start`` each solve starts from the previous pressure field (rescaled to the new load by the
-    solver). ``solver_options`` go to :func:`solve_contact`. (A secant extrapolation from the two previous
-    fields was tried and saved < 1 % of the iterations, so the simple warm start is kept; docs/solver.md.)
+    solver); ``start`` (a ``ContactResult``, e.g. the last one saved by an interrupted sweep) warm-starts the
+    first step, so a sweep resumes where it stopped. ``progress`` shows a tqdm bar with the contact fraction
+    and iterations of the last step. ``solver_options`` go to :func:`solve_contact`. (Predictors and
+    re-entry variants that did not shorten warm solves are listed in docs/solver.md.)
     """
     if "x0" in solver_options:
-        raise ValueError("load_path sets x0 itself; pass warm_start=False to start every step cold")
-    previous = None
-    for mean_pressure in mean_pressures:
+        raise ValueError("load_path sets x0 itself; pass warm_start=False to start every step cold, or start= "
+                         "to warm-start the first step")
+    if start is not None and not isinstance(start, ContactResult):
+        raise TypeError(f"start must be a ContactResult, got {type(start).__name__}")
+    if start is not None and not warm_start:
+        raise ValueError("start= warm-starts the first step; it contradicts warm_start=False")
+    from tqdm.auto import tqdm
+
+    previous = start
+    steps = tqdm(mean_pressures, desc="load path", unit="step", disable=not progress)
+    for mean_pressure in steps:
         previous = solve_contact(height_field, half, mean_pressure=mean_pressure,
                                  x0=previous if warm_start else None, **solver_options)
+        steps.set_postfix(contact_fraction=f"{previous.contact_fraction:.4g}", iterations=previous.iterations,
+                          refresh=False)
         yield previous

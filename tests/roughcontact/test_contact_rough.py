@@ -124,6 +124,24 @@ def test_load_path_warm_start(rough):
         next(load_path(field, half, loads, x0=warm[0]))
 
 
+def test_load_path_resumes_and_shows_progress(rough, capsys):
+    """An interrupted sweep resumed from its last saved result gives the uninterrupted answers (to tol)."""
+    field, half, _ = rough
+    loads = E_STAR * SLOPE * np.linspace(0.01, 0.03, 4)
+    whole = list(load_path(field, half, loads, tol=1e-9))
+    first_two = list(load_path(field, half, loads[:2], tol=1e-9, progress=True))
+    assert "load path" in capsys.readouterr().err                   # the tqdm bar went to stderr
+    resumed = list(load_path(field, half, loads[2:], start=first_two[-1], tol=1e-9))
+    for a, b in zip(first_two + resumed, whole):
+        # the same warm starts in the same order: identical iterates, hence identical results
+        np.testing.assert_array_equal(a.pressure, b.pressure)
+        assert a.iterations == b.iterations
+    with pytest.raises(TypeError, match="start"):
+        next(load_path(field, half, loads, start=whole[0].pressure))
+    with pytest.raises(ValueError, match="warm_start"):
+        next(load_path(field, half, loads, start=whole[0], warm_start=False))
+
+
 def test_callback_and_halt(rough):
     field, half, _ = rough
     seen = []
