@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import itertools
 import os
 import time
 import tracemalloc
@@ -124,7 +125,7 @@ def fft_floor(n: int, threads: int, planner: str, repeat: int, backend=None, rot
             arrays = [pyfftw.empty_aligned((n, n), "float64") for _ in range(6)]   # 1024²): no cache reuse
             for array in arrays:
                 array[...] = real
-            turn = iter(range(10 ** 9))
+            turn = itertools.count()
 
             def rotating_pair():
                 k = next(turn)

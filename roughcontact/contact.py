@@ -214,11 +214,9 @@ def boundary_edges(contact: np.ndarray, periodic=(True, True)) -> int:
     the ``periodic`` axes."""
     edges = 0
     for axis, wraps in enumerate(periodic):
-        if contact.shape[axis] < 2:
-            continue
-        neighbour = np.roll(contact, 1, axis) if wraps else np.delete(contact, 0, axis)
-        own = contact if wraps else np.delete(contact, -1, axis)
-        edges += int(np.count_nonzero(own != neighbour))
+        edges += int(np.count_nonzero(np.diff(contact, axis=axis)))          # boolean diff: neighbours differ
+        if wraps:
+            edges += int(np.count_nonzero(contact.take(0, axis) != contact.take(-1, axis)))
     return edges
 
 
