@@ -47,8 +47,12 @@ def test_area_coefficient_falls_with_resolution_of_short_cutoff():
     Pixel counting over-estimates the area by a perimeter term ∝ Δx, so κ falls and converges at first order:
     measured κ = 2.81, 2.55, 2.47, steps 0.26 and 0.09 (step ratio 2.2–3.0 over seeds 0–3; 2 for exact first
     order; the perimeter-corrected κ stays at 2.32–2.35 on all three grids, docs/contact_area.md).
+
+    The Yastrebov correction removes that bias: corrected κ = 2.342, 2.317, 2.348 (spread 0.031; seeds 1–3:
+    0.054, 0.014, 0.020) where the pixel count spreads by 0.35. Asserted: spread < 0.1, which the pixel count
+    (0.25–0.42 over seeds 0–3) or the coefficient halved (0.17) or doubled (0.36) would fail.
     """
-    kappas = []
+    kappas, corrected = [], []
     for n in (128, 256, 512):
         grid = Grid((n, n), (L, L), periodic=True)
         field = self_affine(grid, hurst=0.8, rms_slope=SLOPE, short_cutoff=L / 32, rolloff=L / 4, rng=0)
@@ -56,8 +60,10 @@ def test_area_coefficient_falls_with_resolution_of_short_cutoff():
         result = solve_contact(field, ElasticHalfSpace(grid, E_star=E_STAR), mean_pressure=load, tol=1e-8)
         assert result.converged
         kappas.append(result.contact_fraction / (load / (E_STAR * SLOPE)))
+        corrected.append(result.corrected_contact_fraction / (load / (E_STAR * SLOPE)))
     coarse_step, fine_step = kappas[0] - kappas[1], kappas[1] - kappas[2]
     assert coarse_step > 1.5 * fine_step > 0
+    assert max(corrected) - min(corrected) < 0.1
 
 
 def test_physics_consistency(rough):
