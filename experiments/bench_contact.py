@@ -12,9 +12,10 @@ Sections (column ``section`` of the table and the CSV):
 * ``fft_floor``: one rfft2 + irfft2 pair [s], pyFFTW (plan made once, reused) and ``scipy.fft``; and
   ``pyfftw-rotating``, the pyFFTW pair cycling over six arrays, i.e. reading from memory rather than cache
   as any solver's convolutions do once its fields exceed the last-level cache.
-* ``solve``: our time to solution, iterations, convolutions per iteration, time per iteration and its ratio
-  to (convolutions per iteration × pyFFTW pair); seeded self-affine surface at p̄ = 0.01 E* (``--pressure``);
-  preconditioned (the periodic default) and plain Polonsky–Keer; best of ``--solve-repeat`` solves.
+* ``solve``: our time to solution, iterations, FFT pairs per iteration ((forward + backward transforms) / 2:
+  a convolution is one pair, the Parseval step length half of one), time per iteration and its ratio to
+  (pairs per iteration × pyFFTW pair); seeded self-affine surface at p̄ = 0.01 E* (``--pressure``);
+  preconditioned (the default) and plain Polonsky–Keer; best of ``--solve-repeat`` solves.
 * ``memory``: peak memory of one solve (``tracemalloc``) in float64 grid arrays, half-space object included.
 * ``peer``: the same problem solved by Tamaas (``PolonskyKeerRey``) and ContactMechanics
   (``minimize_proxy``), time ratio to ours, relative differences of contact fraction and mean gap.
@@ -41,7 +42,7 @@ E_STAR = 1e6             # contact modulus [Pa] (results scale with p̄/E*; only
 PRESSURE = 0.01 * E_STAR  # default mean pressure of the runs [Pa] (--pressure, in units of E*)
 HURST, RMS_SLOPE, CUTOFF_PIXELS = 0.8, 0.1, 4
 SWEEP_STEPS = 20
-COLUMNS = ("section", "solver", "n", "time_s", "iterations", "convolutions_per_iteration",
+COLUMNS = ("section", "solver", "n", "time_s", "iterations", "fft_pairs_per_iteration",
            "time_per_iteration_s", "ratio", "contact_fraction", "mean_gap_m", "rel_diff_contact_fraction",
            "rel_diff_mean_gap", "converged", "note")
 
@@ -222,15 +223,15 @@ def run(sizes, pressure, threads, tol, planner, sweep_size, sweep_tols, repeat, 
                                     planner_effort=planner)
             result, per_iteration = timed_solve(surface, half, pressure, tol, preconditioned, solve_repeat)
             floor = min(floors[backend], fft_floor(n, threads, planner, repeat, backend)[backend])
-            convolutions = result.params["convolutions"] / max(result.iterations, 1)
-            uncached = (f"; {per_iteration / (convolutions * floors['pyfftw-rotating']):.3g} against the rotating pair"
+            pairs = result.params["fft_pairs"] / max(result.iterations, 1)
+            uncached = (f"; {per_iteration / (pairs * floors['pyfftw-rotating']):.3g} against the rotating pair"
                         if backend == "pyfftw" else "")
             write(row(section="solve", solver=f"roughcontact[{backend}{'' if preconditioned else ',plain'}]", n=n,
                       time_s=result.wall_time, iterations=result.iterations,
-                      convolutions_per_iteration=convolutions, time_per_iteration_s=per_iteration,
-                      ratio=per_iteration / (convolutions * floor), contact_fraction=result.contact_fraction,
+                      fft_pairs_per_iteration=pairs, time_per_iteration_s=per_iteration,
+                      ratio=per_iteration / (pairs * floor), contact_fraction=result.contact_fraction,
                       mean_gap_m=result.mean_gap, converged=result.converged,
-                      note="best of repeats; ratio = time per iteration / (convolutions per iteration x "
+                      note="best of repeats; ratio = time per iteration / (FFT pairs per iteration x "
                            f"own-backend pair, best of before and after){uncached}"))
             ours = ours or result
         for periodic in (True, False) if n <= 1024 else (True,):      # free 2048²: a 4096² transform, minutes
@@ -277,7 +278,7 @@ def format_row(values: dict) -> str:
         return f"{value:{width}{fmt}}" if isinstance(value, (float, np.floating)) else f"{str(value):>{width}s}"
     return " ".join([f"{values['section']:9s}", f"{values['solver']:22s}", cell(values["n"], 5, "d"),
                      cell(values["time_s"], 10, ".4g"), cell(values["iterations"], 6, "d"),
-                     cell(values["convolutions_per_iteration"], 6, ".3f"),
+                     cell(values["fft_pairs_per_iteration"], 6, ".3f"),
                      cell(values["time_per_iteration_s"], 10, ".4g"), cell(values["ratio"], 7, ".3g"),
                      cell(values["contact_fraction"], 10, ".6g"), cell(values["mean_gap_m"], 11, ".6g"),
                      cell(values["rel_diff_contact_fraction"], 9, ".2g"), cell(values["rel_diff_mean_gap"], 9, ".2g"),
@@ -313,7 +314,7 @@ def main(argv=None):
           f"{os.cpu_count()} cores; threads {args.threads}; tol {args.tol:g}; planner {args.planner}")
     header = {column: column for column in COLUMNS}
     header.update(section="section", solver="solver", n="n", time_s="time [s]", iterations="iters",
-                  convolutions_per_iteration="conv/it", time_per_iteration_s="s/iter", ratio="ratio",
+                  fft_pairs_per_iteration="pair/it", time_per_iteration_s="s/iter", ratio="ratio",
                   contact_fraction="A/A0", mean_gap_m="<g> [m]", rel_diff_contact_fraction="dA/A",
                   rel_diff_mean_gap="d<g>/<g>", note="note")
     print(format_row(header))

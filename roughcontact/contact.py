@@ -6,12 +6,13 @@ Unknown: the contact pressure p ≥ 0 [Pa] on the grid; the gap g = s − h + u(
 
 Algorithm: Polonsky & Keer (1999), Wear 231:206, steps (a)–(h), restricted conjugate gradients on the
 contact set I_c = {p > 0} with the mean gap on I_c removed (load control), projection p ≥ 0 and re-entry
-of penetrated points (I_ol, with a CG restart). The displacement is carried along incrementally,
-u ← α (u − τ K t), so an iteration costs **one** convolution K t while the contact set is unchanged; when a
-point leaves or enters the contact set (or every ``_REFRESH`` steps, and before accepting convergence) u is
-recomputed exactly (one more convolution). Optionally (default on periodic grids) the CG is preconditioned
-with the inverse kernel, z = K⁻¹ g: one more convolution per step, fewer steps. Convergence criterion,
-with ``gap_scale`` the rms height of h:
+of penetrated points (I_ol, with a CG restart). The direction t is kept at zero mean on I_c, so the step
+length needs only ⟨t, K t⟩, which Parseval gives from the forward transform of t alone. While the contact set
+holds, the backward transform completes K t and u ← α u − τ K t: **one** FFT pair per step. When a point
+leaves or enters (or every ``_REFRESH`` steps, and before accepting convergence) u = K p is recomputed
+instead: 1.5 pairs, never more. Optionally (default on periodic grids) the CG is preconditioned with the
+inverse kernel, z = K⁻¹ g: one more pair per step, fewer steps. Convergence criterion, with ``gap_scale``
+the rms height of h:
 
     sqrt(<(g − ḡ_c)²>_{I_c}) ≤ tol · gap_scale   and   max(−g outside I_c) ≤ tol · gap_scale,
 
@@ -41,9 +42,9 @@ _REFRESH = 50          # exact recomputation of u at least every _REFRESH CG ste
 
 # -- fused pointwise kernels (flat contiguous views; accumulators in float64) --------------------------------
 # The contact set I_c is carried as a sorted index list, so the passes that only concern I_c (gap moments,
-# conjugate direction, direction moments, preconditioner input) cost O(|I_c|), not a sweep over the grid;
-# the direction t (and the preconditioner input) is kept zero outside I_c. Per plain iteration only one pass
-# streams whole grids: the re-entry scan, fused with the incremental displacement update u ← α u − τ K t.
+# conjugate direction, preconditioner input and moments, projected step) cost O(|I_c|), not a sweep over the
+# grid; the direction t (and the preconditioner input) is kept zero outside I_c. Per iteration one pass
+# streams whole grids, the re-entry scan, plus the incremental displacement update when the set held.
 
 
 @njit(cache=True)
@@ -70,18 +71,17 @@ def _largest_penetration(p, u, h, alpha, shift):
 
 
 @njit(cache=True)
-def _conjugate_direction(index, n_contact, u, h, alpha, shift, beta, t):
-    """PK step (c): t ← g + β t on the contact set (t = 0 elsewhere already). Returns Σ g t, Σ t."""
+def _conjugate_direction(index, n_contact, u, h, alpha, shift, beta, t_mean, t):
+    """PK step (c): t ← g + β (t − t̄) on the contact set (t = 0 elsewhere already); t̄ = the mean of the
+    previous t over I_c, removed so that t keeps a zero mean there (load control). Returns Σ g t."""
     sum_gt = 0.0
-    sum_t = 0.0
     for k in range(n_contact):
         i = index[k]
         g = alpha * u[i] - h[i] + shift
-        direction = g + beta * t[i]
+        direction = g + beta * (t[i] - t_mean)
         t[i] = direction
         sum_gt += g * direction
-        sum_t += direction
-    return sum_gt, sum_t
+    return sum_gt
 
 
 @njit(cache=True)
@@ -93,77 +93,71 @@ def _masked_gap(index, n_contact, u, h, alpha, shift, out):
 
 
 @njit(cache=True)
-def _preconditioned_moments(index, n_contact, u, h, alpha, shift, z):
-    """Σ z and Σ g z over the contact set, for the preconditioned residual z = M g."""
+def _preconditioned_moments(index, n_contact, g, z):
+    """Σ z and Σ g z over the contact set, for the preconditioned residual z = M g (g kept in the
+    preconditioner's input, so u and h are not read again)."""
     sum_z = 0.0
     sum_gz = 0.0
     for k in range(n_contact):
         i = index[k]
         sum_z += z[i]
-        sum_gz += (alpha * u[i] - h[i] + shift) * z[i]
+        sum_gz += g[i] * z[i]
     return sum_z, sum_gz
 
 
 @njit(cache=True)
-def _preconditioned_direction(index, n_contact, u, h, alpha, shift, z, z_mean, beta, t):
-    """Preconditioned PK step (c): t ← (z − z̄) + β t on the contact set. Returns Σ g t, Σ t."""
+def _preconditioned_direction(index, n_contact, g, z, z_mean, beta, t_mean, t):
+    """Preconditioned PK step (c): t ← (z − z̄) + β (t − t̄) on the contact set (zero mean there, as in
+    :func:`_conjugate_direction`). Returns Σ g t."""
     sum_gt = 0.0
-    sum_t = 0.0
     for k in range(n_contact):
         i = index[k]
-        direction = z[i] - z_mean + beta * t[i]
+        direction = z[i] - z_mean + beta * (t[i] - t_mean)
         t[i] = direction
-        sum_gt += (alpha * u[i] - h[i] + shift) * direction
-        sum_t += direction
-    return sum_gt, sum_t
-
-
-@njit(cache=True)
-def _direction_moments(index, n_contact, t, r):
-    """Σ r and Σ r t over the contact set, for r = K t (PK step (d))."""
-    sum_r = 0.0
-    sum_rt = 0.0
-    for k in range(n_contact):
-        i = index[k]
-        sum_r += r[i]
-        sum_rt += r[i] * t[i]
-    return sum_r, sum_rt
+        sum_gt += g[i] * direction
+    return sum_gt
 
 
 @njit(cache=True)
 def _contact_step(index, n_contact, p, t, residual_input, alpha, tau):
     """PK step (e) on the contact set: p ← max(α p − τ t, 0). A point that leaves gets t = 0 (and 0 in
-    ``residual_input``, the preconditioner's input), keeping both zero outside the set. Returns Σ p and the
-    number of points that left."""
+    ``residual_input``, the preconditioner's input), keeping both zero outside the set. Returns Σ p, the
+    number of points that left and Σ t over the points that stayed (for the next direction's mean)."""
     total = 0.0
     left = 0
+    kept_t = 0.0
     for k in range(n_contact):
         i = index[k]
         value = alpha * p[i] - tau * t[i]
         if value > 0.0:
             p[i] = value
             total += value
+            kept_t += t[i]
         else:
             p[i] = 0.0
             t[i] = 0.0
             residual_input[i] = 0.0
             left += 1
-    return total, left
+    return total, left, kept_t
 
 
 @njit(cache=True)
-def _reentry_scan(p, u, h, r, alpha, shift, tau, update_displacement, index):
-    """PK step (f) over the grid: a point with p = 0 where the wall is penetrated (g = α u − h + shift < 0)
-    re-enters with p = −τ g. Rebuilds the sorted contact index list; with ``update_displacement`` also applies
-    u ← α u − τ r (exact when the contact set is unchanged). Returns the new set size, Σ p of the points that
-    entered and their number."""
+def _advance_displacement(u, r, alpha, tau):
+    """u ← α u − τ r with r = K t: the displacement of the step p ← α p − τ t when the contact set held."""
+    for i in range(u.size):
+        u[i] = alpha * u[i] - tau * r[i]
+
+
+@njit(cache=True)
+def _reentry_scan(p, u, h, alpha, shift, tau, index):
+    """PK step (f) over the grid: a point with p = 0 where the wall is penetrated (g = α u − h + shift < 0,
+    the gap before the step) re-enters with p = −τ g. Rebuilds the sorted contact index list. Returns the new
+    set size, Σ p of the points that entered and their number."""
     n_contact = 0
     total = 0.0
     entered = 0
     for i in range(p.size):
         g = alpha * u[i] - h[i] + shift
-        if update_displacement:
-            u[i] = alpha * u[i] - tau * r[i]
         if p[i] > 0.0:
             index[n_contact] = i
             n_contact += 1
@@ -311,7 +305,7 @@ def _restart(p, t, z_in, index) -> int:
 
 def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, total_force=None,
                   penetration=None, tol=1e-8, maxiter=10000, x0=None, callback=None,
-                  preconditioned=None, interaction: Interaction | None = None, warn=True) -> ContactResult:
+                  preconditioned=True, interaction: Interaction | None = None, warn=True) -> ContactResult:
     """Press ``height_field`` onto a rigid flat and solve for pressure, displacement and gap.
 
     Parameters
@@ -330,11 +324,10 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
         Warm start: a previous result or a pressure field [Pa] (rescaled to the requested load).
     callback : callable, optional
         ``callback(SolverState)`` after every step; raising ``StopIteration`` halts (``converged=False``).
-    preconditioned : bool, optional
-        Precondition the conjugate gradients with the inverse kernel K⁻¹: one more convolution per step,
-        fewer steps. Default (None): on periodic grids, where it saved 35 % of the convolutions on a rough
-        1024² surface (even at 256²) and up to 77 % on the Westergaard profile; not on free surfaces, where
-        the padded convolutions are 4× dearer and it cost 9–35 % more (``docs/solver.md``).
+    preconditioned : bool
+        Precondition the conjugate gradients with the inverse kernel K⁻¹: one more FFT pair per step, far
+        fewer steps (rough 1024²: 743 → 132 steps, 10.8 → 3.1 s; Hertz 512² free surface: 64 → 26 steps,
+        0.53 → 0.44 s; ``docs/solver.md``).
     interaction : Interaction, optional
         Surface interaction law; only :class:`~roughcontact.interactions.HardWall` (the default) so far.
     warn : bool
@@ -356,7 +349,7 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     if callback is not None and not callable(callback):
         raise TypeError(f"callback must be callable, got {type(callback).__name__}")
     grid = half.grid
-    preconditioned = half.periodic if preconditioned is None else bool(preconditioned)
+    preconditioned = bool(preconditioned)
     heights = _heights(height_field, half)
     if total_force is not None:
         mean_pressure = check_positive("total_force", total_force) / grid.area
@@ -384,22 +377,31 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     p[:] = _initial_pressure(x0, heights, half, mean_pressure, flat_position).reshape(-1)
     n_contact = _restart(p, t, z_in, index)
 
-    def convolve(source, out):
-        half.displacement_into(source.reshape(grid.shape), out.reshape(grid.shape))
+    def field(array):                                       # the 2-D view that the elastic operator takes
+        return array.reshape(grid.shape)
+
+    def recompute_displacement():                           # u = K p: one FFT pair (two transforms)
+        half.displacement_into(field(p), field(u))
+        return 2
+
+    def conjugate_direction(beta):                          # (c) t ← (z − z̄ or g) + β (t − t̄); Σ g t
+        t_mean = kept_t / n_contact if load_control and beta else 0.0
+        if preconditioned:
+            return _preconditioned_direction(index, n_contact, z_in, r, z_mean, beta, t_mean, t)
+        return _conjugate_direction(index, n_contact, u, h, alpha, shift, beta, t_mean, t)
 
     # alpha: pending load normalisation (PK step (g)); the normalised fields are α p and α u = K(α p)
     alpha = mean_pressure * n_points / float(p.sum(dtype=np.float64)) if load_control else 1.0
     deviation = heights - heights.mean(dtype=np.float64)
     gap_scale = float(np.sqrt(np.mean(deviation * deviation, dtype=np.float64)))
     del deviation
-    convolve(p, u)
-    convolutions, exact, since_exact = 1, True, 0
+    transforms, exact, since_exact = recompute_displacement(), True, 0
     if gap_scale == 0.0:                                    # flat surface: scale by the elastic displacement
         gap_scale = alpha * float(np.sqrt(np.mean(np.square(u, dtype=np.float64)))) or 1.0
 
     residuals, iterations, converged, halted, message = [], 0, False, False, ""
     shift = float(h.mean(dtype=np.float64)) - alpha * float(u.mean(dtype=np.float64)) if load_control else flat_position
-    beta_allowed, previous_squared, tau, reported = False, 1.0, 0.0, 0
+    beta_allowed, previous_squared, tau, reported, kept_t = False, 1.0, 0.0, 0, 0.0
     while True:
         # (a)-(b) gap moments on the contact set; load control centres the gap there (flat position = shift)
         sum_g, sum_g2 = _gap_moments(index, n_contact, u, h, alpha, shift)
@@ -427,8 +429,7 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
         penetration_error = _largest_penetration(p, u, h, alpha, shift) / gap_scale if residual <= tol else math.nan
         if residual <= tol and penetration_error <= tol:
             if not exact:                                   # accept only on an exactly recomputed u
-                convolve(p, u)
-                convolutions, exact, since_exact = convolutions + 1, True, 0
+                transforms, exact, since_exact = transforms + recompute_displacement(), True, 0
                 continue
             residuals.append(residual)
             converged, message = True, f"converged: relative rms gap error {residual:.3g} <= tol {tol:g}"
@@ -440,46 +441,43 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
                 message += f", but a penetration {penetration_error:.3g} outside the contact set"
             break
         iterations += 1
+        step_incremental = False
         if n_contact == 0:                                  # displacement control lost all contact: restart
             p[:] = _initial_pressure(None, heights, half, None, flat_position).reshape(-1)
-            alpha, beta_allowed, step_incremental = 1.0, False, False
+            alpha, beta_allowed = 1.0, False
             n_contact = _restart(p, t, z_in, index)
         else:
-            # (c) conjugate direction, optionally preconditioned: z = M g with M = K⁻¹ (one convolution)
+            # (c) conjugate direction, optionally preconditioned: z = M g with M = K⁻¹ (one FFT pair)
             if preconditioned:
                 _masked_gap(index, n_contact, u, h, alpha, shift, z_in)
-                half.stiffness_into(z_in.reshape(grid.shape), r.reshape(grid.shape))
-                convolutions += 1
-                sum_z, descent = _preconditioned_moments(index, n_contact, u, h, alpha, shift, r)
+                half.stiffness_into(field(z_in), field(r))
+                transforms += 2
+                sum_z, descent = _preconditioned_moments(index, n_contact, z_in, r)
                 z_mean = sum_z / n_contact if load_control else 0.0
             else:
-                descent = squared
+                descent, z_mean = squared, 0.0
             beta = descent / previous_squared if beta_allowed and previous_squared > 0 else 0.0
             previous_squared = descent
-            if preconditioned:
-                sum_gt, sum_t = _preconditioned_direction(index, n_contact, u, h, alpha, shift, r, z_mean, beta, t)
-                if sum_gt <= 0 and beta > 0:                # not a descent direction: restart
-                    sum_gt, sum_t = _preconditioned_direction(index, n_contact, u, h, alpha, shift, r, z_mean,
-                                                              0.0, t)
-            else:
-                sum_gt, sum_t = _conjugate_direction(index, n_contact, u, h, alpha, shift, beta, t)
-            # (d) step length from the convolution r = K t
-            convolve(t, r)
-            convolutions += 1
-            sum_r, sum_rt = _direction_moments(index, n_contact, t, r)
-            curvature = sum_rt - (sum_r / n_contact) * sum_t if load_control else sum_rt
+            sum_gt = conjugate_direction(beta)
+            if sum_gt <= 0 and beta > 0:                    # not a descent direction: restart the CG
+                sum_gt = conjugate_direction(0.0)
+            # (d) step length τ = Σ g t / ⟨t, K t⟩, the curvature by Parseval (forward transform only)
+            curvature = half.quadratic_form(field(t))
+            transforms += 1
             if curvature > 0:
                 tau = sum_gt / curvature
             elif tau == 0.0:                                # t = 0 on a gap-free contact set: re-entry only
                 tau = 1.0 / half.pixel_compliance
-            # (e) projected step on I_c, (f) re-entry of penetrated points, with u ← α u − τ K t fused in
-            # when no point left (exact if none enters either; otherwise u is recomputed below)
-            total, left = _contact_step(index, n_contact, p, t, z_in, alpha, tau)
-            update = left == 0 and since_exact < _REFRESH
-            n_contact, total_entered, entered = _reentry_scan(p, u, h, r, alpha, shift, tau, update, index)
+            # (e) projected step on I_c, (f) re-entry of penetrated points (gap before the step)
+            total, left, kept_t = _contact_step(index, n_contact, p, t, z_in, alpha, tau)
+            n_contact, total_entered, entered = _reentry_scan(p, u, h, alpha, shift, tau, index)
             total += total_entered
             beta_allowed = entered == 0
-            step_incremental = update and entered == 0 and total > 0
+            step_incremental = left == 0 and entered == 0 and since_exact < _REFRESH and total > 0
+            if step_incremental:                            # the set held: complete K t, u ← α u − τ K t
+                half.pending_displacement_into(field(r))
+                transforms += 1
+                _advance_displacement(u, r, alpha, tau)
             alpha = 1.0
             if load_control:                                # (g), applied lazily through alpha
                 if total > 0:
@@ -491,19 +489,17 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
         if step_incremental:
             exact, since_exact = False, since_exact + 1
         else:                                               # contact set changed: recompute u exactly
-            convolve(p, u)
-            convolutions, exact, since_exact = convolutions + 1, True, 0
+            transforms, exact, since_exact = transforms + recompute_displacement(), True, 0
     if not exact:
-        convolve(p, u)
-        convolutions += 1
+        transforms += recompute_displacement()
     _scale(p, alpha)
     _scale(u, alpha)
     if not converged and warn:
         warnings.warn(message, ConvergenceWarning, stacklevel=2)
-    return _result(p, u, h, shift, half, params, iterations, residuals, converged, message, start, convolutions)
+    return _result(p, u, h, shift, half, params, iterations, residuals, converged, message, start, transforms)
 
 
-def _result(p, u, h, shift, half, params, iterations, residuals, converged, message, start, convolutions):
+def _result(p, u, h, shift, half, params, iterations, residuals, converged, message, start, transforms):
     grid = half.grid
     gap = np.empty(p.size, half.dtype)
     contact = np.empty(p.size, np.bool_)
@@ -512,7 +508,7 @@ def _result(p, u, h, shift, half, params, iterations, residuals, converged, mess
     gap, contact = gap.reshape(grid.shape), contact.reshape(grid.shape)
     for array in (pressure, displacement, gap, contact):
         array.flags.writeable = False
-    params = {**params, "convolutions": int(convolutions)}
+    params = {**params, "fft_pairs": transforms / 2}
     return ContactResult(
         pressure=pressure, displacement=displacement, gap=gap, contact=contact,
         contact_fraction=float(np.count_nonzero(contact)) / contact.size,

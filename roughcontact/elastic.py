@@ -58,6 +58,29 @@ def _apply_multiplier(spectrum, multiplier):
 
 
 @njit(cache=True)
+def _apply_inverse_multiplier(spectrum, multiplier, scale, zero_mode_stiffness):
+    """spectrum ← spectrum / (scale · Φ) in place, and · ``zero_mode_stiffness`` where Φ = 0 (no stored 1/Φ)."""
+    for i in range(spectrum.shape[0]):
+        for j in range(spectrum.shape[1]):
+            compliance = scale * multiplier[i, j]
+            spectrum[i, j] *= 1.0 / compliance if compliance > 0 else zero_mode_stiffness
+
+
+@njit(cache=True)
+def _apply_multiplier_quadratic(spectrum, multiplier, n_last):
+    """spectrum ← spectrum · Φ in place; returns Σ_q Φ |spectrum|² over the full spectrum (Parseval: the half
+    spectrum's columns 0 < j < n_last/2 stand for two), accumulated in float64."""
+    total = 0.0
+    for i in range(spectrum.shape[0]):
+        for j in range(spectrum.shape[1]):
+            value = spectrum[i, j]
+            weight = 1.0 if (j == 0 or 2 * j == n_last) else 2.0
+            total += weight * float(multiplier[i, j]) * (float(value.real) ** 2 + float(value.imag) ** 2)
+            spectrum[i, j] = value * multiplier[i, j]
+    return total
+
+
+@njit(cache=True)
 def _pressure_work(pressure, displacement):
     """Σ p u in float64 (no temporary; numpy's dot would go through a possibly multi-threaded BLAS)."""
     total = 0.0
@@ -116,6 +139,7 @@ class ElasticHalfSpace:
         self._padded = None if self.periodic else self._fft.work_array()   # free surface: 2nx × 2ny
         self._multiplier = self._fourier_multiplier().astype(self.dtype, copy=False)
         self._multiplier.flags.writeable = False
+        self._pending = False              # a quadratic_form's K p awaits its backward transform
 
     # -- construction helpers ------------------------------------------------------------------------------
     @staticmethod
@@ -190,19 +214,13 @@ class ElasticHalfSpace:
         return self.layer["thickness"] * (1 - 2 * nu) / (self.E_star * (1 - nu) ** 2)
 
     @functools.cached_property
-    def _stiffness(self) -> np.ndarray:
-        """1/Φ on the transform grid (with the 1/N of the FFT pair); modes with Φ = 0 get the smallest
-        stiffness of the others, so the preconditioner is positive definite. Made on first use (only the
-        preconditioned solver needs it)."""
+    def _zero_mode_stiffness(self) -> float:
+        """Multiplier of the preconditioner K⁻¹ on modes with Φ = 0: the smallest stiffness of the others (with
+        the 1/N of the FFT pair), so that the preconditioner is positive definite. 1/Φ itself is not stored:
+        :func:`_apply_inverse_multiplier` divides."""
         n_total = self.transform_shape[0] * self.transform_shape[1]
-        compliance = self._multiplier.astype(np.float64, copy=False)
-        positive = compliance > 0
-        stiffness = np.zeros_like(compliance)
-        stiffness[positive] = 1.0 / (compliance[positive] * n_total * n_total)
-        stiffness[~positive] = stiffness[positive].min() if positive.any() else 1.0 / n_total
-        stiffness = stiffness.astype(self.dtype, copy=False)
-        stiffness.flags.writeable = False
-        return stiffness
+        largest = float(self._multiplier.max())
+        return 1.0 / (largest * n_total * n_total) if largest > 0 else 1.0 / n_total
 
     def _free_surface_multiplier(self) -> np.ndarray:
         """FFT of the Love pixel influence coefficients laid out for the padded (linear) convolution, made
@@ -259,7 +277,9 @@ class ElasticHalfSpace:
         No allocation; with arrays from :meth:`empty` (periodic grids) no copy either. Free surface: p is
         placed in the corner of the zero-padded 2n buffer and u read back from the same corner.
         """
-        return self._convolve(pressure, out, self._multiplier)
+        self._forward(pressure)
+        _apply_multiplier(self._fft.spectrum, self._multiplier)
+        return self._backward_into(out)
 
     def stiffness_into(self, displacement: np.ndarray, out: np.ndarray) -> np.ndarray:
         """Write the pressure [Pa] that the inverse multiplier 1/Φ assigns to ``displacement`` [m] into ``out``.
@@ -268,24 +288,50 @@ class ElasticHalfSpace:
         of the other modes when Φ(0) = 0); on a free surface the inverse of the padded operator. Used as the
         conjugate-gradient preconditioner; ``out`` may be ``displacement``.
         """
-        return self._convolve(displacement, out, self._stiffness)
+        n_total = self.transform_shape[0] * self.transform_shape[1]
+        self._forward(displacement)
+        _apply_inverse_multiplier(self._fft.spectrum, self._multiplier, float(n_total) ** 2,
+                                  self._zero_mode_stiffness)
+        return self._backward_into(out)
 
-    def _convolve(self, source, out, multiplier):
-        fft = self._fft
+    def quadratic_form(self, pressure: np.ndarray) -> float:
+        """⟨p, K p⟩ = Σ_x p (K p) [Pa·m] over the grid points, by Parseval from one forward transform
+        (= 2 U / pixel area, U the elastic energy of p). K p is left pending in the spectrum: a
+        :meth:`pending_displacement_into` right after this call completes the convolution for the cost of
+        the backward transform alone."""
+        self._forward(pressure)
+        self._pending = True
+        return _apply_multiplier_quadratic(self._fft.spectrum, self._multiplier, self.transform_shape[1])
+
+    def pending_displacement_into(self, out: np.ndarray) -> np.ndarray:
+        """Write K p for the ``p`` of the last :meth:`quadratic_form` into ``out`` (its backward transform)."""
+        if not self._pending:
+            raise RuntimeError("no pending displacement: call quadratic_form(p) first (any other transform in "
+                               "between discards it)")
+        return self._backward_into(out)
+
+    def _forward(self, source):
+        """Forward transform of ``source`` (zero-padded to the transform grid on a free surface)."""
+        self._pending = False
         if self.periodic:
-            fft.forward(source)
-            _apply_multiplier(fft.spectrum, multiplier)
-            fft.backward(out)
-            return out
+            self._fft.forward(source)
+            return
         nx, ny = self.grid.shape
         padded = self._padded
         padded[nx:, :] = 0                                      # backward() filled the padding last time
         padded[:nx, ny:] = 0
         padded[:nx, :ny] = source
-        fft.forward(padded)
-        _apply_multiplier(fft.spectrum, multiplier)
-        fft.backward(padded)
-        np.copyto(out, padded[:nx, :ny])
+        self._fft.forward(padded)
+
+    def _backward_into(self, out):
+        """Backward transform of the spectrum into ``out`` (its n-corner on a free surface)."""
+        self._pending = False
+        if self.periodic:
+            self._fft.backward(out)
+            return out
+        nx, ny = self.grid.shape
+        self._fft.backward(self._padded)
+        np.copyto(out, self._padded[:nx, :ny])
         return out
 
     def displacement(self, pressure) -> np.ndarray:

@@ -43,8 +43,9 @@ def test_backends_agree_and_converge(rows):
         assert a["converged"] == b["converged"] == "True"
         assert a["contact_fraction"] == b["contact_fraction"]
         assert float(a["mean_gap_m"]) == pytest.approx(float(b["mean_gap_m"]), rel=1e-9)
-        # Polonsky-Keer needs between 1 (plain step) and 3 (preconditioned step + contact-set change) convolutions
-        assert 1 <= float(a["convolutions_per_iteration"]) <= 3
+        # Polonsky-Keer needs between 1 FFT pair (plain step, contact set held) and 2.5 (preconditioned step +
+        # contact-set change); the final exact recomputation of u adds at most one pair over the whole solve
+        assert 1 <= float(a["fft_pairs_per_iteration"]) <= 2.5 + 1 / float(a["iterations"])
         assert 0.1 < float(a["contact_fraction"]) < 0.5     # 0.01 E* at rms slope 0.1: κ p/(E* h') ≈ 0.2
 
 

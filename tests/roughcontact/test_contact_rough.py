@@ -208,9 +208,9 @@ def test_agrees_with_tamaas(rough):
 
 @pytest.mark.parametrize("periodic", [True, False])
 def test_plain_and_preconditioned_pk_agree(rough, periodic):
-    """Plain Polonsky–Keer and the K⁻¹-preconditioned variant converge to the same contact solution, the
-    preconditioned one in fewer steps (deterministic counts; measured 56 → 25 steps periodic, 39 → 22 free).
-    The default is preconditioned on periodic grids only."""
+    """Plain Polonsky–Keer and the K⁻¹-preconditioned variant (the default) converge to the same contact
+    solution, the preconditioned one in fewer steps (deterministic counts; measured 56 → 25 steps periodic,
+    38 → 22 free)."""
     field, half, _ = rough
     if not periodic:
         grid = Grid((128, 96), (L, 0.75 * L), periodic=False)
@@ -218,7 +218,7 @@ def test_plain_and_preconditioned_pk_agree(rough, periodic):
         half = ElasticHalfSpace(grid, E_star=E_STAR)
     load = 0.02 * E_STAR * SLOPE
     default = solve_contact(field, half, mean_pressure=load, tol=1e-9)
-    assert default.params["preconditioned"] == periodic
+    assert default.params["preconditioned"]
     plain = solve_contact(field, half, mean_pressure=load, tol=1e-9, preconditioned=False)
     preconditioned = solve_contact(field, half, mean_pressure=load, tol=1e-9, preconditioned=True)
     assert plain.converged and preconditioned.converged
