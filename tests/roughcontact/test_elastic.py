@@ -186,3 +186,29 @@ def test_layer_on_rigid_base_uniform_compression(bottom, poisson):
     half = ElasticHalfSpace(grid, E_star=E_STAR, thickness=thickness, poisson=poisson, bottom=bottom)
     u = half.displacement(np.full(grid.shape, pressure))
     np.testing.assert_allclose(u, pressure * thickness / constrained, rtol=1e-12, atol=1e-25)
+
+
+@pytest.mark.parametrize("shape, periodic, layer, backend", [
+    ((32, 24), True, {}, "pyfftw"),
+    ((33, 25), True, {}, "scipy"),                                     # odd last axis: no Nyquist column
+    ((64, 1), True, {}, "pyfftw"),                                     # plane-strain profile
+    ((24, 17), False, {}, "pyfftw"),                                   # free surface: 48 × 34 padded transform
+    ((32, 32), True, {"thickness": 1e-4, "poisson": 0.3}, "pyfftw"),   # Φ(0) > 0 on a rigid base
+])
+def test_quadratic_form_is_parseval_of_the_convolution(shape, periodic, layer, backend):
+    """⟨p, K p⟩ from the forward transform alone (Parseval, half-spectrum columns weighted 1 or 2) equals the
+    real-space Σ p (K p), and the pending backward transform completes K p. 1e-12: round-off of two FFTs."""
+    grid = Grid(shape, (1e-3, 1e-3 * shape[1] / shape[0]), periodic=periodic)
+    half = ElasticHalfSpace(grid, E_star=E_STAR, backend=backend, **layer)
+    pressure = np.random.default_rng(4).random(shape) * 1e4              # nonzero mean: the q = 0 mode counts
+    displacement = half.displacement(pressure)
+    expected = float(np.sum(pressure * displacement))
+    assert half.quadratic_form(pressure.copy()) == pytest.approx(expected, rel=1e-12)
+    pending = half.pending_displacement_into(np.empty(shape))
+    np.testing.assert_allclose(pending, displacement, rtol=0, atol=1e-12 * np.abs(displacement).max())
+    with pytest.raises(RuntimeError, match="quadratic_form"):           # consumed: nothing pending any more
+        half.pending_displacement_into(np.empty(shape))
+    half.quadratic_form(pressure)
+    half.displacement(pressure)                                           # another transform discards it
+    with pytest.raises(RuntimeError, match="quadratic_form"):
+        half.pending_displacement_into(np.empty(shape))
