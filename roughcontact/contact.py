@@ -42,9 +42,10 @@ _REFRESH = 50          # exact recomputation of u at least every _REFRESH CG ste
 
 # -- fused pointwise kernels (flat contiguous views; accumulators in float64) --------------------------------
 # The contact set I_c is carried as a sorted index list, so the passes that only concern I_c (gap moments,
-# conjugate direction, preconditioner input and moments, projected step) cost O(|I_c|), not a sweep over the
+# conjugate direction, preconditioner input and moments) cost O(|I_c|), not a sweep over the
 # grid; the direction t (and the preconditioner input) is kept zero outside I_c. Per iteration one pass
-# streams whole grids, the re-entry scan, plus the incremental displacement update when the set held.
+# streams whole grids, the projected step fused with the re-entry scan, plus the incremental displacement
+# update when the set held.
 
 
 @njit(cache=True)
@@ -119,29 +120,6 @@ def _preconditioned_direction(index, n_contact, g, z, z_mean, beta, t_mean, t):
 
 
 @njit(cache=True)
-def _contact_step(index, n_contact, p, t, residual_input, alpha, tau):
-    """PK step (e) on the contact set: p ← max(α p − τ t, 0). A point that leaves gets t = 0 (and 0 in
-    ``residual_input``, the preconditioner's input), keeping both zero outside the set. Returns Σ p, the
-    number of points that left and Σ t over the points that stayed (for the next direction's mean)."""
-    total = 0.0
-    left = 0
-    kept_t = 0.0
-    for k in range(n_contact):
-        i = index[k]
-        value = alpha * p[i] - tau * t[i]
-        if value > 0.0:
-            p[i] = value
-            total += value
-            kept_t += t[i]
-        else:
-            p[i] = 0.0
-            t[i] = 0.0
-            residual_input[i] = 0.0
-            left += 1
-    return total, left, kept_t
-
-
-@njit(cache=True)
 def _advance_displacement(u, r, alpha, tau):
     """u ← α u − τ r with r = K t: the displacement of the step p ← α p − τ t when the contact set held."""
     for i in range(u.size):
@@ -149,25 +127,40 @@ def _advance_displacement(u, r, alpha, tau):
 
 
 @njit(cache=True)
-def _reentry_scan(p, u, h, alpha, shift, tau, index):
-    """PK step (f) over the grid: a point with p = 0 where the wall is penetrated (g = α u − h + shift < 0,
-    the gap before the step) re-enters with p = −τ g. Rebuilds the sorted contact index list. Returns the new
-    set size, Σ p of the points that entered and their number."""
+def _step_and_reentry(p, t, residual_input, u, h, alpha, shift, tau, index):
+    """PK steps (e) and (f) in one pass over the grid. (e) on the contact set: p ← α p − τ t where that stays
+    positive; a point that leaves gets p = 0, t = 0 and 0 in ``residual_input`` (the preconditioner's input),
+    keeping both zero outside the set. (f) a point with p = 0 after (e) where the wall is penetrated (gap
+    before the step g = α u − h + shift < 0) re-enters with p = −τ g. Rebuilds the sorted index list of the
+    contact set. Returns its size, Σ p, the numbers of points that left and entered, and Σ t over the points
+    that stayed (for the next direction's mean)."""
     n_contact = 0
     total = 0.0
+    left = 0
     entered = 0
+    kept_t = 0.0
     for i in range(p.size):
-        g = alpha * u[i] - h[i] + shift
         if p[i] > 0.0:
-            index[n_contact] = i
-            n_contact += 1
-        elif g < 0.0:
+            value = alpha * p[i] - tau * t[i]
+            if value > 0.0:
+                p[i] = value
+                total += value
+                kept_t += t[i]
+                index[n_contact] = i
+                n_contact += 1
+                continue
+            p[i] = 0.0
+            t[i] = 0.0
+            residual_input[i] = 0.0
+            left += 1
+        g = alpha * u[i] - h[i] + shift
+        if g < 0.0:
             p[i] = -tau * g
             total += p[i]
             entered += 1
             index[n_contact] = i
             n_contact += 1
-    return n_contact, total, entered
+    return n_contact, total, left, entered, kept_t
 
 
 @njit(cache=True)
@@ -469,9 +462,7 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
             elif tau == 0.0:                                # t = 0 on a gap-free contact set: re-entry only
                 tau = 1.0 / half.pixel_compliance
             # (e) projected step on I_c, (f) re-entry of penetrated points (gap before the step)
-            total, left, kept_t = _contact_step(index, n_contact, p, t, z_in, alpha, tau)
-            n_contact, total_entered, entered = _reentry_scan(p, u, h, alpha, shift, tau, index)
-            total += total_entered
+            n_contact, total, left, entered, kept_t = _step_and_reentry(p, t, z_in, u, h, alpha, shift, tau, index)
             beta_allowed = entered == 0
             step_incremental = left == 0 and entered == 0 and since_exact < _REFRESH and total > 0
             if step_incremental:                            # the set held: complete K t, u ← α u − τ K t
