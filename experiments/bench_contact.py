@@ -16,6 +16,9 @@ Sections (column ``section`` of the table and the CSV):
   a convolution is one pair, the Parseval step length half of one), time per iteration and its ratio to
   (pairs per iteration × pyFFTW pair); seeded self-affine surface at p̄ = 0.01 E* (``--pressure``);
   preconditioned (the default) and plain Polonsky–Keer; best of ``--solve-repeat`` solves.
+* ``profile``: where one preconditioned pyFFTW solve spends its time (``cProfile``): the FFT transforms, the
+  Fourier-multiplier passes and the pointwise passes over the grid and the contact set, each per iteration
+  and as its share of the ``solve`` ratio (the three shares add up to about that ratio).
 * ``memory``: peak memory of one solve (``tracemalloc``) in float64 grid arrays, half-space object included.
 * ``peer``: the same problem solved by Tamaas (``PolonskyKeerRey``) and ContactMechanics
   (``minimize_proxy``), time ratio to ours, relative differences of contact fraction and mean gap.
@@ -25,9 +28,11 @@ Sections (column ``section`` of the table and the CSV):
 from __future__ import annotations
 
 import argparse
+import cProfile
 import csv
 import itertools
 import os
+import pickle
 import time
 import tracemalloc
 
@@ -42,6 +47,7 @@ E_STAR = 1e6             # contact modulus [Pa] (results scale with p̄/E*; only
 PRESSURE = 0.01 * E_STAR  # default mean pressure of the runs [Pa] (--pressure, in units of E*)
 HURST, RMS_SLOPE, CUTOFF_PIXELS = 0.8, 0.1, 4
 SWEEP_STEPS = 20
+PAIRS_PER_SAMPLE = 12    # FFT floors: best of --repeat means over this many consecutive pairs (a multiple of 6)
 COLUMNS = ("section", "solver", "n", "time_s", "iterations", "fft_pairs_per_iteration",
            "time_per_iteration_s", "ratio", "contact_fraction", "mean_gap_m", "rel_diff_contact_fraction",
            "rel_diff_mean_gap", "converged", "note")
@@ -54,14 +60,16 @@ def rough_surface(n: int) -> surfaces.HeightField:
                                 rng=0)
 
 
-def best_time(run, repeat: int) -> float:
-    """Best wall time [s] of ``repeat`` calls of ``run()`` (after one untimed warm-up call)."""
+def best_time(run, repeat: int, number: int = 1) -> float:
+    """Time [s] of one call of ``run()``: the best of ``repeat`` means over ``number`` consecutive calls
+    (after one untimed warm-up call), as ``timeit`` does."""
     run()
     times = []
     for _ in range(repeat):
         start = time.perf_counter()
-        run()
-        times.append(time.perf_counter() - start)
+        for _ in range(number):
+            run()
+        times.append((time.perf_counter() - start) / number)
     return min(times)
 
 
@@ -82,6 +90,29 @@ def timed_solve(surface, half, pressure, tol, preconditioned, repeat):
     if not np.isfinite(best_per_iteration):
         best_per_iteration = best.wall_time / max(best.iterations, 1)
     return best, best_per_iteration
+
+
+PROFILE_GROUPS = {"transforms": ("fft.py", ("forward", "backward")),
+                  "multiplier passes": ("elastic.py", ("_apply_multiplier", "_apply_inverse_multiplier",
+                                                        "_apply_multiplier_quadratic")),
+                  "pointwise passes": ("contact.py", None)}      # None: every numba kernel (name "_...")
+
+
+def time_decomposition(surface, half, pressure, tol) -> tuple:
+    """Seconds per iteration that one solve spends in each of ``PROFILE_GROUPS`` (cProfile's own time of the
+    functions), and the result."""
+    profile = cProfile.Profile()
+    profile.enable()
+    result = solve_contact(surface, half, mean_pressure=pressure, tol=tol)
+    profile.disable()
+    profile.create_stats()
+    seconds = dict.fromkeys(PROFILE_GROUPS, 0.0)
+    for (filename, _, function), (_, _, own_time, _, _) in profile.stats.items():
+        for group, (module, functions) in PROFILE_GROUPS.items():
+            in_group = function in functions if functions else function.startswith("_") and function != "_result"
+            if filename.endswith(module) and in_group:
+                seconds[group] += own_time
+    return {group: value / max(result.iterations, 1) for group, value in seconds.items()}, result
 
 
 def peak_memory(surface, pressure, tol, periodic=True) -> float:
@@ -118,10 +149,10 @@ def fft_floor(n: int, threads: int, planner: str, repeat: int, backend=None, rot
                                flags=(planner, "FFTW_DESTROY_INPUT"), threads=threads)
         a[...] = real
 
-        def pair():
-            forward()
-            backward()
-        floors["pyfftw"] = best_time(pair, repeat)
+        def pair():                                     # execute(): no normalisation pass, as in the solver
+            forward.execute()
+            backward.execute()
+        floors["pyfftw"] = best_time(pair, repeat, number=PAIRS_PER_SAMPLE)
         if rotating:                                    # the same pair cycling over six n² arrays (48 MB at
             arrays = [pyfftw.empty_aligned((n, n), "float64") for _ in range(6)]   # 1024²): no cache reuse
             for array in arrays:
@@ -134,10 +165,10 @@ def fft_floor(n: int, threads: int, planner: str, repeat: int, backend=None, rot
                 forward.execute()
                 backward.update_arrays(b, arrays[(k + 3) % 6])
                 backward.execute()
-            floors["pyfftw-rotating"] = best_time(rotating_pair, 6 * repeat)
+            floors["pyfftw-rotating"] = best_time(rotating_pair, repeat, number=PAIRS_PER_SAMPLE)
     if backend in (None, "scipy"):
         floors["scipy"] = best_time(lambda: scipy.fft.irfft2(scipy.fft.rfft2(real, workers=threads), s=(n, n),
-                                                             workers=threads), repeat)
+                                                             workers=threads), repeat, number=PAIRS_PER_SAMPLE)
     return floors
 
 
@@ -234,6 +265,16 @@ def run(sizes, pressure, threads, tol, planner, sweep_size, sweep_tols, repeat, 
                       note="best of repeats; ratio = time per iteration / (FFT pairs per iteration x "
                            f"own-backend pair, best of before and after){uncached}"))
             ours = ours or result
+        if "pyfftw" in floors:
+            half = ElasticHalfSpace(surface.grid, E_star=E_STAR, threads=threads, planner_effort=planner)
+            decomposition, result = time_decomposition(surface, half, pressure, tol)
+            pairs = result.params["fft_pairs"] / max(result.iterations, 1)
+            for group, per_iteration in decomposition.items():
+                write(row(section="profile", solver=group, n=n, time_s=result.wall_time, iterations=result.iterations,
+                          fft_pairs_per_iteration=pairs, time_per_iteration_s=per_iteration,
+                          ratio=per_iteration / (pairs * floors["pyfftw"]),
+                          note="cProfile of one preconditioned pyfftw solve (time_s: its wall time); ratio = "
+                               "this group's share of the solve ratio (per iteration / (pairs per iteration x pair))"))
         for periodic in (True, False) if n <= 1024 else (True,):      # free 2048²: a 4096² transform, minutes
             write(row(section="memory", solver="roughcontact[pyfftw]", n=n,
                       ratio=peak_memory(surface, pressure, tol, periodic),
@@ -302,11 +343,17 @@ def main(argv=None):
     parser.add_argument("--sweep-tol", type=float, nargs="+", default=[1e-8, 1e-10],
                         help="tolerances of the load sweep")
     parser.add_argument("--no-peers", action="store_true", help="skip Tamaas and ContactMechanics")
+    parser.add_argument("--wisdom", help="FFTW wisdom file: imported if it exists, saved at the end, so that "
+                                         "repeated runs use the same FFT plans (see docs/benchmarks.md)")
     args = parser.parse_args(argv)
     if args.fast:
         args.sizes, args.sweep_size, args.repeat, args.solve_repeat, args.no_peers = [32, 64], 32, 2, 1, True
         args.planner = "FFTW_ESTIMATE"
     peers = [] if args.no_peers else list(PEERS)
+    if args.wisdom and os.path.exists(args.wisdom):
+        import pyfftw
+        with open(args.wisdom, "rb") as stream:
+            pyfftw.import_wisdom(pickle.load(stream))
     if "tamaas" in peers and peer_available("tamaas") == "":
         import tamaas as tm
         tm.initialize(args.threads)
@@ -328,6 +375,10 @@ def main(argv=None):
             print(format_row(values), flush=True)
         run(args.sizes, args.pressure * E_STAR, args.threads, args.tol, args.planner, args.sweep_size,
             args.sweep_tol, args.repeat, args.solve_repeat, peers, write)
+    if args.wisdom:
+        import pyfftw
+        with open(args.wisdom, "wb") as stream:
+            pickle.dump(pyfftw.export_wisdom(), stream)
     print(f"load average at the end {os.getloadavg()[0]:.2f}; CSV: {args.csv}")
 
 
