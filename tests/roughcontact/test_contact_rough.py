@@ -223,6 +223,11 @@ def test_plain_and_preconditioned_pk_agree(rough, periodic):
     preconditioned = solve_contact(field, half, mean_pressure=load, tol=1e-9, preconditioned=True)
     assert plain.converged and preconditioned.converged
     assert preconditioned.iterations < plain.iterations
+    # FFT pairs: one for the initial u, per step 1 (set held) to 1.5 (set changed) plus 1 for K⁻¹ g, and at
+    # most one final exact recomputation of u
+    for result, extra in ((plain, 0.0), (preconditioned, 1.0)):
+        steps = result.iterations
+        assert 1 + (1 + extra) * steps <= result.params["fft_pairs"] <= 2 + (1.5 + extra) * steps
     assert plain.contact_fraction == preconditioned.contact_fraction
     np.testing.assert_allclose(plain.pressure, preconditioned.pressure, rtol=0,
                                atol=1e-6 * preconditioned.pressure.max())
