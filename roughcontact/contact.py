@@ -12,7 +12,7 @@ length needs only ⟨t, K t⟩, which Parseval gives from the forward transform 
 holds, the backward transform completes K t and u ← α u − τ K t: **one** FFT pair per step. When a point
 leaves or enters (or every ``_REFRESH`` steps, and before accepting convergence) u = K p is recomputed
 instead: 1.5 pairs, never more. By default the CG is preconditioned with the inverse kernel, z = K⁻¹ g:
-one more pair per step, far fewer steps. Convergence criterion, with ``gap_scale``
+one more pair per step, fewer steps. Convergence criterion, with ``gap_scale``
 the rms height of h:
 
     sqrt(<(g − ḡ_c)²>_{I_c}) ≤ tol · gap_scale   and   max(−g outside I_c) ≤ tol · gap_scale,
@@ -326,9 +326,9 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     callback : callable, optional
         ``callback(SolverState)`` after every step; raising ``StopIteration`` halts (``converged=False``).
     preconditioned : bool
-        Precondition the conjugate gradients with the inverse kernel K⁻¹: one more FFT pair per step, far
-        fewer steps (rough 1024²: 743 → 132 steps, 10.8 → 3.1 s; Hertz 512² free surface: 64 → 26 steps,
-        0.53 → 0.44 s; ``docs/solver.md``).
+        Precondition the conjugate gradients with the inverse kernel K⁻¹: one more FFT pair per step, fewer
+        steps (rough 1024²: 159 → 93 steps; Hertz 512² free surface: 64 → 27 steps, 0.61 → 0.49 s;
+        ``docs/solver.md``).
     interaction : Interaction, optional
         Surface interaction law; only :class:`~roughcontact.interactions.HardWall` (the default) so far.
     warn : bool
