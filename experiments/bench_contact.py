@@ -343,13 +343,14 @@ def main(argv=None):
     parser.add_argument("--sweep-tol", type=float, nargs="+", default=[1e-8, 1e-10],
                         help="tolerances of the load sweep")
     parser.add_argument("--no-peers", action="store_true", help="skip Tamaas and ContactMechanics")
+    parser.add_argument("--peers", nargs="+", choices=list(PEERS), default=list(PEERS), help="peers to run")
     parser.add_argument("--wisdom", help="FFTW wisdom file: imported if it exists, saved at the end, so that "
                                          "repeated runs use the same FFT plans (see docs/benchmarks.md)")
     args = parser.parse_args(argv)
     if args.fast:
         args.sizes, args.sweep_size, args.repeat, args.solve_repeat, args.no_peers = [32, 64], 32, 2, 1, True
         args.planner = "FFTW_ESTIMATE"
-    peers = [] if args.no_peers else list(PEERS)
+    peers = [] if args.no_peers else args.peers
     if args.wisdom and os.path.exists(args.wisdom):
         import pyfftw
         with open(args.wisdom, "rb") as stream:
