@@ -7,13 +7,13 @@ Unknown: the contact pressure p ≥ 0 [Pa] on the grid; the gap g = s − h + u(
 Algorithm: Polonsky & Keer (1999), Wear 231:206, steps (a)–(h), restricted conjugate gradients on the
 contact set I_c = {p > 0} with the mean gap on I_c removed (load control), projection p ≥ 0 and re-entry
 of penetrated points (I_ol; the CG restarts only when a point enters I_c for the first time in the solve:
-re-entries of points that left keep it going, which cut the steps by 30–80 %). The direction t is kept at zero mean on I_c, so the step
-length needs only ⟨t, K t⟩, which Parseval gives from the forward transform of t alone. While the contact set
-holds, the backward transform completes K t and u ← α u − τ K t: **one** FFT pair per step. When a point
-leaves or enters (or every ``_REFRESH`` steps, and before accepting convergence) u = K p is recomputed
-instead: 1.5 pairs, never more. By default the CG is preconditioned with the inverse kernel, z = K⁻¹ g:
-one more pair per step, fewer steps. Convergence criterion, with ``gap_scale``
-the rms height of h:
+re-entries of points that left keep it going, which cut the steps by 30–80 %). The direction t is kept at
+zero mean on I_c, so the step length needs only ⟨t, K t⟩, which Parseval gives from the forward transform
+of t alone. While the contact set holds, the backward transform completes K t and u ← α u − τ K t: **one**
+FFT pair per step. When a point leaves or enters (or every ``_REFRESH`` steps, and before accepting
+convergence) u = K p is recomputed instead: 1.5 pairs, never more. By default the CG is preconditioned with
+the inverse kernel, z = K⁻¹ g: one more pair per step, fewer steps. Convergence criterion, with
+``gap_scale`` the rms height of h:
 
     sqrt(<(g − ḡ_c)²>_{I_c}) ≤ tol · gap_scale   and   max(−g outside I_c) ≤ tol · gap_scale,
 
@@ -361,7 +361,7 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     flat_position = None if load_control else h_max - check_real("penetration", penetration)
 
     params = {"E_star": half.E_star, "grid": grid, "tol": tol, "maxiter": int(maxiter), "method": METHOD,
-              "preconditioned": bool(preconditioned),
+              "preconditioned": preconditioned,
               "control": next(iter(given)), "requested": float(next(iter(given.values()))),
               "interaction": type(interaction).__name__, "kernel": half.description, "version": __version__}
 
@@ -401,7 +401,7 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     if gap_scale == 0.0:                                    # flat surface: scale by the elastic displacement
         gap_scale = alpha * float(np.sqrt(np.mean(np.square(u, dtype=np.float64)))) or 1.0
 
-    residuals, iterations, converged, halted, message = [], 0, False, False, ""
+    residuals, iterations, converged, message = [], 0, False, ""
     shift = float(h.mean(dtype=np.float64)) - alpha * float(u.mean(dtype=np.float64)) if load_control else flat_position
     beta_allowed, previous_squared, tau, reported, kept_t = False, 1.0, 0.0, 0, 0.0
     while True:
@@ -424,7 +424,6 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
                 callback(SolverState(iterations, residual, n_contact / n_points))
             except StopIteration:
                 residuals.append(residual)
-                halted = True
                 message = f"halted by callback after {iterations} iterations (relative rms gap error {residual:.3g})"
                 break
         # the penetration outside the contact set is checked only once the contact set is converged

@@ -134,6 +134,7 @@ class ElasticHalfSpace:
                              f"{grid.periodic})")
         nx, ny = grid.shape
         self.transform_shape = (nx, ny) if self.periodic else (2 * nx, 2 * ny)
+        self._transform_size = self.transform_shape[0] * self.transform_shape[1]   # N of the FFT pair's 1/N
         self._fft = make_backend(backend, self.transform_shape, dtype, threads, planner_effort)
         self.dtype = self._fft.dtype
         self._padded = None if self.periodic else self._fft.work_array()   # free surface: 2nx × 2ny
@@ -189,9 +190,8 @@ class ElasticHalfSpace:
 
     def _fourier_multiplier(self) -> np.ndarray:
         """Φ on the half spectrum of the transform grid, including the 1/N of the unnormalised FFT pair."""
-        n_total = self.transform_shape[0] * self.transform_shape[1]
         if not self.periodic:
-            return self._free_surface_multiplier() / n_total
+            return self._free_surface_multiplier() / self._transform_size
         qx, qy = self.grid.wavevectors(real=True)
         q = np.hypot(qx, qy)
         multiplier = np.zeros(q.shape)
@@ -199,7 +199,7 @@ class ElasticHalfSpace:
         multiplier[positive] = self.compliance(q[positive])
         if self.layer is not None and self.layer["kind"] == "layer on rigid base":
             multiplier[0, 0] = self.uniform_compliance
-        return multiplier / n_total
+        return multiplier / self._transform_size
 
     @property
     def uniform_compliance(self) -> float:
@@ -218,7 +218,7 @@ class ElasticHalfSpace:
         """Multiplier of the preconditioner K⁻¹ on modes with Φ = 0: the smallest stiffness of the others (with
         the 1/N of the FFT pair), so that the preconditioner is positive definite. 1/Φ itself is not stored:
         :func:`_apply_inverse_multiplier` divides."""
-        n_total = self.transform_shape[0] * self.transform_shape[1]
+        n_total = self._transform_size
         largest = float(self._multiplier.max())
         return 1.0 / (largest * n_total * n_total) if largest > 0 else 1.0 / n_total
 
@@ -288,9 +288,8 @@ class ElasticHalfSpace:
         of the other modes when Φ(0) = 0); on a free surface the inverse of the padded operator. Used as the
         conjugate-gradient preconditioner; ``out`` may be ``displacement``.
         """
-        n_total = self.transform_shape[0] * self.transform_shape[1]
         self._forward(displacement)
-        _apply_inverse_multiplier(self._fft.spectrum, self._multiplier, float(n_total) ** 2,
+        _apply_inverse_multiplier(self._fft.spectrum, self._multiplier, float(self._transform_size) ** 2,
                                   self._zero_mode_stiffness)
         return self._backward_into(out)
 
