@@ -1,0 +1,113 @@
+"""How much a warm start saves in a load sweep, and why (a script; docs/solver.md, "Warm start").
+
+    python experiments/warm_start.py                        # 512², tol 1e-4 … 1e-10, ≈ 1 min
+    python experiments/warm_start.py --fast                 # 64², seconds (the CI smoke run)
+
+On the benchmark surface of ``experiments/bench_contact.py`` (H = 0.8, rms slope 0.1, short cutoff 4 px)
+with the 20 loads 0.0005 … 0.01 E* of its ``sweep`` section, writes to ``--output``:
+
+* ``warm_start_sweep.csv``: for each tolerance, the cold sweep (every step from scratch) and the
+  warm-started one (``load_path``): time [s], iterations, ratio cold / warm;
+* ``warm_start_steps.csv``: for the probed steps (``--probe``), the cold and the warm solve of that step
+  alone: iterations, first residual (the relative rms gap error the solve starts from) and the decades it
+  falls, i.e. what the warm start saved at the start and how fast each then converges;
+* ``warm_start_residuals.png``: the residual histories of the last probed step, cold and warm.
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import math
+import os
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))    # the benchmark's surface, shared, not copied
+from bench_contact import E_STAR, PRESSURE, SWEEP_STEPS, rough_surface  # noqa: E402
+
+from roughcontact import ElasticHalfSpace, load_path, solve_contact  # noqa: E402
+
+
+def sweep_rows(surface, half, pressures, tols):
+    """Cold and warm sweeps at each tolerance."""
+    for tol in tols:
+        timed = {}
+        for warm_start in (False, True):
+            start = time.perf_counter()
+            results = list(load_path(surface, half, pressures, warm_start=warm_start, tol=tol))
+            timed[warm_start] = (time.perf_counter() - start, sum(r.iterations for r in results))
+        (cold_time, cold_iterations), (warm_time, warm_iterations) = timed[False], timed[True]
+        yield {"tol": tol, "cold_time_s": cold_time, "cold_iterations": cold_iterations, "warm_time_s": warm_time,
+               "warm_iterations": warm_iterations, "ratio": cold_time / warm_time,
+               "iteration_ratio": cold_iterations / warm_iterations}
+
+
+def step_rows(surface, half, pressures, probes, tol):
+    """Cold and warm solve of each probed step (1-based): the rows, and the residual histories of the last."""
+    rows, histories = [], {}
+    for step in probes:
+        previous = solve_contact(surface, half, mean_pressure=pressures[step - 2], tol=tol)
+        for start, x0 in (("cold", None), ("warm", previous)):
+            result = solve_contact(surface, half, mean_pressure=pressures[step - 1], tol=tol, x0=x0)
+            residuals = result.residuals
+            histories[start] = residuals
+            rows.append({"step": step, "load_step_percent": 100 * (pressures[step - 1] / pressures[step - 2] - 1),
+                         "start": start, "iterations": result.iterations, "first_residual": residuals[0],
+                         "decades": math.log10(residuals[0] / residuals[-1])})
+    return rows, histories
+
+
+def write_csv(path, rows):
+    with open(path, "w", newline="") as stream:
+        writer = csv.DictWriter(stream, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+    for row in rows:
+        print("  ".join(f"{key} {value:.4g}" if isinstance(value, float) else f"{key} {value}"
+                        for key, value in row.items()))
+
+
+def plot_residuals(path, histories, step):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure, axes = plt.subplots(figsize=(5, 3.5))
+    for start, residuals in histories.items():
+        axes.semilogy(residuals, marker=".", label=start)
+    axes.set(xlabel="CG step", ylabel="relative rms gap error", title=f"step {step} of the sweep")
+    axes.legend()
+    figure.tight_layout()
+    figure.savefig(path, dpi=120)
+    plt.close(figure)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--size", type=int, default=512, help="grid size n (n²)")
+    parser.add_argument("--tols", type=float, nargs="+", default=[1e-4, 1e-6, 1e-8, 1e-10],
+                        help="tolerances of the sweeps")
+    parser.add_argument("--probe", type=int, nargs="+", default=[2, 10, 20], help="steps solved alone (2…20)")
+    parser.add_argument("--probe-tol", type=float, default=1e-8, help="tolerance of the probed steps")
+    parser.add_argument("--output", default="out/warm_start", help="output directory")
+    parser.add_argument("--fast", action="store_true", help="64², two tolerances: a smoke run")
+    args = parser.parse_args(argv)
+    if args.fast:
+        args.size, args.tols = 64, [1e-6, 1e-8]
+    if not all(2 <= step <= SWEEP_STEPS for step in args.probe):
+        raise ValueError(f"--probe = {args.probe}: steps must lie in [2, {SWEEP_STEPS}]")
+    os.makedirs(args.output, exist_ok=True)
+    surface = rough_surface(args.size)
+    half = ElasticHalfSpace(surface.grid, E_star=E_STAR)
+    pressures = PRESSURE * np.arange(1, SWEEP_STEPS + 1) / SWEEP_STEPS
+    write_csv(Path(args.output) / "warm_start_sweep.csv", list(sweep_rows(surface, half, pressures, args.tols)))
+    rows, histories = step_rows(surface, half, pressures, sorted(args.probe), args.probe_tol)
+    write_csv(Path(args.output) / "warm_start_steps.csv", rows)
+    plot_residuals(Path(args.output) / "warm_start_residuals.png", histories, max(args.probe))
+
+
+if __name__ == "__main__":
+    main()

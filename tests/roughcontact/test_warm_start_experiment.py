@@ -1,0 +1,45 @@
+"""The warm-start study (experiments/warm_start.py) runs in fast mode and its files are self-consistent."""
+import csv
+import importlib.util
+import sys
+from pathlib import Path
+
+import pytest
+
+SCRIPT = Path(__file__).resolve().parents[2] / "experiments" / "warm_start.py"
+
+
+@pytest.fixture(scope="module")
+def output(tmp_path_factory):
+    spec = importlib.util.spec_from_file_location("warm_start", SCRIPT)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module
+    spec.loader.exec_module(module)
+    path = tmp_path_factory.mktemp("warm")
+    module.main(["--fast", "--output", str(path)])
+    return path
+
+
+def rows(path, name):
+    with open(path / name, newline="") as stream:
+        return list(csv.DictReader(stream))
+
+
+def test_sweep_rows(output):
+    sweeps = rows(output, "warm_start_sweep.csv")
+    assert [float(r["tol"]) for r in sweeps] == [1e-6, 1e-8]
+    for r in sweeps:
+        # a warm start never costs iterations on this sweep; the ratios are what the file says they are
+        assert int(r["warm_iterations"]) < int(r["cold_iterations"])
+        assert float(r["iteration_ratio"]) == pytest.approx(int(r["cold_iterations"]) / int(r["warm_iterations"]))
+        assert float(r["ratio"]) == pytest.approx(float(r["cold_time_s"]) / float(r["warm_time_s"]))
+
+
+def test_step_rows_and_figure(output):
+    steps = rows(output, "warm_start_steps.csv")
+    assert [(int(r["step"]), r["start"]) for r in steps] == [(k, s) for k in (2, 10, 20) for s in ("cold", "warm")]
+    for cold, warm in zip(steps[::2], steps[1::2]):
+        assert float(cold["first_residual"]) == pytest.approx(1.0)   # the cold start's residual is the scale
+        assert 0 < float(warm["first_residual"]) < 1                   # the warm start begins closer
+        assert float(warm["decades"]) > 0 and float(cold["decades"]) > float(warm["decades"])
+    assert (output / "warm_start_residuals.png").stat().st_size > 1000
