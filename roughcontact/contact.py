@@ -50,13 +50,19 @@ _REFRESH = 50          # exact recomputation of u at least every _REFRESH CG ste
 
 
 @njit(cache=True)
+def _gap(u, h, alpha, shift):
+    """The gap g = α u − h + shift [m] at one point (α: the pending load normalisation, PK step (g))."""
+    return alpha * u - h + shift
+
+
+@njit(cache=True)
 def _gap_moments(index, n_contact, u, h, alpha, shift):
-    """Σ g and Σ g² over the contact set, g = α u − h + shift (α: the pending load normalisation, PK step (g))."""
+    """Σ g and Σ g² over the contact set."""
     sum_g = 0.0
     sum_g2 = 0.0
     for k in range(n_contact):
         i = index[k]
-        g = alpha * u[i] - h[i] + shift
+        g = _gap(u[i], h[i], alpha, shift)
         sum_g += g
         sum_g2 += g * g
     return sum_g, sum_g2
@@ -64,11 +70,11 @@ def _gap_moments(index, n_contact, u, h, alpha, shift):
 
 @njit(cache=True)
 def _largest_penetration(p, u, h, alpha, shift):
-    """max(−g) over the points outside the contact set (0 if none penetrates), g = α u − h + shift."""
+    """max(−g) over the points outside the contact set (0 if none penetrates)."""
     largest = 0.0
     for i in range(p.size):
         if p[i] <= 0:
-            largest = max(largest, h[i] - shift - alpha * u[i])
+            largest = max(largest, -_gap(u[i], h[i], alpha, shift))
     return largest
 
 
@@ -79,7 +85,7 @@ def _conjugate_direction(index, n_contact, u, h, alpha, shift, beta, t_mean, t):
     sum_gt = 0.0
     for k in range(n_contact):
         i = index[k]
-        g = alpha * u[i] - h[i] + shift
+        g = _gap(u[i], h[i], alpha, shift)
         direction = g + beta * (t[i] - t_mean)
         t[i] = direction
         sum_gt += g * direction
@@ -88,10 +94,10 @@ def _conjugate_direction(index, n_contact, u, h, alpha, shift, beta, t_mean, t):
 
 @njit(cache=True)
 def _masked_gap(index, n_contact, u, h, alpha, shift, out):
-    """out ← g = α u − h + shift on the contact set (``out`` = 0 elsewhere already): the residual to precondition."""
+    """out ← g on the contact set (``out`` = 0 elsewhere already): the residual to precondition."""
     for k in range(n_contact):
         i = index[k]
-        out[i] = alpha * u[i] - h[i] + shift
+        out[i] = _gap(u[i], h[i], alpha, shift)
 
 
 @njit(cache=True)
@@ -156,7 +162,7 @@ def _step_and_reentry(p, t, residual_input, u, h, alpha, shift, tau, index, been
             t[i] = 0.0
             residual_input[i] = 0.0
             left += 1
-        g = alpha * u[i] - h[i] + shift
+        g = _gap(u[i], h[i], alpha, shift)
         if g < 0.0:
             p[i] = -tau * g
             total += p[i]
@@ -192,7 +198,7 @@ def _finalise_gap(u, h, p, shift, gap, contact):
     """Gap field g = max(u − h + shift, 0), zero on the contact set; contact mask p > 0."""
     for i in range(p.size):
         contact[i] = p[i] > 0
-        g = u[i] - h[i] + shift
+        g = _gap(u[i], h[i], 1.0, shift)
         gap[i] = 0.0 if (contact[i] or g < 0) else g
 
 
