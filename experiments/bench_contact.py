@@ -312,7 +312,8 @@ def run(sizes, pressure, threads, tol, planner, sweep_size, sweep_tols, repeat, 
                       rel_diff_mean_gap=max(relative_difference(w.mean_gap, c.mean_gap)
                                             for w, c in zip(warm, cold)),
                       note=f"tol {sweep_tol:g}; {SWEEP_STEPS} steps to {pressure / E_STAR:g} E*; ratio = cold time / "
-                           "this time; differences: max over steps, warm vs cold"))
+                           "this time; warm: load_path's default secant predictor; differences: max over steps, "
+                           "warm vs cold"))
 
 
 def format_row(values: dict) -> str:

@@ -7,11 +7,13 @@ On the benchmark surface of ``experiments/bench_contact.py`` (H = 0.8, rms slope
 with the 20 loads 0.0005 … 0.01 E* of its ``sweep`` section, writes to ``--output``:
 
 * ``warm_start_sweep.csv``: for each tolerance, the cold sweep (every step from scratch) and the
-  warm-started one (``load_path``): time [s], iterations, ratio cold / warm;
-* ``warm_start_steps.csv``: for the probed steps (``--probe``), the cold and the warm solve of that step
-  alone: iterations, first residual (the relative rms gap error the solve starts from) and the decades it
-  falls, i.e. what the warm start saved at the start and how fast each then converges;
-* ``warm_start_residuals.png``: the residual histories of the last probed step, cold and warm.
+  warm-started ones (``load_path`` with the ``previous`` and the ``secant`` predictor): time [s],
+  iterations, ratios cold / this;
+* ``warm_start_steps.csv``: for the probed steps (``--probe``), the cold and the two warm solves of that
+  step alone (warm from the two steps before it): iterations, first residual (the relative rms gap error
+  the solve starts from) and the decades it falls, i.e. what the warm start saved at the start and how
+  fast each then converges;
+* ``warm_start_residuals.png``: the residual histories of the last probed step.
 """
 from __future__ import annotations
 
@@ -31,29 +33,34 @@ from bench_contact import E_STAR, PRESSURE, SWEEP_STEPS, rough_surface  # noqa: 
 from roughcontact import ElasticHalfSpace, load_path, solve_contact  # noqa: E402
 
 
+STARTS = {"cold": {"warm_start": False}, "previous": {"predictor": "previous"}, "secant": {"predictor": "secant"}}
+
+
 def sweep_rows(surface, half, pressures, tols):
-    """Cold and warm sweeps at each tolerance."""
+    """The sweep at each tolerance, cold and warm-started with each predictor; ratios to the cold sweep."""
     for tol in tols:
-        timed = {}
-        for warm_start in (False, True):
-            start = time.perf_counter()
-            results = list(load_path(surface, half, pressures, warm_start=warm_start, tol=tol))
-            timed[warm_start] = (time.perf_counter() - start, sum(r.iterations for r in results))
-        (cold_time, cold_iterations), (warm_time, warm_iterations) = timed[False], timed[True]
-        yield {"tol": tol, "cold_time_s": cold_time, "cold_iterations": cold_iterations, "warm_time_s": warm_time,
-               "warm_iterations": warm_iterations, "ratio": cold_time / warm_time,
-               "iteration_ratio": cold_iterations / warm_iterations}
+        cold_time = cold_iterations = None
+        for start, options in STARTS.items():
+            begin = time.perf_counter()
+            iterations = sum(r.iterations for r in load_path(surface, half, pressures, tol=tol, **options))
+            elapsed = time.perf_counter() - begin
+            if cold_time is None:
+                cold_time, cold_iterations = elapsed, iterations
+            yield {"tol": tol, "start": start, "time_s": elapsed, "iterations": iterations,
+                   "ratio": cold_time / elapsed, "iteration_ratio": cold_iterations / iterations}
 
 
 def step_rows(surface, half, pressures, probes, tol):
-    """Cold and warm solve of each probed step (1-based): the rows, and the residual histories of the last."""
+    """Each probed step (1-based, ≥ 3) solved alone, cold and warm-started with each predictor from the two
+    steps before it: the rows, and the residual histories of the last probe."""
     rows, histories = [], {}
     for step in probes:
-        previous = solve_contact(surface, half, mean_pressure=pressures[step - 2], tol=tol)
-        for start, x0 in (("cold", None), ("warm", previous)):
-            result = solve_contact(surface, half, mean_pressure=pressures[step - 1], tol=tol, x0=x0)
-            residuals = result.residuals
-            histories[start] = residuals
+        before, previous = (solve_contact(surface, half, mean_pressure=pressures[k], tol=tol)
+                            for k in (step - 3, step - 2))
+        for start, options in STARTS.items():
+            resumed = {} if start == "cold" else {"start": [before, previous]}
+            result = next(load_path(surface, half, pressures[step - 1:step], tol=tol, **options, **resumed))
+            residuals = histories[start] = result.residuals
             rows.append({"step": step, "load_step_percent": 100 * (pressures[step - 1] / pressures[step - 2] - 1),
                          "start": start, "iterations": result.iterations, "first_residual": residuals[0],
                          "decades": math.log10(residuals[0] / residuals[-1])})
@@ -90,15 +97,15 @@ def main(argv=None):
     parser.add_argument("--size", type=int, default=512, help="grid size n (n²)")
     parser.add_argument("--tols", type=float, nargs="+", default=[1e-4, 1e-6, 1e-8, 1e-10],
                         help="tolerances of the sweeps")
-    parser.add_argument("--probe", type=int, nargs="+", default=[2, 10, 20], help="steps solved alone (2…20)")
+    parser.add_argument("--probe", type=int, nargs="+", default=[3, 10, 20], help="steps solved alone (3…20)")
     parser.add_argument("--probe-tol", type=float, default=1e-8, help="tolerance of the probed steps")
     parser.add_argument("--output", default="out/warm_start", help="output directory")
     parser.add_argument("--fast", action="store_true", help="64², two tolerances: a smoke run")
     args = parser.parse_args(argv)
     if args.fast:
         args.size, args.tols = 64, [1e-6, 1e-8]
-    if not all(2 <= step <= SWEEP_STEPS for step in args.probe):
-        raise ValueError(f"--probe = {args.probe}: steps must lie in [2, {SWEEP_STEPS}]")
+    if not all(3 <= step <= SWEEP_STEPS for step in args.probe):
+        raise ValueError(f"--probe = {args.probe}: steps must lie in [3, {SWEEP_STEPS}]")
     os.makedirs(args.output, exist_ok=True)
     surface = rough_surface(args.size)
     half = ElasticHalfSpace(surface.grid, E_star=E_STAR)

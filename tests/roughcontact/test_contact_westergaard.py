@@ -6,7 +6,7 @@ References: roughcontact.reference (Westergaard 1939; Johnson 1985 §13.2; Johns
 import numpy as np
 import pytest
 
-from roughcontact import ElasticHalfSpace, solve_contact
+from roughcontact import ElasticHalfSpace, load_path, solve_contact
 from roughcontact import reference as ref
 from surfaces import Grid, HeightField
 
@@ -78,6 +78,22 @@ def test_full_contact_reached_and_reported(sinusoid, s):
         assert result.contact_fraction == 1.0 and result.mean_gap == 0.0
         expected = s * P_STAR + P_STAR * np.cos(2 * np.pi * x / LAMBDA)
         np.testing.assert_allclose(result.pressure[:, 0], expected, rtol=0, atol=1e-9 * P_STAR)
+
+
+def test_secant_predictor_is_exact_in_full_contact(sinusoid):
+    """Beyond p*, p = p̄ + p* cos(2πx/λ) is affine in p̄: the secant prediction from two full-contact steps is
+    the next solution, so the third step converges without a CG step; the last field rescaled to the new
+    load (the "previous" predictor) scales the cosine too and needs steps."""
+    field, half, x = sinusoid
+    loads = P_STAR * np.array([1.2, 1.4, 1.7])
+    secant = list(load_path(field, half, loads, tol=1e-10))
+    previous = list(load_path(field, half, loads, tol=1e-10, predictor="previous"))
+    assert all(r.converged and r.contact_fraction == 1.0 for r in secant + previous)
+    assert secant[2].iterations == 0 and previous[2].iterations > 0
+    expected = loads[2] + P_STAR * np.cos(2 * np.pi * x / LAMBDA)
+    np.testing.assert_allclose(secant[2].pressure[:, 0], expected, rtol=0, atol=1e-9 * P_STAR)
+    with pytest.raises(ValueError, match="predictor"):
+        next(load_path(field, half, loads, predictor="linear"))
 
 
 # -- bi-sinusoid -------------------------------------------------------------------------------------------

@@ -27,19 +27,24 @@ def rows(path, name):
 
 def test_sweep_rows(output):
     sweeps = rows(output, "warm_start_sweep.csv")
-    assert [float(r["tol"]) for r in sweeps] == [1e-6, 1e-8]
-    for r in sweeps:
-        # a warm start never costs iterations on this sweep; the ratios are what the file says they are
-        assert int(r["warm_iterations"]) < int(r["cold_iterations"])
-        assert float(r["iteration_ratio"]) == pytest.approx(int(r["cold_iterations"]) / int(r["warm_iterations"]))
-        assert float(r["ratio"]) == pytest.approx(float(r["cold_time_s"]) / float(r["warm_time_s"]))
+    assert [(float(r["tol"]), r["start"]) for r in sweeps] == [
+        (tol, start) for tol in (1e-6, 1e-8) for start in ("cold", "previous", "secant")]
+    for cold, *warm in zip(sweeps[::3], sweeps[1::3], sweeps[2::3]):
+        assert float(cold["ratio"]) == float(cold["iteration_ratio"]) == 1.0
+        for r in warm:
+            # a warm start never costs iterations on this sweep; the ratios are what the file says they are
+            assert int(r["iterations"]) < int(cold["iterations"])
+            assert float(r["iteration_ratio"]) == pytest.approx(int(cold["iterations"]) / int(r["iterations"]))
+            assert float(r["ratio"]) == pytest.approx(float(cold["time_s"]) / float(r["time_s"]))
 
 
 def test_step_rows_and_figure(output):
     steps = rows(output, "warm_start_steps.csv")
-    assert [(int(r["step"]), r["start"]) for r in steps] == [(k, s) for k in (2, 10, 20) for s in ("cold", "warm")]
-    for cold, warm in zip(steps[::2], steps[1::2]):
+    assert [(int(r["step"]), r["start"]) for r in steps] == [
+        (k, s) for k in (3, 10, 20) for s in ("cold", "previous", "secant")]
+    for cold, *warm in zip(steps[::3], steps[1::3], steps[2::3]):
         assert float(cold["first_residual"]) == pytest.approx(1.0)   # the cold start's residual is the scale
-        assert 0 < float(warm["first_residual"]) < 1                   # the warm start begins closer
-        assert float(warm["decades"]) > 0 and float(cold["decades"]) > float(warm["decades"])
+        for r in warm:
+            assert 0 < float(r["first_residual"]) < 1                   # a warm start begins closer
+            assert 0 < float(r["decades"]) < float(cold["decades"])
     assert (output / "warm_start_residuals.png").stat().st_size > 1000
