@@ -14,16 +14,20 @@ Sections (column ``section`` of the table and the CSV):
   as any solver's convolutions do once its fields exceed the last-level cache.
 * ``solve``: our time to solution, iterations, FFT pairs per iteration ((forward + backward transforms) / 2:
   a convolution is one pair, the Parseval step length half of one), time per iteration and its ratio to
-  (pairs per iteration × pyFFTW pair); seeded self-affine surface at p̄ = 0.01 E* (``--pressure``);
-  preconditioned (the default) and plain Polonsky–Keer; best of ``--solve-repeat`` solves.
-* ``profile``: where one preconditioned pyFFTW solve spends its time (``cProfile``): the FFT transforms, the
+  (pairs per iteration × pyFFTW pair); seeded self-affine surface at p̄ = 0.01 E* (``--pressure``); the
+  defaults (preconditioned, nested cold start), PK's uniform start, and plain Polonsky–Keer; best of
+  ``--solve-repeat`` solves. Iterations and time per iteration are those on the n² grid; the time to
+  solution includes the nested start's coarse solves (listed in the note).
+* ``profile``: where one preconditioned pyFFTW solve from PK's start (so that every transform is on the n²
+  grid) spends its time (``cProfile``): the FFT transforms, the
   Fourier-multiplier passes and the pointwise passes over the grid and the contact set, each per iteration
   and as its share of the ``solve`` ratio (the three shares add up to about that ratio).
 * ``memory``: peak memory of one solve (``tracemalloc``) in float64 grid arrays, half-space object included.
 * ``peer``: the same problem solved by Tamaas (``PolonskyKeerRey``) and ContactMechanics
   (``minimize_proxy``), time ratio to ours, relative differences of contact fraction and mean gap.
-* ``sweep``: a 20-step load sweep (p̄ = 0.0005 … 0.01 E*) with and without warm start, at each of
-  ``--sweep-tol``; the ratio.
+* ``sweep``: a 20-step load sweep (p̄ = 0.0005 … 0.01 E*) at each of ``--sweep-tol``: every step cold (the
+  default nested start, and PK's uniform start) and warm-started (``load_path``'s secant predictor); the
+  ratios to the nested cold sweep.
 """
 from __future__ import annotations
 
@@ -73,15 +77,16 @@ def best_time(run, repeat: int, number: int = 1) -> float:
     return min(times)
 
 
-def timed_solve(surface, half, pressure, tol, preconditioned, repeat):
+def timed_solve(surface, half, pressure, tol, repeat, **options):
     """Best of ``repeat`` solves (after an untimed one that compiles the kernels and warms the plans): the
     result with the smallest wall time and the best time per iteration [s] from callback time stamps
-    (iterations only: setup and the final gap field excluded)."""
+    (iterations on the grid itself only: setup, the nested start's coarse solves and the final gap field
+    excluded). ``options`` go to ``solve_contact``."""
     best, best_per_iteration = None, np.inf
     solve_contact(surface, half, mean_pressure=pressure, tol=1e-2, maxiter=5, warn=False)
     for _ in range(repeat):
         stamps = []
-        result = solve_contact(surface, half, mean_pressure=pressure, tol=tol, preconditioned=preconditioned,
+        result = solve_contact(surface, half, mean_pressure=pressure, tol=tol, **options,
                                callback=lambda state: stamps.append(time.perf_counter()))
         if len(stamps) > 1:
             best_per_iteration = min(best_per_iteration, (stamps[-1] - stamps[0]) / (len(stamps) - 1))
@@ -92,6 +97,13 @@ def timed_solve(surface, half, pressure, tol, preconditioned, repeat):
     return best, best_per_iteration
 
 
+SOLVE_VARIANTS = (("pyfftw", "pyfftw", {}),                                   # the defaults: preconditioned, nested
+                  ("pyfftw,pk start", "pyfftw", {"cold_start": "pk"}),      # PK's uniform start (sessions 1-3)
+                  ("pyfftw,plain", "pyfftw", {"preconditioned": False}),
+                  ("scipy", "scipy", {}))
+SWEEP_VARIANTS = (("cold start", {"warm_start": False}),                     # every step nested from scratch
+                  ("cold start (pk)", {"warm_start": False, "cold_start": "pk"}),
+                  ("warm start", {}))                                       # load_path's secant predictor
 PROFILE_GROUPS = {"transforms": ("fft.py", ("forward", "backward")),
                   "multiplier passes": ("elastic.py", ("_apply_multiplier", "_apply_inverse_multiplier",
                                                         "_apply_multiplier_quadratic")),
@@ -103,7 +115,7 @@ def time_decomposition(surface, half, pressure, tol) -> tuple:
     functions), and the result."""
     profile = cProfile.Profile()
     profile.enable()
-    result = solve_contact(surface, half, mean_pressure=pressure, tol=tol)
+    result = solve_contact(surface, half, mean_pressure=pressure, tol=tol, cold_start="pk")   # all on the n² grid
     profile.disable()
     profile.create_stats()
     seconds = dict.fromkeys(PROFILE_GROUPS, 0.0)
@@ -247,25 +259,26 @@ def run(sizes, pressure, threads, tol, planner, sweep_size, sweep_tols, repeat, 
             write(row(section="fft_floor", solver=backend, n=n, time_s=seconds, note="rfft2+irfft2 pair"))
         surface = rough_surface(n)
         ours, halves = None, {}
-        for backend, preconditioned in (("pyfftw", True), ("pyfftw", False), ("scipy", True)):
+        for label, backend, options in SOLVE_VARIANTS:
             if backend == "pyfftw" and "pyfftw" not in floors:
                 continue
             if backend not in halves:
                 halves[backend] = ElasticHalfSpace(surface.grid, E_star=E_STAR, backend=backend, threads=threads,
                                                    planner_effort=planner)
-            result, per_iteration = timed_solve(surface, halves[backend], pressure, tol, preconditioned,
-                                                solve_repeat)
+            result, per_iteration = timed_solve(surface, halves[backend], pressure, tol, solve_repeat, **options)
             floors[backend] = floor = min(floors[backend], fft_floor(n, threads, planner, repeat, backend)[backend])
             pairs = result.params["fft_pairs"] / max(result.iterations, 1)
             uncached = (f"; {per_iteration / (pairs * floors['pyfftw-rotating']):.3g} against the rotating pair"
                         if backend == "pyfftw" else "")
-            write(row(section="solve", solver=f"roughcontact[{backend}{'' if preconditioned else ',plain'}]", n=n,
+            coarse = result.params["nested_iterations"]
+            nested = f"; nested start: {'+'.join(map(str, coarse))} coarse iterations" if coarse else ""
+            write(row(section="solve", solver=f"roughcontact[{label}]", n=n,
                       time_s=result.wall_time, iterations=result.iterations,
                       fft_pairs_per_iteration=pairs, time_per_iteration_s=per_iteration,
                       ratio=per_iteration / (pairs * floor), contact_fraction=result.contact_fraction,
                       mean_gap_m=result.mean_gap, converged=result.converged,
                       note="best of repeats; ratio = time per iteration / (FFT pairs per iteration x "
-                           f"own-backend pair, best of before and after){uncached}"))
+                           f"own-backend pair, best of before and after){uncached}{nested}"))
             ours = ours or result
         if "pyfftw" in halves:
             decomposition, result = time_decomposition(surface, halves["pyfftw"], pressure, tol)
@@ -274,7 +287,8 @@ def run(sizes, pressure, threads, tol, planner, sweep_size, sweep_tols, repeat, 
                 write(row(section="profile", solver=group, n=n, time_s=result.wall_time, iterations=result.iterations,
                           fft_pairs_per_iteration=pairs, time_per_iteration_s=per_iteration,
                           ratio=per_iteration / (pairs * floors["pyfftw"]),
-                          note="cProfile of one preconditioned pyfftw solve (time_s: its wall time); ratio = "
+                          note="cProfile of one preconditioned pyfftw solve from PK's start (time_s: its wall "
+                               "time); ratio = "
                                "this group's share of the solve ratio (per iteration / (pairs per iteration x pair))"))
         for periodic in (True, False) if n <= 1024 else (True,):      # free 2048²: a 4096² transform, minutes
             write(row(section="memory", solver="roughcontact[pyfftw]", n=n,
@@ -297,23 +311,24 @@ def run(sizes, pressure, threads, tol, planner, sweep_size, sweep_tols, repeat, 
     pressures = pressure * np.arange(1, SWEEP_STEPS + 1) / SWEEP_STEPS
     for sweep_tol in sweep_tols:
         sweeps = {}
-        for warm_start in (False, True):
+        for label, options in SWEEP_VARIANTS:
             start = time.perf_counter()
-            results = list(load_path(surface, half, pressures, warm_start=warm_start, tol=sweep_tol))
-            sweeps[warm_start] = (time.perf_counter() - start, results)
-        (cold_time, cold), (warm_time, warm) = sweeps[False], sweeps[True]
-        for warm_start, (seconds, results) in sweeps.items():
-            write(row(section="sweep", solver="warm start" if warm_start else "cold start", n=sweep_size,
+            results = list(load_path(surface, half, pressures, tol=sweep_tol, **options))
+            sweeps[label] = (time.perf_counter() - start, results)
+        cold_time, cold = sweeps["cold start"]
+        for label, (seconds, results) in sweeps.items():
+            coarse = sum(sum(r.params["nested_iterations"]) for r in results)
+            write(row(section="sweep", solver=label, n=sweep_size,
                       time_s=seconds, iterations=sum(r.iterations for r in results),
                       ratio=cold_time / seconds, contact_fraction=results[-1].contact_fraction,
                       mean_gap_m=results[-1].mean_gap, converged=all(r.converged for r in results),
-                      rel_diff_contact_fraction=max(relative_difference(w.contact_fraction, c.contact_fraction)
-                                                    for w, c in zip(warm, cold)),
-                      rel_diff_mean_gap=max(relative_difference(w.mean_gap, c.mean_gap)
-                                            for w, c in zip(warm, cold)),
-                      note=f"tol {sweep_tol:g}; {SWEEP_STEPS} steps to {pressure / E_STAR:g} E*; ratio = cold time / "
-                           "this time; warm: load_path's default secant predictor; differences: max over steps, "
-                           "warm vs cold"))
+                      rel_diff_contact_fraction=max(relative_difference(r.contact_fraction, c.contact_fraction)
+                                                    for r, c in zip(results, cold)),
+                      rel_diff_mean_gap=max(relative_difference(r.mean_gap, c.mean_gap)
+                                            for r, c in zip(results, cold)),
+                      note=f"tol {sweep_tol:g}; {SWEEP_STEPS} steps to {pressure / E_STAR:g} E*; ratio = cold start "
+                           f"time / this time; + {coarse} coarse-grid iterations of nested starts; differences: "
+                           "max over steps, this vs cold start"))
 
 
 def format_row(values: dict) -> str:

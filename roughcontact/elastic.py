@@ -235,6 +235,11 @@ class ElasticHalfSpace:
         self._fft.forward(self._padded)
         return self._fft.spectrum.real.astype(np.float64)   # coefficients are even in x and y → real spectrum
 
+    def coarsened(self) -> ElasticHalfSpace:
+        """A new half-space: the same body on ``grid.coarsened(2)`` (the solver's nested cold start);
+        ``ValueError`` if the grid's pixel counts are odd."""
+        return ElasticHalfSpace(self.grid.coarsened(2), self.E_star, **self._parameters)
+
     # -- pickling: parameters only ---------------------------------------------------------------------------
     def __getstate__(self):
         return {"grid": self.grid, "E_star": self.E_star, **self._parameters}

@@ -127,6 +127,16 @@ class Grid:
         ny = self.shape[1] if self.is_profile else self.shape[1] * factor
         return Grid((self.shape[0] * factor, ny), self.lengths, self.periodic)
 
+    def coarsened(self, factor: int) -> "Grid":
+        """Same physical window with ``factor`` times fewer pixels per axis (profiles stay profiles); the pixel
+        counts must be multiples of ``factor``. The inverse of :meth:`refined`."""
+        check_integer("factor", factor, low=1)
+        ny_factor = 1 if self.is_profile else factor
+        for axis, (n, f) in enumerate(zip(self.shape, (factor, ny_factor))):
+            if n % f:
+                raise ValueError(f"shape[{axis}] = {n} is not a multiple of factor = {factor}")
+        return Grid((self.shape[0] // factor, self.shape[1] // ny_factor), self.lengths, self.periodic)
+
     def to_dict(self) -> dict:
         return {"shape": list(self.shape), "lengths": list(self.lengths), "periodic": list(self.periodic)}
 

@@ -123,6 +123,14 @@ class HeightField:
         return HeightField(self.grid, self.heights - self.heights.mean(),
                            {"generator": "detrended", "parts": [self.metadata]})
 
+    def coarsened(self, factor: int) -> "HeightField":
+        """The field on :meth:`Grid.coarsened` ``(factor)``: each coarse pixel holds the mean height of the
+        ``factor`` × ``factor`` fine pixels it covers (``factor`` × 1 on a profile), so the mean height is kept."""
+        grid = self.grid.coarsened(factor)
+        (nx, ny), (fx, fy) = grid.shape, (self.shape[0] // grid.shape[0], self.shape[1] // grid.shape[1])
+        heights = self.heights.reshape(nx, fx, ny, fy).mean(axis=(1, 3))
+        return HeightField(grid, heights, {"generator": "coarsened", "factor": factor, "parts": [self.metadata]})
+
     # -- persistence -----------------------------------------------------------------------------------------
     def save(self, path) -> Path:
         """Save heights, grid and metadata to ``path`` (``.npz``); :meth:`load` restores an equal field."""

@@ -27,7 +27,8 @@ def test_every_section_and_size_present(rows):
     for n in ("32", "64"):
         assert {r["solver"] for r in select(rows, "fft_floor") if r["n"] == n} >= {"pyfftw", "scipy"}
         assert {r["solver"] for r in select(rows, "solve") if r["n"] == n} == {
-            "roughcontact[pyfftw]", "roughcontact[pyfftw,plain]", "roughcontact[scipy]"}
+            "roughcontact[pyfftw]", "roughcontact[pyfftw,pk start]", "roughcontact[pyfftw,plain]",
+            "roughcontact[scipy]"}
         assert len([r for r in select(rows, "memory") if r["n"] == n]) == 2
         profile = [r for r in select(rows, "profile") if r["n"] == n]
         assert {r["solver"] for r in profile} == {"transforms", "multiplier passes", "pointwise passes"}
@@ -35,7 +36,7 @@ def test_every_section_and_size_present(rows):
         assert all(float(r["time_per_iteration_s"]) > 0 for r in profile)
         parts = sum(float(r["time_per_iteration_s"]) * float(r["iterations"]) for r in profile)
         assert parts < float(profile[0]["time_s"])
-    assert {r["solver"] for r in select(rows, "sweep")} == {"cold start", "warm start"}
+    assert {r["solver"] for r in select(rows, "sweep")} == {"cold start", "cold start (pk)", "warm start"}
     assert not select(rows, "peer")                     # --fast skips the peers
     assert all(float(r["time_s"]) > 0 for r in rows if r["section"] != "memory")
     # peak memory in grid arrays: at least p, u and h; the bound is loose on tiny grids (fixed overheads)

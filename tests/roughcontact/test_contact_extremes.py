@@ -169,3 +169,31 @@ def test_hard_wall_interaction_law():
     np.testing.assert_array_equal(wall.stiffness([1e-6]), [0.0])
     with pytest.raises(ValueError, match="gap"):
         wall.traction([-1e-9])
+
+
+@pytest.mark.parametrize("periodic", [True, False])
+def test_nested_cold_start_levels_and_fallbacks(periodic):
+    """The nested start coarsens while the coarse grid keeps NESTED_MIN = 64 pixels per axis, gives the PK
+    start's answer, and falls back to the PK start where the grid does not halve or the flat misses the
+    coarse surface (whose averaged peak is lower)."""
+    radius = 2e-3
+    grid = Grid((256, 256), (1e-3, 1e-3), periodic=periodic)
+    half = ElasticHalfSpace(grid, E_star=E_STAR)
+    field = bump(grid, radius)
+    nested = solve_contact(field, half, penetration=2e-6, tol=1e-10)
+    pk = solve_contact(field, half, penetration=2e-6, tol=1e-10, cold_start="pk")
+    assert nested.params["start"] == "nested" and len(nested.params["nested_iterations"]) == 2   # 64², 128²
+    coarse = half.coarsened()
+    assert coarse.grid == grid.coarsened(2) and coarse.description == half.description | {
+        "transform_shape": [n // 2 for n in half.transform_shape]}
+    assert nested.converged and pk.converged and np.array_equal(nested.contact, pk.contact)
+    # two solves stopped at tol 1e-10 from different starts: measured 1.1e-7 (periodic), 2e-8 of max p
+    np.testing.assert_allclose(nested.pressure, pk.pressure, rtol=0, atol=1e-6 * pk.pressure.max())
+    # the coarse 2 × 2 mean (0, a, a, 2a), a = Δx²/(2R), lowers the apex by a = 3.8e-9 m: 5e-10 m misses it
+    shallow = solve_contact(field, half, penetration=5e-10, tol=1e-10)
+    assert shallow.params["start"] == "pk" and shallow.params["nested_iterations"] == []
+    odd = Grid((255, 256), (1e-3, 1e-3), periodic=periodic)
+    result = solve_contact(bump(odd, radius), ElasticHalfSpace(odd, E_star=E_STAR), penetration=2e-6, tol=1e-10)
+    assert result.converged and result.params["start"] == "pk"
+    with pytest.raises(ValueError, match="cold_start"):
+        solve_contact(field, half, penetration=2e-6, cold_start="uniform")

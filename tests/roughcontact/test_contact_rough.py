@@ -118,16 +118,20 @@ def test_load_path_warm_start(rough):
     field, half, _ = rough
     loads = E_STAR * SLOPE * np.linspace(0.01, 0.03, 6)
     warm = list(load_path(field, half, loads, tol=1e-9))
-    cold = list(load_path(field, half, loads, warm_start=False, tol=1e-9))
-    for w, c, load in zip(warm, cold, loads):
+    cold = list(load_path(field, half, loads, warm_start=False, cold_start="pk", tol=1e-9))
+    nested = list(load_path(field, half, loads, warm_start=False, tol=1e-9))
+    for w, c, load in zip(warm + nested, cold + cold, np.concatenate([loads, loads])):
         assert w.converged and c.converged and w.mean_pressure == pytest.approx(load, rel=1e-12)
         assert w.contact_fraction == pytest.approx(c.contact_fraction, abs=2 / field.grid.size)
         assert w.mean_gap == pytest.approx(c.mean_gap, rel=1e-6)
     # iteration counts are deterministic: the 5 warm steps take 88 iterations with the secant predictor, 93 from
-    # the last field ("previous"), 121 cold
+    # the last field ("previous"), 121 cold from PK's uniform pressure, 90 (+ 9 at 64², 5 at 128² each) nested
     previous = list(load_path(field, half, loads, tol=1e-9, predictor="previous"))
-    assert sum(w.iterations for w in warm[1:]) <= sum(w.iterations for w in previous[1:]) < 0.8 * sum(
-        c.iterations for c in cold[1:])
+    steps = {name: sum(r.iterations for r in results[1:]) for name, results in
+             (("secant", warm), ("previous", previous), ("pk", cold), ("nested", nested))}
+    assert steps["secant"] <= steps["previous"] < 0.8 * steps["pk"] and steps["nested"] < 0.8 * steps["pk"]
+    assert [r.params["start"] for r in warm] == ["nested"] + ["x0"] * 5
+    assert all(r.params["start"] == "nested" and len(r.params["nested_iterations"]) == 2 for r in nested)
     assert [r.contact_fraction for r in warm] == sorted(r.contact_fraction for r in warm)
     with pytest.raises(ValueError, match="x0"):
         next(load_path(field, half, loads, x0=warm[0]))
@@ -288,5 +292,5 @@ def test_reentries_do_not_restart_the_conjugate_gradients():
     grid = Grid((256, 256), (L, L), periodic=True)
     field = self_affine(grid, hurst=0.8, rms_slope=0.1, short_cutoff=4 * L / 256, rng=0)
     result = solve_contact(field, ElasticHalfSpace(grid, E_star=E_STAR), mean_pressure=0.01 * E_STAR, tol=1e-10,
-                           preconditioned=False)
+                           preconditioned=False, cold_start="pk")
     assert result.converged and result.iterations <= 110

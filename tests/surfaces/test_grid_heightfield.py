@@ -40,6 +40,23 @@ def test_refined_grid_shares_bit_identical_wavevectors():
     assert surfaces.Grid((16, 1), (L, L / 16), periodic=(True, False)).fully_periodic   # profile: y irrelevant
 
 
+def test_coarsened_grid_and_field_average_blocks():
+    grid = surfaces.Grid((6, 4), (L, 0.5 * L), periodic=(True, False))
+    assert grid.coarsened(2) == surfaces.Grid((3, 2), (L, 0.5 * L), periodic=(True, False))
+    assert grid.refined(3).coarsened(3) == grid
+    heights = np.arange(24.0).reshape(6, 4) * 1e-9
+    coarse = surfaces.HeightField(grid, heights).coarsened(2)
+    # pixel (1, 0) covers fine rows 2-3, columns 0-1: heights 8, 9, 12, 13 nm
+    assert coarse.heights[1, 0] == pytest.approx(10.5e-9, rel=1e-15) and coarse.grid == grid.coarsened(2)
+    assert coarse.heights.mean() == pytest.approx(heights.mean(), rel=1e-15)
+    profile = surfaces.HeightField(surfaces.Grid((8, 1), (L, L / 8)), np.arange(8.0)[:, None] * 1e-9)
+    np.testing.assert_allclose(profile.coarsened(4).heights[:, 0], [1.5e-9, 5.5e-9], rtol=1e-15)
+    with pytest.raises(ValueError, match=r"shape\[0\] = 6 is not a multiple of factor = 4"):
+        grid.coarsened(4)
+    with pytest.raises(ValueError, match="factor"):
+        grid.coarsened(0)
+
+
 def test_grid_equality_hash_dict_and_pickle():
     grid = surfaces.Grid((4, 4), (L, L), periodic=True)
     grid.wavevector_magnitude()                                                   # fill the cache
