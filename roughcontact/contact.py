@@ -364,7 +364,7 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
         Warm start: a previous result or a pressure field [Pa] (rescaled to the requested load).
     cold_start : {"nested", "pk"}
         Initial guess without ``x0``. ``"nested"``: the pressure of the same problem on the grid coarsened
-        2 × 2, recursively (:func:`_nested_start`; 1.5–2× faster on rough surfaces, e.g. 1024²: 93 → 52 fine
+        2 × 2, recursively (:func:`_nested_start`; 1.3–1.9× faster on rough surfaces, e.g. 1024²: 93 → 50 fine
         steps); grids that do not halve down to 2 × ``NESTED_MIN`` pixels fall back to ``"pk"``: Polonsky and
         Keer's uniform p̄ (load control) or the rigid overlap (displacement control).
     callback : callable, optional
