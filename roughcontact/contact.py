@@ -575,12 +575,13 @@ def _result(p, u, h, shift, half, params, iterations, residuals, converged, mess
 PREDICTORS = ("secant", "previous")
 
 
-def _secant_prediction(last, before, load, last_load, before_load):
-    """Pressure field [Pa] extrapolated linearly in load from the two previous results, clipped at 0:
-    p_k + w (p_k − p_{k−1}), w = (P − P_k)/(P_k − P_{k−1}) (the last field if the two loads coincide)."""
-    if last_load == before_load:
+def _secant_prediction(last, before, load):
+    """Pressure field [Pa] at mean pressure ``load`` [Pa] extrapolated linearly in load from the two previous
+    results, clipped at 0: p_k + w (p_k − p_{k−1}), w = (P − P_k)/(P_k − P_{k−1}) with P their mean pressures
+    (the last field if the two loads coincide)."""
+    if last.mean_pressure == before.mean_pressure:
         return last.pressure
-    weight = (load - last_load) / (last_load - before_load)
+    weight = (load - last.mean_pressure) / (last.mean_pressure - before.mean_pressure)
     prediction = np.subtract(last.pressure, before.pressure)
     prediction *= weight
     prediction += last.pressure
@@ -626,7 +627,7 @@ def load_path(height_field, half: ElasticHalfSpace, mean_pressures, warm_start=T
     for mean_pressure in steps:
         x0 = previous if warm_start else None
         if warm_start and predictor == "secant" and before is not None:
-            x0 = _secant_prediction(previous, before, mean_pressure, previous.mean_pressure, before.mean_pressure)
+            x0 = _secant_prediction(previous, before, mean_pressure)
         result = solve_contact(height_field, half, mean_pressure=mean_pressure, x0=x0, **solver_options)
         previous, before = result, previous
         steps.set_postfix(contact_fraction=f"{result.contact_fraction:.4g}", iterations=result.iterations,
