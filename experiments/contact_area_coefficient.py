@@ -25,8 +25,8 @@ load), ``contact_area_summary.csv`` (seed mean ± std, extrapolated rows have lo
 from __future__ import annotations
 
 import argparse
-import csv
 import math
+import sys
 import time
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -39,6 +39,9 @@ import scipy.sparse.csgraph
 import surfaces
 from roughcontact import ElasticHalfSpace, load_path
 from roughcontact.contact import boundary_edges
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))    # the experiments' shared table writer
+from _tables import write_csv  # noqa: E402
 
 LENGTH = 1e-3            # periodic square window L [m]
 E_STAR = 1e6             # contact modulus [Pa] (κ depends only on p̄/(E* h'))
@@ -228,13 +231,6 @@ def draw(summary: list, path: Path, reference_load=EXTRAPOLATION_MAX_LOAD):
     fig.suptitle("dotted: Persson √(8/π); dash-dot: Bush–Gibson–Thomas √(2π)", fontsize=9)
     fig.savefig(path, dpi=90)
     plt.close(fig)
-
-
-def write_csv(path: Path, rows: list, columns):
-    with open(path, "w", newline="") as stream:
-        writer = csv.DictWriter(stream, fieldnames=columns, extrasaction="ignore")
-        writer.writeheader()
-        writer.writerows(rows)
 
 
 def main(argv=None):

@@ -12,7 +12,7 @@ The pictures in ``docs/img`` are the full-mode output (``--output docs/img``).
 from __future__ import annotations
 
 import argparse
-import csv
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -20,6 +20,9 @@ import numpy as np
 import surfaces
 from surfaces.plotting import plot_map, plot_profile, plot_psd
 from surfaces.ridges import PATTERNS, PORE_DENSITY, RIDGE_PERIOD
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))    # the experiments' shared table writer
+from _tables import write_csv  # noqa: E402
 
 HURST_EXPONENTS = (0.3, 0.5, 0.8)
 SHORT_CUTOFF_PIXELS = 4         # short-wavelength cutoff of the roughness, in pixels
@@ -158,13 +161,7 @@ def main(argv=None):
     else:
         print("surfaces.self_affine not available yet: roughness panels skipped")
     rows = statistics_rows(prints, rough)
-    with open(output / "gallery_statistics.csv", "w", newline="") as stream:
-        writer = csv.DictWriter(stream, fieldnames=list(rows[0]), extrasaction="ignore", restval="")
-        writer.writeheader()
-        writer.writerows(rows)
-    for row in rows:
-        print(", ".join(f"{key}={value:.4g}" if isinstance(value, float) else f"{key}={value}"
-                        for key, value in row.items()))
+    write_csv(output / "gallery_statistics.csv", rows, echo=True)
     print(f"written to {output}/")
     return rows
 

@@ -18,7 +18,6 @@ with the 20 loads 0.0005 … 0.01 E* of its ``sweep`` section, writes to ``--out
 from __future__ import annotations
 
 import argparse
-import csv
 import math
 import os
 import sys
@@ -27,7 +26,8 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))    # the benchmark's surface, shared, not copied
+sys.path.insert(0, str(Path(__file__).resolve().parent))    # the benchmark's surface and the table writer, shared
+from _tables import write_csv  # noqa: E402
 from bench_contact import E_STAR, PRESSURE, SWEEP_STEPS, rough_surface  # noqa: E402
 
 from roughcontact import ElasticHalfSpace, load_path, solve_contact  # noqa: E402
@@ -67,16 +67,6 @@ def step_rows(surface, half, pressures, probes, tol):
     return rows, histories
 
 
-def write_csv(path, rows):
-    with open(path, "w", newline="") as stream:
-        writer = csv.DictWriter(stream, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
-    for row in rows:
-        print("  ".join(f"{key} {value:.4g}" if isinstance(value, float) else f"{key} {value}"
-                        for key, value in row.items()))
-
-
 def plot_residuals(path, histories, step):
     import matplotlib
     matplotlib.use("Agg")
@@ -110,9 +100,9 @@ def main(argv=None):
     surface = rough_surface(args.size)
     half = ElasticHalfSpace(surface.grid, E_star=E_STAR)
     pressures = PRESSURE * np.arange(1, SWEEP_STEPS + 1) / SWEEP_STEPS
-    write_csv(Path(args.output) / "warm_start_sweep.csv", list(sweep_rows(surface, half, pressures, args.tols)))
+    write_csv(Path(args.output) / "warm_start_sweep.csv", sweep_rows(surface, half, pressures, args.tols), echo=True)
     rows, histories = step_rows(surface, half, pressures, sorted(args.probe), args.probe_tol)
-    write_csv(Path(args.output) / "warm_start_steps.csv", rows)
+    write_csv(Path(args.output) / "warm_start_steps.csv", rows, echo=True)
     plot_residuals(Path(args.output) / "warm_start_residuals.png", histories, max(args.probe))
 
 
