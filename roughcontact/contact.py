@@ -289,15 +289,20 @@ def _heights(height_field, half) -> np.ndarray:
     return np.ascontiguousarray(heights, dtype=half.dtype)
 
 
-def _initial_pressure(x0, heights, half, mean_pressure, flat_position):
-    """Warm start ``x0`` (a ContactResult or a pressure array), else the PK default guess."""
-    if x0 is not None:
-        pressure = x0.pressure if isinstance(x0, ContactResult) else x0
-        pressure = check_finite_array("x0", pressure, nonnegative=True)
-        if pressure.shape != heights.shape:
-            raise ValueError(f"x0 has shape {pressure.shape}, but the grid has shape {heights.shape}")
-        if pressure.any():
-            return np.array(pressure, dtype=half.dtype)
+def _warm_pressure(x0, shape):
+    """The warm-start pressure [Pa] of ``x0`` (a ContactResult or a pressure array), checked; None without
+    ``x0`` or when it is zero everywhere (no information: the cold start applies)."""
+    if x0 is None:
+        return None
+    pressure = check_finite_array("x0", x0.pressure if isinstance(x0, ContactResult) else x0, nonnegative=True)
+    if pressure.shape != shape:
+        raise ValueError(f"x0 has shape {pressure.shape}, but the grid has shape {shape}")
+    return pressure if pressure.any() else None
+
+
+def _pk_pressure(heights, half, mean_pressure, flat_position):
+    """Polonsky and Keer's initial guess [Pa]: uniform p̄ (load control) or the rigid overlap (displacement
+    control)."""
     if mean_pressure is not None:
         return np.full(heights.shape, mean_pressure, dtype=half.dtype)
     overlap = np.maximum(heights - flat_position, 0)      # rigid overlap; pressure ~ E* δ / (contact size)
@@ -305,7 +310,7 @@ def _initial_pressure(x0, heights, half, mean_pressure, flat_position):
     return (overlap * (half.E_star / contact_size)).astype(half.dtype)
 
 
-def _nested_start(heights, half, mean_pressure, flat_position, tol, maxiter, preconditioned):
+def _nested_start(surface, half, mean_pressure, flat_position, tol, maxiter, preconditioned):
     """Cold-start pressure [Pa]: the same problem solved on the grid coarsened 2 × 2 (itself started the same
     way, down to ``NESTED_MIN`` pixels per axis) to tol max(tol, ``NESTED_TOL``), whose pressure, each coarse
     pixel's on the fine pixels it covers (:func:`_repeat_into`), is the fine guess — cascade multi-resolution
@@ -315,7 +320,7 @@ def _nested_start(heights, half, mean_pressure, flat_position, tol, maxiter, pre
     grid = half.grid
     if any(n % 2 or n // 2 < NESTED_MIN for n in grid.shape[:1 if grid.is_profile else 2]):
         return None, []
-    coarse = HeightField(grid, heights).coarsened(2)
+    coarse = surface.coarsened(2)
     if mean_pressure is not None:
         control = {"mean_pressure": mean_pressure}
     else:                                                   # the same flat position (coarse peaks are lower)
@@ -361,7 +366,8 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     maxiter : int
         Maximum number of CG steps.
     x0 : ContactResult or array, optional
-        Warm start: a previous result or a pressure field [Pa] (rescaled to the requested load).
+        Warm start: a previous result or a pressure field [Pa] (rescaled to the requested load); one that is
+        zero everywhere carries no information and gets the cold start.
     cold_start : {"nested", "pk"}
         Initial guess without ``x0``. ``"nested"``: the pressure of the same problem on the grid coarsened
         2 × 2, recursively (:func:`_nested_start`; 1.3–1.9× faster on rough surfaces, e.g. 1024²: 93 → 50 fine
@@ -397,6 +403,7 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     grid = half.grid
     preconditioned = bool(preconditioned)
     heights = _heights(height_field, half)
+    warm = _warm_pressure(x0, heights.shape)
     if total_force is not None:
         mean_pressure = check_positive("total_force", total_force) / grid.area
     elif mean_pressure is not None:
@@ -406,7 +413,7 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     flat_position = None if load_control else h_max - check_real("penetration", penetration)
 
     params = {"E_star": half.E_star, "grid": grid, "tol": tol, "maxiter": int(maxiter), "method": METHOD,
-              "preconditioned": preconditioned, "start": "x0" if x0 is not None else "pk", "nested_iterations": [],
+              "preconditioned": preconditioned, "start": "x0" if warm is not None else "pk", "nested_iterations": [],
               "control": next(iter(given)), "requested": float(next(iter(given.values()))),
               "interaction": type(interaction).__name__, "kernel": half.description, "version": __version__}
 
@@ -417,16 +424,21 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
         return _result(zeros, zeros.copy(), h, flat_position, half, params, 0, [0.0], True,
                        "no contact: penetration <= 0", start, 0)
     coarse_pressure = None
-    if x0 is None and cold_start == "nested":               # solved first, before the fine work arrays exist
-        coarse_pressure, params["nested_iterations"] = _nested_start(heights, half, mean_pressure, flat_position,
+    if warm is None and cold_start == "nested":             # solved first, before the fine work arrays exist
+        surface = height_field if isinstance(height_field, HeightField) else HeightField(grid, heights)
+        coarse_pressure, params["nested_iterations"] = _nested_start(surface, half, mean_pressure, flat_position,
                                                                      tol, maxiter, preconditioned)
+        del surface
         params["start"] = "pk" if coarse_pressure is None else "nested"
     # grid-sized work arrays (aligned: the periodic FFT uses them in place); t and z_in stay 0 outside I_c
     p, u, t, r = (half.empty().reshape(-1) for _ in range(4))
     z_in = half.empty().reshape(-1) if preconditioned else t
     index = np.empty(n_points, np.int32 if n_points < 2 ** 31 else np.int64)   # the contact set I_c, sorted
-    if coarse_pressure is None:
-        p[:] = _initial_pressure(x0, heights, half, mean_pressure, flat_position).reshape(-1)
+    if warm is not None:
+        p[:] = warm.reshape(-1)
+        del warm
+    elif coarse_pressure is None:
+        p[:] = _pk_pressure(heights, half, mean_pressure, flat_position).reshape(-1)
     else:
         _repeat_into(coarse_pressure, p.reshape(grid.shape))
         del coarse_pressure                                 # (a quarter grid array, not kept through the solve)
@@ -498,7 +510,7 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
         iterations += 1
         step_incremental = False
         if n_contact == 0:                                  # displacement control lost all contact: restart
-            p[:] = _initial_pressure(None, heights, half, None, flat_position).reshape(-1)
+            p[:] = _pk_pressure(heights, half, None, flat_position).reshape(-1)
             alpha, beta_allowed = 1.0, False
             n_contact = _restart(p, t, z_in, index, been_in_contact)
         else:

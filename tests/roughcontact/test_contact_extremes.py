@@ -192,6 +192,9 @@ def test_nested_cold_start_levels_and_fallbacks(periodic):
     # the coarse 2 × 2 mean (0, a, a, 2a), a = Δx²/(2R), lowers the apex by a = 3.8e-9 m: 5e-10 m misses it
     shallow = solve_contact(field, half, penetration=5e-10, tol=1e-10)
     assert shallow.params["start"] == "pk" and shallow.params["nested_iterations"] == []
+    # an all-zero warm start carries no information: the cold start, bit for bit (heights given as an array)
+    zero = solve_contact(field.heights, half, penetration=2e-6, tol=1e-10, x0=np.zeros(grid.shape))
+    assert zero.params["start"] == "nested" and np.array_equal(zero.pressure, nested.pressure)
     odd = Grid((255, 256), (1e-3, 1e-3), periodic=periodic)
     result = solve_contact(bump(odd, radius), ElasticHalfSpace(odd, E_star=E_STAR), penetration=2e-6, tol=1e-10)
     assert result.converged and result.params["start"] == "pk"
