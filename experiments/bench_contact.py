@@ -347,7 +347,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--sizes", type=int, nargs="+", default=[256, 512, 1024, 2048], help="grid sizes n (n²)")
     parser.add_argument("--fast", action="store_true", help="tiny grids (32², 64²), no peers: a smoke run")
-    parser.add_argument("--csv", default="bench_contact.csv", help="CSV output path")
+    parser.add_argument("--csv", default="out/bench_contact.csv", help="CSV output path")
     parser.add_argument("--threads", type=int, default=1, help="FFT threads (ours, the floor; Tamaas via OpenMP)")
     parser.add_argument("--tol", type=float, default=1e-10,
                         help="our tol = Tamaas tol; ContactMechanics pentol = tol x rms height")
@@ -383,6 +383,7 @@ def main(argv=None):
                   contact_fraction="A/A0", mean_gap_m="<g> [m]", rel_diff_contact_fraction="dA/A",
                   rel_diff_mean_gap="d<g>/<g>", note="note")
     print(format_row(header))
+    os.makedirs(os.path.dirname(args.csv) or ".", exist_ok=True)
     with open(args.csv, "w", newline="") as stream:
         writer = csv.DictWriter(stream, fieldnames=COLUMNS)
         writer.writeheader()

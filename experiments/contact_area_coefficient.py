@@ -236,7 +236,7 @@ def draw(summary: list, path: Path, reference_load=EXTRAPOLATION_MAX_LOAD):
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--fast", action="store_true", help="tiny grids (32²–64²), two seeds: a smoke run")
-    parser.add_argument("--output", default="contact_area_coefficient", help="output directory")
+    parser.add_argument("--output", default="out/contact_area_coefficient", help="output directory")
     parser.add_argument("--seeds", type=int, default=4, help="seeds per case (full mode)")
     parser.add_argument("--tol", type=float, default=TOL, help="solver tolerance")
     parser.add_argument("--series", nargs="+", choices=SERIES, default=list(SERIES), help="series to run")

@@ -12,7 +12,7 @@ from roughcontact.paper import reproduce
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--fast", action="store_true", help="few points per curve (seconds)")
-    parser.add_argument("--output", default="paper_figures", help="output directory (default: paper_figures)")
+    parser.add_argument("--output", default="out/paper_figures", help="output directory")
     args = parser.parse_args(argv)
     table = reproduce(args.output, fast=args.fast)
     print(table)

@@ -146,7 +146,7 @@ def statistics_rows(prints: dict, rough: dict) -> list:
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--fast", action="store_true", help="small grids (seconds)")
-    parser.add_argument("--output", default="surface_gallery", help="output directory (default: surface_gallery)")
+    parser.add_argument("--output", default="out/surface_gallery", help="output directory")
     args = parser.parse_args(argv)
     import matplotlib
     matplotlib.use("Agg")
