@@ -40,8 +40,8 @@ import surfaces
 from roughcontact import ElasticHalfSpace, load_path
 from roughcontact.contact import boundary_edges
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))    # the experiments' shared table writer
-from _tables import write_csv  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parent))    # the experiments' shared output writers
+from _output import write_csv  # noqa: E402
 
 LENGTH = 1e-3            # periodic square window L [m]
 E_STAR = 1e6             # contact modulus [Pa] (κ depends only on p̄/(E* h'))

@@ -30,8 +30,8 @@ import numpy as np
 import scipy.linalg
 import scipy.ndimage
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))    # the benchmark's surface and the table writer, shared
-from _tables import write_csv  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parent))    # the benchmark's surface and the output writers, shared
+from _output import save_semilogy, write_csv  # noqa: E402
 from bench_contact import E_STAR, PRESSURE, rough_surface  # noqa: E402
 
 from roughcontact import ElasticHalfSpace, solve_contact  # noqa: E402
@@ -129,19 +129,9 @@ def grid_row(n, dense, bands):
 
 
 def plot_spectra(path, spectra):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    figure, axes = plt.subplots(figsize=(5, 3.5))
-    for n, eigenvalues in spectra.items():
-        axes.plot(np.linspace(0, 1, eigenvalues.size), eigenvalues, label=f"{n}²")
-    axes.set(xlabel="eigenvalue rank / count", ylabel="eigenvalue of S_cc K_cc", yscale="log",
-             title="preconditioned contact-set operator")
-    axes.legend()
-    figure.tight_layout()
-    figure.savefig(path, dpi=120)
-    plt.close(figure)
+    save_semilogy(path, {f"{n}²": (np.linspace(0, 1, values.size), values) for n, values in spectra.items()},
+                  xlabel="eigenvalue rank / count", ylabel="eigenvalue of S_cc K_cc",
+                  title="preconditioned contact-set operator")
 
 
 def main(argv=None):

@@ -21,8 +21,8 @@ import surfaces
 from surfaces.plotting import plot_map, plot_profile, plot_psd
 from surfaces.ridges import PATTERNS, PORE_DENSITY, RIDGE_PERIOD
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))    # the experiments' shared table writer
-from _tables import write_csv  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parent))    # the experiments' shared output writers
+from _output import write_csv  # noqa: E402
 
 HURST_EXPONENTS = (0.3, 0.5, 0.8)
 SHORT_CUTOFF_PIXELS = 4         # short-wavelength cutoff of the roughness, in pixels

@@ -27,8 +27,8 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))    # the benchmark's surface and the table writer, shared
-from _tables import write_csv  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parent))    # the benchmark's surface and the output writers, shared
+from _output import save_semilogy, write_csv  # noqa: E402
 from bench_contact import E_STAR, PRESSURE, SWEEP_STEPS, rough_surface  # noqa: E402
 
 from roughcontact import ElasticHalfSpace, load_path, solve_contact  # noqa: E402
@@ -72,18 +72,8 @@ def step_rows(surface, half, pressures, probes, tol):
 
 
 def plot_residuals(path, histories, step):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    figure, axes = plt.subplots(figsize=(5, 3.5))
-    for start, residuals in histories.items():
-        axes.semilogy(residuals, marker=".", label=start)
-    axes.set(xlabel="CG step", ylabel="relative rms gap error", title=f"step {step} of the sweep")
-    axes.legend()
-    figure.tight_layout()
-    figure.savefig(path, dpi=120)
-    plt.close(figure)
+    save_semilogy(path, {start: (np.arange(residuals.size), residuals) for start, residuals in histories.items()},
+                  xlabel="CG step", ylabel="relative rms gap error", title=f"step {step} of the sweep", marker=".")
 
 
 def main(argv=None):

@@ -1,18 +1,12 @@
 """The peer benchmark runs in fast mode and its numbers are self-consistent (no timing is asserted)."""
 import csv
-import importlib.util
-from pathlib import Path
 
 import pytest
 
-SCRIPT = Path(__file__).resolve().parents[2] / "experiments" / "bench_contact.py"
-
 
 @pytest.fixture(scope="module")
-def rows(tmp_path_factory):
-    spec = importlib.util.spec_from_file_location("bench_contact", SCRIPT)
-    bench = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(bench)
+def rows(load_experiment, tmp_path_factory):
+    bench = load_experiment("bench_contact")
     path = tmp_path_factory.mktemp("bench") / "bench.csv"
     bench.main(["--fast", "--csv", str(path)])
     with open(path, newline="") as stream:

@@ -1,25 +1,16 @@
 """The κ study (experiments/contact_area_coefficient.py) runs in fast mode and writes sane, self-consistent files."""
 import csv
-import importlib.util
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 from roughcontact.contact import PERIMETER_CORRECTION
 
-SCRIPT = Path(__file__).resolve().parents[2] / "experiments" / "contact_area_coefficient.py"
-
 
 @pytest.fixture(scope="module")
-def study():
-    spec = importlib.util.spec_from_file_location("contact_area_coefficient", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module                 # dataclasses look their module up in sys.modules
-    spec.loader.exec_module(module)
-    return module
+def study(load_experiment):
+    return load_experiment("contact_area_coefficient")
 
 
 @pytest.fixture(scope="module")

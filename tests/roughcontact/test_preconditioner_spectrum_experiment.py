@@ -1,22 +1,14 @@
 """The spectrum study (experiments/preconditioner_spectrum.py) runs in fast mode, and its numbers obey the theory
 they are meant to show."""
 import csv
-import importlib.util
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-SCRIPT = Path(__file__).resolve().parents[2] / "experiments" / "preconditioner_spectrum.py"
-
 
 @pytest.fixture(scope="module")
-def study(tmp_path_factory):
-    spec = importlib.util.spec_from_file_location("preconditioner_spectrum", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module
-    spec.loader.exec_module(module)
+def study(load_experiment, tmp_path_factory):
+    module = load_experiment("preconditioner_spectrum")
     path = tmp_path_factory.mktemp("spectrum")
     module.main(["--fast", "--output", str(path)])
     with open(path / "spectrum.csv", newline="") as stream:

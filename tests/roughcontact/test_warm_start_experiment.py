@@ -1,20 +1,12 @@
 """The warm-start study (experiments/warm_start.py) runs in fast mode and its files are self-consistent."""
 import csv
-import importlib.util
-import sys
-from pathlib import Path
 
 import pytest
 
-SCRIPT = Path(__file__).resolve().parents[2] / "experiments" / "warm_start.py"
-
 
 @pytest.fixture(scope="module")
-def output(tmp_path_factory):
-    spec = importlib.util.spec_from_file_location("warm_start", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module
-    spec.loader.exec_module(module)
+def output(load_experiment, tmp_path_factory):
+    module = load_experiment("warm_start")
     path = tmp_path_factory.mktemp("warm")
     module.main(["--fast", "--output", str(path)])
     return path

@@ -1,4 +1,4 @@
-"""The experiment scripts' result tables: one CSV writer and one echo format for all of them."""
+"""The experiment scripts' outputs: one CSV writer with one echo format, and one line-plot writer."""
 from __future__ import annotations
 
 import csv
@@ -17,3 +17,19 @@ def write_csv(path, rows, columns=None, echo=False):
         for row in rows:
             print(", ".join(f"{key}={value:.4g}" if isinstance(value, float) else f"{key}={value}"
                             for key, value in row.items()))
+
+
+def save_semilogy(path, curves, *, xlabel, ylabel, title, marker=None):
+    """PNG at ``path`` of ``curves`` ({label: (x, y)}) on a logarithmic y axis, one legend entry each."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure, axes = plt.subplots(figsize=(5, 3.5))
+    for label, (x, y) in curves.items():
+        axes.semilogy(x, y, marker=marker, label=label)
+    axes.set(xlabel=xlabel, ylabel=ylabel, title=title)
+    axes.legend()
+    figure.tight_layout()
+    figure.savefig(path, dpi=120)
+    plt.close(figure)
