@@ -428,7 +428,7 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
         surface = height_field if isinstance(height_field, HeightField) else HeightField(grid, heights)
         coarse_pressure, params["nested_iterations"] = _nested_start(surface, half, mean_pressure, flat_position,
                                                                      tol, maxiter, preconditioned)
-        del surface
+        del surface                                         # (a grid copy when the heights came as an array)
         params["start"] = "pk" if coarse_pressure is None else "nested"
     # grid-sized work arrays (aligned: the periodic FFT uses them in place); t and z_in stay 0 outside I_c
     p, u, t, r = (half.empty().reshape(-1) for _ in range(4))
@@ -436,7 +436,7 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     index = np.empty(n_points, np.int32 if n_points < 2 ** 31 else np.int64)   # the contact set I_c, sorted
     if warm is not None:
         p[:] = warm.reshape(-1)
-        del warm
+        del warm                                            # (a grid copy when x0 needed a dtype conversion)
     elif coarse_pressure is None:
         p[:] = _pk_pressure(heights, half, mean_pressure, flat_position).reshape(-1)
     else:
