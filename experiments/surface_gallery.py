@@ -35,13 +35,10 @@ def fingerprint_fields(n: int, length: float, rng: int = 1) -> dict:
 
 
 def roughness_fields(n: int, length: float, rng: int = 2) -> dict:
-    """Self-affine fields (rms height 1 µm, short cutoff 4 pixels), or {} if ``self_affine`` is missing."""
-    self_affine = getattr(surfaces, "self_affine", None)
-    if self_affine is None:
-        return {}
+    """Self-affine fields (rms height 1 µm, short cutoff 4 pixels), one per Hurst exponent."""
     grid = surfaces.Grid((n, n), (length, length), periodic=True)
-    return {hurst: self_affine(grid, hurst=hurst, rms_height=1e-6, short_cutoff=SHORT_CUTOFF_PIXELS * length / n,
-                               rng=rng)
+    return {hurst: surfaces.self_affine(grid, hurst=hurst, rms_height=1e-6,
+                                        short_cutoff=SHORT_CUTOFF_PIXELS * length / n, rng=rng)
             for hurst in HURST_EXPONENTS}
 
 
@@ -127,20 +124,16 @@ def draw_roughness(rough: dict, path: Path):
 
 
 def statistics_rows(prints: dict, rough: dict) -> list:
-    rows = []
-    for pattern, field in prints.items():
-        rows.append({"field": f"fingerprint {pattern}", "window_mm": field.grid.lengths[0] * _MM,
-                     "pixels": field.grid.shape[0], "rms_height_um": surfaces.rms_height(field) * 1e6,
-                     "rms_slope": surfaces.rms_slope(field),
-                     "dominant_wavelength_mm": surfaces.dominant_wavelength(field) * _MM,
-                     "requested_period_mm": RIDGE_PERIOD * _MM,
-                     "pore_density_cm2": surfaces.detect_pores(field).density / 1e4,
-                     "requested_pore_density_cm2": PORE_DENSITY / 1e4})
-    for hurst, field in rough.items():
-        rows.append({"field": f"self_affine H={hurst}", "window_mm": field.grid.lengths[0] * _MM,
-                     "pixels": field.grid.shape[0], "rms_height_um": surfaces.rms_height(field) * 1e6,
-                     "rms_slope": surfaces.rms_slope(field)})
-    return rows
+    def measured(label, field, **extra):
+        return {"field": label, "window_mm": field.grid.lengths[0] * _MM, "pixels": field.grid.shape[0],
+                "rms_height_um": surfaces.rms_height(field) * 1e6, "rms_slope": surfaces.rms_slope(field), **extra}
+
+    return ([measured(f"fingerprint {pattern}", field,
+                      dominant_wavelength_mm=surfaces.dominant_wavelength(field) * _MM,
+                      requested_period_mm=RIDGE_PERIOD * _MM,
+                      pore_density_cm2=surfaces.detect_pores(field).density / 1e4,
+                      requested_pore_density_cm2=PORE_DENSITY / 1e4) for pattern, field in prints.items()]
+            + [measured(f"self_affine H={hurst}", field) for hurst, field in rough.items()])
 
 
 def main(argv=None):
@@ -156,10 +149,7 @@ def main(argv=None):
     rough = roughness_fields(128, 1e-3) if args.fast else roughness_fields(512, 1e-3)
     draw_fingerprints(prints, output / "fingerprint_classes.png")
     draw_detail(prints["whorl"], output / "fingerprint_detail.png")
-    if rough:
-        draw_roughness(rough, output / "roughness_hurst.png")
-    else:
-        print("surfaces.self_affine not available yet: roughness panels skipped")
+    draw_roughness(rough, output / "roughness_hurst.png")
     rows = statistics_rows(prints, rough)
     write_csv(output / "gallery_statistics.csv", rows, echo=True)
     print(f"written to {output}/")
