@@ -210,8 +210,10 @@ class ElasticHalfSpace:
         half-space (q = 0 mode undetermined, set to 0)."""
         if self.layer is None or self.layer["kind"] != "layer on rigid base":
             return 0.0
-        nu = self.layer["poisson"]
-        return self.layer["thickness"] * (1 - 2 * nu) / (self.E_star * (1 - nu) ** 2)
+        from .layered import layer_on_rigid_base_compliance
+        # the uniaxial column is the q → 0 limit of the *bonded* layer (no lateral strain at the base)
+        return float(layer_on_rigid_base_compliance(0.0, self.E_star, self.layer["poisson"], self.layer["thickness"],
+                                                    bottom="bonded"))
 
     @functools.cached_property
     def _zero_mode_stiffness(self) -> float:
