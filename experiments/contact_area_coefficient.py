@@ -38,7 +38,6 @@ import scipy.sparse.csgraph
 
 import surfaces
 from roughcontact import ElasticHalfSpace, load_path
-from roughcontact.contact import boundary_edges
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))    # the experiments' shared output writers
 from _output import write_csv  # noqa: E402
@@ -113,7 +112,7 @@ def solve_case(case: Case, loads=LOADS, tol=TOL) -> list:
                      "contact_fraction": result.contact_fraction, "kappa_pixels": kappa,
                      "kappa_corrected": result.corrected_contact_fraction / load,
                      "kappa_pixels_fd_slope": kappa * finite_difference / spectral,
-                     "boundary_edges": boundary_edges(result.contact), "patches": patches(result.contact),
+                     "boundary_edges": result.perimeter_edges, "patches": patches(result.contact),
                      "rms_slope_spectral": spectral, "rms_slope_fd": finite_difference,
                      "iterations": result.iterations, "converged": result.converged,
                      "wall_time_s": result.wall_time})

@@ -21,6 +21,7 @@ the load constraint being satisfied exactly by construction. See ``docs/solver.m
 """
 from __future__ import annotations
 
+import functools
 import math
 import time
 import warnings
@@ -249,12 +250,17 @@ class ContactResult(SavableResult):
     wall_time: float
     params: dict = field(default_factory=dict)
 
+    @functools.cached_property
+    def perimeter_edges(self) -> int:
+        """Number M of pixel edges between a contact and a non-contact pixel (:func:`boundary_edges`, across the
+        window's border on the grid's periodic axes)."""
+        return boundary_edges(self.contact, self.params["grid"].periodic)
+
     @property
     def corrected_contact_fraction(self) -> float:
         """A/A0 with the pixel-perimeter correction (N − c M)/N_total, c = (π − 1 + ln 2)/24 per contact edge
         (Yastrebov et al. 2017; derived for square pixels)."""
-        edges = boundary_edges(self.contact, self.params["grid"].periodic)
-        return (np.count_nonzero(self.contact) - PERIMETER_CORRECTION * edges) / self.contact.size
+        return (np.count_nonzero(self.contact) - PERIMETER_CORRECTION * self.perimeter_edges) / self.contact.size
 
     @property
     def total_force(self) -> float:

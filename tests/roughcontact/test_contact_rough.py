@@ -281,6 +281,7 @@ def test_boundary_edges_and_corrected_contact_fraction():
     assert PERIMETER_CORRECTION == pytest.approx(0.118114, abs=1e-6)    # (π − 1 + ln 2)/24
     grid = Grid((8, 8), (L, L), periodic=True)
     result = solve_contact(np.where(contact, 1e-6, 0.0), ElasticHalfSpace(grid, E_star=E_STAR), penetration=1e-9)
+    assert result.perimeter_edges == boundary_edges(result.contact) == boundary_edges(contact)
     assert result.corrected_contact_fraction == pytest.approx(
         (result.contact.sum() - PERIMETER_CORRECTION * boundary_edges(result.contact)) / 64, rel=1e-15)
 
