@@ -92,17 +92,15 @@ def measured_rate(result) -> float:
     return math.log10(residuals[0] / residuals[-1]) / (residuals.size - 1)
 
 
-def band_kappa(mask, compliance, images, contact, width):
+def band_kappa(mask, compliance, stiffness_image, contact, width):
     """κ of the preconditioner S_cc − S_cb S_bb⁻¹ S_bc: the Schur term kept exactly on the band b of non-contact
     pixels within ``width`` pixels (8-connected) of the contact set."""
-    n_x = mask.shape[0]
-    tiled = np.tile(mask, (3, 3))                           # periodic dilation
-    near = scipy.ndimage.binary_dilation(tiled, np.ones((3, 3), bool), iterations=width)[n_x:2 * n_x, n_x:2 * n_x]
+    window = tuple(slice(n, 2 * n) for n in mask.shape)     # the middle tile of a 3 × 3 tiling: periodic dilation
+    near = scipy.ndimage.binary_dilation(np.tile(mask, (3, 3)), np.ones((3, 3), bool), iterations=width)[window]
     band = np.flatnonzero(near & ~mask)
-    stiffness = images[1]
-    coupling = block(stiffness, band, contact, mask.shape)
-    schur = coupling.T @ scipy.linalg.solve(block(stiffness, band, band, mask.shape), coupling, assume_a="pos")
-    eigenvalues = preconditioned_spectrum(compliance, block(stiffness, contact, contact, mask.shape) - schur)
+    coupling = block(stiffness_image, band, contact, mask.shape)
+    schur = coupling.T @ scipy.linalg.solve(block(stiffness_image, band, band, mask.shape), coupling, assume_a="pos")
+    eigenvalues = preconditioned_spectrum(compliance, block(stiffness_image, contact, contact, mask.shape) - schur)
     return eigenvalues[-1] / eigenvalues[0]
 
 
@@ -117,14 +115,14 @@ def grid_row(n, dense, bands):
            "measured_decades_per_step": rate, "implied_kappa": implied_kappa(rate), "iterations": result.iterations}
     if not dense:
         return row, None
-    images = kernel_images(half)
-    compliance = block(images[0], contact, contact, half.grid.shape)
-    eigenvalues = preconditioned_spectrum(compliance, block(images[1], contact, contact, half.grid.shape))
+    compliance_image, stiffness_image = kernel_images(half)
+    compliance = block(compliance_image, contact, contact, half.grid.shape)
+    eigenvalues = preconditioned_spectrum(compliance, block(stiffness_image, contact, contact, half.grid.shape))
     kappa = eigenvalues[-1] / eigenvalues[0]
     row.update(lambda_min=eigenvalues[0], lambda_max=eigenvalues[-1], kappa=kappa,
                share_above_2=float(np.mean(eigenvalues > 2)), cg_bound_decades_per_step=cg_rate(kappa))
     for width in bands:
-        row[f"kappa_band_{width}px"] = band_kappa(result.contact, compliance, images, contact, width)
+        row[f"kappa_band_{width}px"] = band_kappa(result.contact, compliance, stiffness_image, contact, width)
     return row, eigenvalues
 
 
