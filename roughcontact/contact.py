@@ -7,10 +7,11 @@ Unknown: the contact pressure p ≥ 0 [Pa] on the grid; the gap g = s − h + u(
 Algorithm: Polonsky & Keer (1999), Wear 231:206, steps (a)–(h), restricted conjugate gradients on the
 contact set I_c = {p > 0} with the mean gap on I_c removed (load control), projection p ≥ 0 and re-entry
 of penetrated points (I_ol; the CG restarts only when a point enters I_c for the first time in the solve:
-re-entries of points that left keep it going, which cut the steps by 30–80 %). The direction t is kept at
-zero mean on I_c, so the step length needs only ⟨t, K t⟩, which Parseval gives from the forward transform
-of t alone. While the contact set holds, the backward transform completes K t and u ← α u − τ K t: **one**
-FFT pair per step. When a point leaves or enters (or every ``_REFRESH`` steps, and before accepting
+re-entries of points that left keep it going, which cut the steps by 30–80 %; should the residual then make
+no new minimum for ``STALL_STEPS`` steps, every entry restarts it from there on, as in PK). The direction t
+is kept at zero mean on I_c, so the step length needs only ⟨t, K t⟩, which Parseval gives from the forward
+transform of t alone. While the contact set holds, the backward transform completes K t and
+u ← α u − τ K t: **one** FFT pair per step. When a point leaves or enters (or every ``_REFRESH`` steps, and before accepting
 convergence) u = K p is recomputed instead: 1.5 pairs, never more. By default the CG is preconditioned with
 the inverse kernel, z = K⁻¹ g: one more pair per step, fewer steps. Convergence criterion, with
 ``gap_scale`` the rms height of h:
@@ -43,6 +44,7 @@ _REFRESH = 50          # exact recomputation of u at least every _REFRESH CG ste
 COLD_STARTS = ("nested", "pk")
 NESTED_TOL = 1e-3      # tolerance of the nested start's coarse solves (their answer is only the fine guess)
 NESTED_MIN = 64        # the nested start coarsens while the coarse grid keeps this many pixels per axis
+STALL_STEPS = 20       # steps without a new smallest residual after which every entry restarts the CG
 
 
 # -- fused pointwise kernels (flat contiguous views; accumulators in float64) --------------------------------
@@ -420,6 +422,7 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
 
     params = {"E_star": half.E_star, "grid": grid, "tol": tol, "maxiter": int(maxiter), "method": METHOD,
               "preconditioned": preconditioned, "start": "x0" if warm is not None else "pk", "nested_iterations": [],
+              "restart_every_entry_from": None,
               "control": next(iter(given)), "requested": float(next(iter(given.values()))),
               "interaction": type(interaction).__name__, "kernel": half.description, "version": __version__}
 
@@ -474,6 +477,7 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
         gap_scale = alpha * float(np.sqrt(np.mean(np.square(u, dtype=np.float64)))) or 1.0
 
     residuals, iterations, converged, message = [], 0, False, ""
+    smallest_residual, smallest_at, restart_every_entry = math.inf, 0, False
     shift = float(h.mean(dtype=np.float64)) - alpha * float(u.mean(dtype=np.float64)) if load_control else flat_position
     beta_allowed, previous_squared, tau, reported, kept_t = False, 1.0, 0.0, 0, 0.0
     while True:
@@ -508,6 +512,12 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
             converged, message = True, f"converged: relative rms gap error {residual:.3g} <= tol {tol:g}"
             break
         residuals.append(residual)
+        if residual < smallest_residual:
+            smallest_residual, smallest_at = residual, iterations
+        elif not restart_every_entry and iterations - smallest_at >= STALL_STEPS:
+            # the contact set cycles through re-entries (seen once: rough 1024², 0.0065 E*, PK start, where the
+            # residual hovered at 1e-2 for 10⁴ steps): fall back to PK's rule, restart on every entry
+            restart_every_entry, params["restart_every_entry_from"] = True, iterations
         if iterations >= maxiter:
             message = f"not converged after {iterations} iterations: relative rms gap error {residual:.3g} (tol {tol:g})"
             if residual <= tol:
@@ -544,7 +554,8 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
             # (e) projected step on I_c, (f) re-entry of penetrated points (gap before the step)
             n_contact, total, left, entered, first_entries, kept_t = _step_and_reentry(
                 p, t, z_in, u, h, alpha, shift, tau, index, been_in_contact)
-            beta_allowed = first_entries == 0          # re-entries of points that left keep the CG going
+            # re-entries of points that left keep the CG going, unless the residual stalled
+            beta_allowed = (entered if restart_every_entry else first_entries) == 0
             step_incremental = left == 0 and entered == 0 and since_exact < _REFRESH and total > 0
             if step_incremental:                            # the set held: complete K t, u ← α u − τ K t
                 half.pending_displacement_into(field(r))
