@@ -57,11 +57,14 @@ COLUMNS = ("section", "solver", "n", "time_s", "iterations", "fft_pairs_per_iter
            "rel_diff_mean_gap", "converged", "note")
 
 
-def rough_surface(n: int) -> surfaces.HeightField:
-    """Seeded self-affine surface on an n² periodic grid: H = 0.8, rms slope 0.1, short cutoff 4 pixels."""
+def rough_surface(n: int, seed: int = 0, periodic: bool = True) -> surfaces.HeightField:
+    """Seeded self-affine surface on an n² grid: H = 0.8, rms slope 0.1, short cutoff 4 pixels (seed 0: the
+    benchmark's; ``periodic=False``: the same heights on a free-surface grid)."""
     grid = surfaces.Grid((n, n), (LENGTH, LENGTH), periodic=True)
-    return surfaces.self_affine(grid, hurst=HURST, rms_slope=RMS_SLOPE, short_cutoff=CUTOFF_PIXELS * LENGTH / n,
-                                rng=0)
+    field = surfaces.self_affine(grid, hurst=HURST, rms_slope=RMS_SLOPE, short_cutoff=CUTOFF_PIXELS * LENGTH / n,
+                                 rng=seed)
+    return field if periodic else surfaces.HeightField(surfaces.Grid((n, n), (LENGTH, LENGTH), periodic=False),
+                                                       field.heights)
 
 
 def best_time(run, repeat: int, number: int = 1) -> float:
