@@ -1,3 +1,4 @@
+import csv
 import importlib.util
 import os
 import sys
@@ -21,3 +22,23 @@ def load_experiment():
             spec.loader.exec_module(module)
         return sys.modules[name]
     return load
+
+
+@pytest.fixture(scope="session")
+def fast_run(load_experiment, tmp_path_factory):
+    """``fast_run(name)`` runs ``experiments/<name>.py`` in fast mode (``--fast --output <new tmp dir>``) and
+    returns that directory."""
+    def run(name):
+        path = tmp_path_factory.mktemp(name)
+        load_experiment(name).main(["--fast", "--output", str(path)])
+        return path
+    return run
+
+
+@pytest.fixture(scope="session")
+def read_csv():
+    """``read_csv(path)``: the rows of a CSV file as dicts of strings."""
+    def read(path):
+        with open(path, newline="") as stream:
+            return list(csv.DictReader(stream))
+    return read

@@ -1,5 +1,4 @@
 """The κ study (experiments/contact_area_coefficient.py) runs in fast mode and writes sane, self-consistent files."""
-import csv
 import math
 
 import numpy as np
@@ -14,15 +13,8 @@ def study(load_experiment):
 
 
 @pytest.fixture(scope="module")
-def output(study, tmp_path_factory):
-    path = tmp_path_factory.mktemp("kappa")
-    study.main(["--fast", "--output", str(path)])
-    return path
-
-
-def read(path):
-    with open(path, newline="") as stream:
-        return list(csv.DictReader(stream))
+def output(fast_run):
+    return fast_run("contact_area_coefficient")
 
 
 def test_files_written(output):
@@ -31,8 +23,8 @@ def test_files_written(output):
     assert (output / "contact_area_coefficient.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
-def test_rows_consistent(study, output):
-    rows = read(output / "contact_area_coefficient.csv")
+def test_rows_consistent(study, output, read_csv):
+    rows = read_csv(output / "contact_area_coefficient.csv")
     solved = [row for row in rows if float(row["load"]) > 0]
     assert {row["series"] for row in rows} == {"resolution", "breadth", "ensemble"}
     assert len(solved) == 5 * len(rows) // 6                     # five loads + one extrapolated row per case
@@ -54,9 +46,9 @@ def test_rows_consistent(study, output):
         assert math.sqrt(8 / math.pi) < float(row["kappa_corrected"]) < 4 * math.sqrt(8 / math.pi)
 
 
-def test_summary_means(output):
-    rows = read(output / "contact_area_coefficient.csv")
-    summary = read(output / "contact_area_summary.csv")
+def test_summary_means(output, read_csv):
+    rows = read_csv(output / "contact_area_coefficient.csv")
+    summary = read_csv(output / "contact_area_summary.csv")
     for entry in summary:
         values = [float(row["kappa_pixels"]) for row in rows if all(row[key] == entry[key] for key in
                                                                      ("series", "n", "breadth", "load"))]

@@ -1,18 +1,13 @@
 """The spectrum study (experiments/preconditioner_spectrum.py) runs in fast mode, and its numbers obey the theory
 they are meant to show."""
-import csv
-
 import numpy as np
 import pytest
 
 
 @pytest.fixture(scope="module")
-def study(load_experiment, tmp_path_factory):
-    module = load_experiment("preconditioner_spectrum")
-    path = tmp_path_factory.mktemp("spectrum")
-    module.main(["--fast", "--output", str(path)])
-    with open(path / "spectrum.csv", newline="") as stream:
-        return module, path, list(csv.DictReader(stream))
+def study(load_experiment, fast_run, read_csv):
+    path = fast_run("preconditioner_spectrum")
+    return load_experiment("preconditioner_spectrum"), path, read_csv(path / "spectrum.csv")
 
 
 def test_spectrum_files(study):

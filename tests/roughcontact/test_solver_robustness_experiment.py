@@ -1,26 +1,16 @@
 """The robustness study (experiments/solver_robustness.py) runs in fast mode; every variant converges and
 agrees with the reference solve."""
-import csv
-
 import pytest
 
 
 @pytest.fixture(scope="module")
-def output(load_experiment, tmp_path_factory):
-    module = load_experiment("solver_robustness")
-    path = tmp_path_factory.mktemp("robustness")
-    module.main(["--fast", "--output", str(path)])
-    return module, path
+def output(load_experiment, fast_run):
+    return load_experiment("solver_robustness"), fast_run("solver_robustness")
 
 
-def read(path, name):
-    with open(path / name, newline="") as stream:
-        return list(csv.DictReader(stream))
-
-
-def test_every_variant_converges_and_agrees(output):
+def test_every_variant_converges_and_agrees(output, read_csv):
     module, path = output
-    solves = read(path, "solver_robustness.csv")
+    solves = read_csv(path / "solver_robustness.csv")
     assert [(r["variant"], float(r["load_E_star"])) for r in solves] == [
         (variant, pytest.approx(0.0025 * k)) for variant in module.VARIANTS for k in range(1, 5)]
     assert all(r["converged"] == "True" for r in solves)
@@ -40,10 +30,10 @@ def test_every_variant_converges_and_agrees(output):
         assert float(r["rel_diff_mean_pressure"]) <= limit
 
 
-def test_summary_counts_the_solves(output):
+def test_summary_counts_the_solves(output, read_csv):
     module, path = output
-    solves = read(path, "solver_robustness.csv")
-    summary = read(path, "solver_robustness_summary.csv")
+    solves = read_csv(path / "solver_robustness.csv")
+    summary = read_csv(path / "solver_robustness_summary.csv")
     assert [r["variant"] for r in summary] == list(module.VARIANTS)
     for line in summary:
         mine = [r for r in solves if r["variant"] == line["variant"]]

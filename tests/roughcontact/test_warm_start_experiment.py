@@ -1,27 +1,17 @@
 """The warm-start study (experiments/warm_start.py) runs in fast mode and its files are self-consistent."""
-import csv
-
 import pytest
 
 
 @pytest.fixture(scope="module")
-def output(load_experiment, tmp_path_factory):
-    module = load_experiment("warm_start")
-    path = tmp_path_factory.mktemp("warm")
-    module.main(["--fast", "--output", str(path)])
-    return path
-
-
-def rows(path, name):
-    with open(path / name, newline="") as stream:
-        return list(csv.DictReader(stream))
+def output(fast_run):
+    return fast_run("warm_start")
 
 
 STARTS = ("cold", "nested", "previous", "secant")
 
 
-def test_sweep_rows(output):
-    sweeps = rows(output, "warm_start_sweep.csv")
+def test_sweep_rows(output, read_csv):
+    sweeps = read_csv(output / "warm_start_sweep.csv")
     assert [(float(r["tol"]), r["start"]) for r in sweeps] == [(tol, start) for tol in (1e-6, 1e-8) for start in STARTS]
     for cold, nested, *warm in zip(*(sweeps[k::4] for k in range(4))):
         assert float(cold["ratio"]) == float(cold["iteration_ratio"]) == 1.0
@@ -34,8 +24,8 @@ def test_sweep_rows(output):
             assert float(r["ratio"]) == pytest.approx(float(cold["time_s"]) / float(r["time_s"]))
 
 
-def test_step_rows_and_figure(output):
-    steps = rows(output, "warm_start_steps.csv")
+def test_step_rows_and_figure(output, read_csv):
+    steps = read_csv(output / "warm_start_steps.csv")
     assert [(int(r["step"]), r["start"]) for r in steps] == [(k, s) for k in (3, 10, 20) for s in STARTS]
     for cold, nested, *warm in zip(*(steps[k::4] for k in range(4))):
         assert float(cold["first_residual"]) == pytest.approx(1.0)   # the cold start's residual is the scale
