@@ -56,12 +56,12 @@ def variant_results(variant, surface, seed, pressures, tol, maxiter, reference):
     return [solve_contact(surface, half, mean_pressure=p, **options) for p in pressures]
 
 
-def rows(sizes, seeds, pressures, tol, maxiter, variants=VARIANTS):
+def rows(sizes, seeds, pressures, tol, maxiter):
     """One row per solve, for every size, seed, variant and load (a progress bar over the variants' sweeps);
-    the first variant is the reference of the differences."""
-    jobs = [(n, seed, variant) for n in sizes for seed in range(seeds) for variant in variants]
+    the first variant, ``nested``, is the reference of the differences."""
+    jobs = [(n, seed, variant) for n in sizes for seed in range(seeds) for variant in VARIANTS]
     for n, seed, variant in tqdm(jobs, desc="robustness", unit="sweep"):
-        if variant == variants[0]:
+        if variant == VARIANTS[0]:
             surface, reference = rough_surface(n, seed), None
         results = variant_results(variant, surface, seed, pressures, tol, maxiter, reference)
         reference = reference or results
