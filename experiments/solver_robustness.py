@@ -37,6 +37,7 @@ from roughcontact import ElasticHalfSpace, load_path, solve_contact  # noqa: E40
 
 FLOAT32_TOL = 1e-5
 VARIANTS = ("nested", "pk", "plain", "warm", "float32", "displacement", "free")
+START_OPTIONS = {"pk": {"cold_start": "pk"}, "plain": {"cold_start": "pk", "preconditioned": False}}
 COMPARED = {"contact_fraction": "rel_diff_contact_fraction", "mean_gap": "rel_diff_mean_gap",
             "mean_pressure": "rel_diff_mean_pressure"}
 
@@ -52,7 +53,7 @@ def variant_results(variant, surface, seed, pressures, tol, maxiter, reference):
         return list(load_path(surface, half, pressures, **options))
     if variant == "displacement":
         return [solve_contact(surface, half, penetration=r.penetration, **options) for r in reference]
-    options.update({"pk": {"cold_start": "pk"}, "plain": {"cold_start": "pk", "preconditioned": False}}.get(variant, {}))
+    options.update(START_OPTIONS.get(variant, {}))
     return [solve_contact(surface, half, mean_pressure=p, **options) for p in pressures]
 
 

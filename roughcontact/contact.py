@@ -11,10 +11,10 @@ re-entries of points that left keep it going, which cut the steps by 30–80 %; 
 no new minimum for ``STALL_STEPS`` steps, every entry restarts it from there on, as in PK). The direction t
 is kept at zero mean on I_c, so the step length needs only ⟨t, K t⟩, which Parseval gives from the forward
 transform of t alone. While the contact set holds, the backward transform completes K t and
-u ← α u − τ K t: **one** FFT pair per step. When a point leaves or enters (or every ``_REFRESH`` steps, and before accepting
-convergence) u = K p is recomputed instead: 1.5 pairs, never more. By default the CG is preconditioned with
-the inverse kernel, z = K⁻¹ g: one more pair per step, fewer steps. Convergence criterion, with
-``gap_scale`` the rms height of h:
+u ← α u − τ K t: **one** FFT pair per step. When a point leaves or enters (or every ``_REFRESH`` steps, and
+before accepting convergence) u = K p is recomputed instead: 1.5 pairs, never more. By default the CG is
+preconditioned with the inverse kernel, z = K⁻¹ g: one more pair per step, fewer steps. Convergence
+criterion, with ``gap_scale`` the rms height of h:
 
     sqrt(<(g − ḡ_c)²>_{I_c}) ≤ tol · gap_scale   and   max(−g outside I_c) ≤ tol · gap_scale,
 
