@@ -1,4 +1,8 @@
-"""The ``roughcontact`` command: a thin wrapper over library functions (same code path as the Python API)."""
+"""The roughcontact command: a thin wrapper over the library (the same code path as the Python API).
+
+A user's mistake (an output path that is a file or whose parent does not exist, a bad value) ends with exit
+code 2 and a one-line message, never a traceback.
+"""
 from __future__ import annotations
 
 import argparse
@@ -8,6 +12,18 @@ import platform
 import sys
 
 from ._version import __version__
+
+#: Default output directory of "roughcontact figures" (ignored by git in this repository).
+DEFAULT_FIGURES_OUTPUT = "roughcontact-figures"
+#: Exit code of a user's mistake (as argparse's own).
+USAGE_ERROR = 2
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with one-line errors: "roughcontact figures: error: ... (see --help)", exit code 2."""
+
+    def error(self, message):
+        self.exit(USAGE_ERROR, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
 
 
 def _package_version(name: str) -> str:
@@ -34,36 +50,53 @@ def info() -> dict:
     }
 
 
-def _cmd_info(args) -> int:
+def _cmd_info(args, provenance) -> int:
     for key, value in info().items():
         print(f"{key:>22}: {value}")
     return 0
 
 
-def _cmd_figures(args) -> int:
+def _cmd_figures(args, provenance) -> int:
     from .paper import reproduce
+    from .provenance import output_directory
 
-    table = reproduce(args.output, fast=args.fast)
+    output = output_directory(args.output)
+    table = reproduce(output, provenance)
     print(table)
-    print(f"\nfigures and tables written to {os.path.abspath(args.output)}")
+    print(f"\nfigures and tables written to {output.resolve()}")
     return 0
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="roughcontact", description=__doc__)
+    formatter = argparse.ArgumentDefaultsHelpFormatter
+    parser = _Parser(prog="roughcontact", description=__doc__.splitlines()[0], formatter_class=formatter)
     parser.add_argument("--version", action="version", version=f"roughcontact {__version__}")
-    commands = parser.add_subparsers(dest="command", required=True)
-    commands.add_parser("info", help="versions, FFT backend, threads, numba cache dir").set_defaults(run=_cmd_info)
-    figures = commands.add_parser("figures", help="reproduce the seed paper's figures and print its checkpoint table")
-    figures.add_argument("--output", default="roughcontact-figures", help="output directory (PNG + CSV)")
-    figures.add_argument("--fast", action="store_true", help="few points per curve (seconds)")
+    commands = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    commands.add_parser("info", help="versions, FFT backend, threads, numba cache dir",
+                        description="Print versions, the FFT backend, thread settings and the numba cache directory.",
+                        formatter_class=formatter).set_defaults(run=_cmd_info)
+    figures = commands.add_parser("figures", help="reproduce the seed paper's figures and print its checkpoint table",
+                                  description="Write Figs. 3, 4, 5, 9, 10, 11 of Hess & Forsbach (2020) as PNG + CSV "
+                                              "and checkpoints.csv, each file with its provenance, and print the "
+                                              "checkpoint table.", formatter_class=formatter)
+    figures.add_argument("--output", default=DEFAULT_FIGURES_OUTPUT,
+                         help="output directory; created if missing, but its parent must exist")
     figures.set_defaults(run=_cmd_figures)
     return parser
 
 
 def main(argv=None) -> int:
-    args = build_parser().parse_args(argv)
-    return args.run(args)
+    from .provenance import OutputPathError, Provenance
+
+    argv = sys.argv[1:] if argv is None else list(argv)
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    parameters = {key: value for key, value in vars(args).items() if key not in ("run", "command")}
+    try:
+        return args.run(args, Provenance.of_command("roughcontact", argv, parameters))
+    except (OutputPathError, OSError) as error:
+        message = error.strerror if isinstance(error, OSError) and error.strerror else error
+        parser.exit(USAGE_ERROR, f"roughcontact {args.command}: error: {message}\n")
 
 
 if __name__ == "__main__":

@@ -1,13 +1,12 @@
 """Reproduction of the seed paper's figures 3, 4, 5, 9, 10, 11 and of the numbers it quotes (checkpoint table).
 
-``reproduce(output_dir, fast=False)`` writes one PNG and one CSV per figure plus ``checkpoints.csv`` and returns
-the :class:`CheckpointTable`. Every "computed" value in the table is computed here from the model; the "quoted"
+``reproduce(output_dir)`` writes one PNG and one CSV per figure plus ``checkpoints.csv`` and returns the
+:class:`CheckpointTable`; every file carries its provenance (:mod:`roughcontact.provenance`). Every "computed" value in the table is computed here from the model; the "quoted"
 values are the numbers printed in Heß & Forsbach (2020). Figures use matplotlib's object API with the Agg
 canvas (no pyplot state, no rcParams edits); matplotlib is imported only when a figure is drawn.
 """
 from __future__ import annotations
 
-import csv
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -15,6 +14,7 @@ import numpy as np
 
 from .electrostatics import EPSILON_0, DielectricStack
 from .macro import PowerLawContact, SavkoorBriggsPeeling, SlidingFrictionModel
+from .provenance import Provenance, output_directory, save_figure, write_columns, write_csv
 
 #: The seed's voltage for Figs. 3–5 [V] and the two equivalent gaps it compares [m].
 VOLTAGE = 200.0
@@ -24,6 +24,8 @@ RADIUS = 1e-2
 #: Voltages of Figs. 9–11 [V].
 FRICTION_VOLTAGES = (0.0, 50.0, 100.0, 150.0, 200.0)
 MM2 = 1e-6   # 1 mm² in m²
+#: Points per curve: along the area of Figs. 3–4, the tangential force of Fig. 5 and the normal force of Figs. 9–11.
+AREA_POINTS, PEELING_POINTS, FORCE_POINTS = 400, 300, 231
 
 
 # -- checkpoint table --------------------------------------------------------------------------------------
@@ -81,16 +83,11 @@ class CheckpointTable:
 
     __str__ = to_markdown
 
-    def to_csv(self, path) -> Path:
-        path = Path(path)
-        with path.open("w", newline="") as handle:
-            writer = csv.writer(handle)
-            writer.writerow(["quantity", "quoted", "computed", "unit", "relative_difference", "tolerance", "kind",
-                             "agrees", "reason"])
-            for r in self.rows:
-                writer.writerow([r.quantity, r.quoted, repr(r.computed), r.unit, r.relative_difference,
-                                 r.tolerance, r.kind, r.agrees, r.reason])
-        return path
+    def to_csv(self, path, provenance: Provenance) -> Path:
+        return write_csv(path, ({"quantity": r.quantity, "quoted": r.quoted, "computed": repr(r.computed),
+                                 "unit": r.unit, "relative_difference": r.relative_difference,
+                                 "tolerance": r.tolerance, "kind": r.kind, "agrees": r.agrees,
+                                 "reason": r.reason} for r in self.rows), provenance)
 
 
 def hertz_modulus_matching(law: PowerLawContact, radius: float, normal_force: float) -> float:
@@ -192,18 +189,14 @@ def _new_figure(ncols=1, width=5.0):
     return fig, fig.subplots(1, ncols, squeeze=False)[0]
 
 
-def _write_csv(path, header, columns):
-    np.savetxt(path, np.column_stack(columns), delimiter=",", header=",".join(header), comments="")
-    return Path(path)
+def _write(fig, output_dir, name, header, columns, provenance):
+    """``<name>.png`` of ``fig`` and ``<name>.csv`` of ``columns`` in ``output_dir``, both with ``provenance``."""
+    output_dir = Path(output_dir)
+    return (save_figure(fig, output_dir / f"{name}.png", provenance),
+            write_columns(output_dir / f"{name}.csv", header, columns, provenance))
 
 
-def _save(fig, output_dir, name):
-    png = Path(output_dir) / f"{name}.png"
-    fig.savefig(png, dpi=120)
-    return png
-
-
-def plot_adhesive_area(ax, law, works, labels, max_area, n_points=400, force_scale=1.0):
+def plot_adhesive_area(ax, law, works, labels, max_area, n_points=AREA_POINTS, force_scale=1.0):
     """Draw A(F_N) [mm²] of ``law`` (Eq. 9) for each w on ``ax``, both branches, parametrised by the area
     0 <= A <= ``max_area`` [m²]; forces are multiplied by ``force_scale`` (1e3 for mN). Returns the curves."""
     curves = []
@@ -218,19 +211,19 @@ def plot_adhesive_area(ax, law, works, labels, max_area, n_points=400, force_sca
     return curves
 
 
-def _area_figure(output_dir, name, law, title, n_points, with_hertz):
+def _area_figure(output_dir, name, law, title, with_hertz, provenance):
     stack = DielectricStack()
     works = (0.0, float(stack.work_of_adhesion(GAP_REALISTIC, VOLTAGE)), float(stack.work_of_adhesion(0.0, VOLTAGE)))
     labels = ["non-adhesive", f"w = {works[1]:.3f} J/m² (200 V, 1 µm)", f"w = {works[2]:.3f} J/m² (200 V, 0 µm)"]
     fig, (ax_full, ax_zoom) = _new_figure(2)
-    curves = plot_adhesive_area(ax_full, law, works, labels, float(law.area(2.0, works[-1])), n_points)
+    curves = plot_adhesive_area(ax_full, law, works, labels, float(law.area(2.0, works[-1])))
     rows = [(0, w, f, a) for w, f, a in curves]
     zoom_area = 2 * float(law.zero_load_area(works[-1]))
-    plot_adhesive_area(ax_zoom, law, works, labels, zoom_area, n_points, force_scale=1e3)
+    plot_adhesive_area(ax_zoom, law, works, labels, zoom_area, force_scale=1e3)
     if with_hertz:
         hertz = PowerLawContact.hertz(RADIUS, hertz_modulus_matching(law, RADIUS, 1.0))
         for w, label in zip(works, ("Hertz", "JKR (1 µm)", "JKR (0 µm)")):
-            area = np.linspace(0.0, float(hertz.area(2.0, w)), n_points)
+            area = np.linspace(0.0, float(hertz.area(2.0, w)), AREA_POINTS)
             force = hertz.normal_force(area, w)
             ax_full.plot(force, area / MM2, "--", label=label)
             rows.append((1, w, force, area))
@@ -239,28 +232,26 @@ def _area_figure(output_dir, name, law, title, n_points, with_hertz):
     ax_full.set_xlim(right=2.0)
     ax_full.set_title(f"{title} (A)")
     ax_zoom.set_title("pull-off region (B)")
-    png = _save(fig, output_dir, name)
     columns = [np.concatenate([np.full(f.size, kind) for kind, w, f, a in rows]),
                np.concatenate([np.full(f.size, w) for kind, w, f, a in rows]),
                np.concatenate([f for kind, w, f, a in rows]), np.concatenate([a for kind, w, f, a in rows]) / MM2]
-    csv_path = _write_csv(Path(output_dir) / f"{name}.csv",
-                          ["hertz_jkr", "work_of_adhesion_J_per_m2", "normal_force_N", "area_mm2"], columns)
-    return png, csv_path
+    return _write(fig, output_dir, name, ["hertz_jkr", "work_of_adhesion_J_per_m2", "normal_force_N", "area_mm2"],
+                  columns, provenance)
 
 
-def figure3(output_dir, fast=False):
+def figure3(output_dir, provenance):
     """Fig. 3: apparent area vs load (Eq. 27 with Eq. 9), with Hertz/JKR for R* = 1 cm and E* fitted at 1 N."""
     return _area_figure(output_dir, "fig3_apparent_area", PowerLawContact.dzidek_apparent(), "apparent area",
-                        40 if fast else 400, with_hertz=True)
+                        True, provenance)
 
 
-def figure4(output_dir, fast=False):
+def figure4(output_dir, provenance):
     """Fig. 4: ridge area vs load (Eq. 28 with Eq. 9)."""
     return _area_figure(output_dir, "fig4_ridge_area", PowerLawContact.dzidek_ridge(), "ridge area",
-                        40 if fast else 400, with_hertz=False)
+                        False, provenance)
 
 
-def figure5(output_dir, fast=False, normal_forces=(0.25, 0.5, 1.0, 2.0)):
+def figure5(output_dir, provenance, normal_forces=(0.25, 0.5, 1.0, 2.0)):
     """Fig. 5: apparent area vs tangential force up to F_T,c (Eqs. 31–32), R* = 1 cm, E* = 47.4 kPa fit,
     w = 0.132 J/m², G*/E* = 2/3."""
     E_star = hertz_modulus_matching(PowerLawContact.dzidek_apparent(), RADIUS, 1.0)
@@ -269,7 +260,7 @@ def figure5(output_dir, fast=False, normal_forces=(0.25, 0.5, 1.0, 2.0)):
     fig, (ax,) = _new_figure(1)
     columns = [[], [], []]
     for force in normal_forces:
-        tangential = np.linspace(0.0, float(peeling.critical_tangential_force(force, w)), 30 if fast else 300)
+        tangential = np.linspace(0.0, float(peeling.critical_tangential_force(force, w)), PEELING_POINTS)
         area = peeling.area(tangential, force, w)
         ax.plot(tangential, area / MM2, label=f"F_N = {force:g} N")
         ax.plot(tangential[-1], area[-1] / MM2, "k.")
@@ -279,35 +270,31 @@ def figure5(output_dir, fast=False, normal_forces=(0.25, 0.5, 1.0, 2.0)):
     ax.set_ylabel("apparent contact area [mm²]")
     ax.set_title("peeling (Savkoor–Briggs), w = 0.132 J/m²")
     ax.legend(fontsize=7)
-    png = _save(fig, output_dir, "fig5_peeling")
-    csv_path = _write_csv(Path(output_dir) / "fig5_peeling.csv", ["normal_force_N", "tangential_force_N", "area_mm2"],
-                          [np.concatenate(c) for c in columns])
-    return png, csv_path
+    return _write(fig, output_dir, "fig5_peeling", ["normal_force_N", "tangential_force_N", "area_mm2"],
+                  [np.concatenate(c) for c in columns], provenance)
 
 
-def _friction_sweep(fast, start=0.0):
+def _friction_sweep(start=0.0):
     model = SlidingFrictionModel.paper_table1()
-    forces = np.linspace(start, 2.3, 24 if fast else 231)
+    forces = np.linspace(start, 2.3, FORCE_POINTS)
     states = [model.state(forces, voltage) for voltage in FRICTION_VOLTAGES]
     return forces, states
 
 
-def _friction_figure(output_dir, name, forces, quantity, ylabel, column):
+def _friction_figure(output_dir, name, forces, quantity, ylabel, column, provenance):
     fig, (ax,) = _new_figure(1)
     for voltage, values in zip(FRICTION_VOLTAGES, quantity):
         ax.plot(forces, values, label=f"{voltage:g} V")
     ax.set_xlabel("normal force F_N [N]")
     ax.set_ylabel(ylabel)
     ax.legend(fontsize=7)
-    png = _save(fig, output_dir, name)
     header = ["normal_force_N"] + [f"{column}_{v:g}V" for v in FRICTION_VOLTAGES]
-    csv_path = _write_csv(Path(output_dir) / f"{name}.csv", header, [forces, *quantity])
-    return png, csv_path
+    return _write(fig, output_dir, name, header, [forces, *quantity], provenance)
 
 
-def figure9(output_dir, fast=False):
+def figure9(output_dir, provenance):
     """Fig. 9: (A) ridge-area reduction 1 − A_R/A_R0 at 0–200 V, (B) equivalent air gap (Eq. 46) vs load."""
-    forces, states = _friction_sweep(fast)
+    forces, states = _friction_sweep()
     fig, (ax_a, ax_b) = _new_figure(2)
     for voltage, state in zip(FRICTION_VOLTAGES, states):
         ax_a.plot(forces, 100 * state.area_reduction, label=f"{voltage:g} V")
@@ -319,36 +306,36 @@ def figure9(output_dir, fast=False):
     ax_b.set_xlabel("normal force F_N [N]")
     ax_b.set_ylabel("equivalent air gap [µm]")
     ax_b.set_title("(B)")
-    png = _save(fig, output_dir, "fig9_area_reduction_gap")
     header = ["normal_force_N"] + [f"area_reduction_percent_{v:g}V" for v in FRICTION_VOLTAGES] + ["gap_um"]
-    csv_path = _write_csv(Path(output_dir) / "fig9_area_reduction_gap.csv", header,
-                          [forces, *[100 * s.area_reduction for s in states], 1e6 * states[0].gap])
-    return png, csv_path
+    return _write(fig, output_dir, "fig9_area_reduction_gap", header,
+                  [forces, *[100 * s.area_reduction for s in states], 1e6 * states[0].gap], provenance)
 
 
-def figure10(output_dir, fast=False):
+def figure10(output_dir, provenance):
     """Fig. 10: sliding friction force F_T (Eq. 45) vs F_N at 0, 50, 100, 150, 200 V."""
-    forces, states = _friction_sweep(fast)
+    forces, states = _friction_sweep()
     return _friction_figure(output_dir, "fig10_tangential_force", forces, [s.tangential_force for s in states],
-                            "tangential force F_T [N]", "tangential_force_N")
+                            "tangential force F_T [N]", "tangential_force_N", provenance)
 
 
-def figure11(output_dir, fast=False):
+def figure11(output_dir, provenance):
     """Fig. 11: apparent friction coefficient μ = F_T/F_N (Eq. 42) vs F_N (from 0.05 N; μ → ∞ as F_N → 0)."""
-    forces, states = _friction_sweep(fast, start=0.05)
+    forces, states = _friction_sweep(start=0.05)
     return _friction_figure(output_dir, "fig11_friction_coefficient", forces, [s.friction_coefficient for s in states],
-                            "apparent friction coefficient μ [-]", "friction_coefficient")
+                            "apparent friction coefficient μ [-]", "friction_coefficient", provenance)
 
 
 FIGURES = {"3": figure3, "4": figure4, "5": figure5, "9": figure9, "10": figure10, "11": figure11}
 
 
-def reproduce(output_dir, fast=False) -> CheckpointTable:
-    """Write every figure (PNG + CSV) and ``checkpoints.csv`` into ``output_dir``; return the checkpoint table."""
-    output_dir = Path(output_dir)
-    output_dir.mkdir(parents=True, exist_ok=True)
+def reproduce(output_dir, provenance: Provenance | None = None) -> CheckpointTable:
+    """Write every figure (PNG + CSV) and ``checkpoints.csv`` into ``output_dir`` (created if missing, only its
+    last level: :func:`~roughcontact.provenance.output_directory`); return the checkpoint table. Each file
+    carries ``provenance`` (default: this call and its output directory)."""
+    output_dir = output_directory(output_dir)
+    provenance = provenance or Provenance("roughcontact.paper.reproduce", {"output_dir": str(output_dir)})
     for figure in FIGURES.values():
-        figure(output_dir, fast=fast)
+        figure(output_dir, provenance)
     table = checkpoint_table()
-    table.to_csv(output_dir / "checkpoints.csv")
+    table.to_csv(output_dir / "checkpoints.csv", provenance)
     return table

@@ -1,11 +1,16 @@
 """The console command is a thin wrapper: it must run through the same library functions."""
+import json
 import subprocess
 import sys
+from datetime import datetime, timedelta, timezone
 
+import numpy as np
 import pytest
+from PIL import Image
 
-from roughcontact import __version__
+from roughcontact import __version__, provenance
 from roughcontact.cli import info, main
+from roughcontact.provenance import read_csv
 
 
 def test_version_flag(capsys):
@@ -28,15 +33,91 @@ def test_info_command_does_not_import_numba():
     assert out.strip().splitlines()[-1] == "False"
 
 
-def test_unknown_command_is_an_error():
+def test_unknown_command_is_an_error(capsys):
     with pytest.raises(SystemExit) as exit_info:
         main(["frobnicate"])
     assert exit_info.value.code == 2
+    assert len(capsys.readouterr().err.strip().splitlines()) == 1
 
 
-def test_figures_command_runs_the_library_reproduction(tmp_path, capsys):
-    assert main(["figures", "--fast", "--output", str(tmp_path)]) == 0
-    out = capsys.readouterr().out
+@pytest.fixture(scope="module")
+def figures_run(tmp_path_factory):
+    """One run of ``roughcontact figures`` into a fresh directory: (directory, printed output)."""
+    output = tmp_path_factory.mktemp("figures") / "out"                 # the last level is created
+    result = subprocess.run([sys.executable, "-m", "roughcontact.cli", "figures", "--output", str(output)],
+                            capture_output=True, text=True, check=True)
+    return output, result.stdout
+
+
+def test_figures_command_runs_the_library_reproduction(figures_run):
+    output, out = figures_run
     assert "| quantity | quoted | computed |" in out          # the checkpoint table is printed
-    assert (tmp_path / "checkpoints.csv").exists()
-    assert len(list(tmp_path.glob("*.png"))) >= 6
+    assert (output / "checkpoints.csv").exists()
+    assert len(list(output.glob("*.png"))) == 6
+
+
+def test_every_figures_output_carries_its_provenance(figures_run):
+    output, _ = figures_run
+    files = sorted(output.iterdir())
+    assert {path.suffix for path in files} == {".csv", ".png"}
+    for path in files:
+        if path.suffix == ".csv":
+            line = path.read_text().splitlines()[0]
+            assert line.startswith("# ")
+            line = line[2:]
+        else:
+            with Image.open(path) as image:
+                line = image.text["Comment"]
+                assert image.text["Software"] == f"roughcontact {__version__}"
+        assert line.startswith(f"roughcontact {__version__}, ")
+        date = line.split(", ")[1]
+        assert abs(datetime.fromisoformat(date) - datetime.now(timezone.utc)) < timedelta(hours=1)
+        command, parameters = line.split(", command: ")[1].split(", parameters: ")
+        assert command == f"roughcontact figures --output {output}"
+        assert json.loads(parameters) == {"output": str(output)}
+
+
+def test_figures_csv_readers_skip_the_provenance(figures_run):
+    output, _ = figures_run
+    data = np.loadtxt(output / "fig10_tangential_force.csv", delimiter=",", skiprows=2)
+    assert data.shape == (231, 6) and np.isfinite(data).all()
+    rows = read_csv(output / "checkpoints.csv")
+    assert rows[0]["quantity"].startswith("w at 200 V")
+
+
+@pytest.mark.parametrize("make_output, message", [
+    (lambda tmp: tmp / "file.txt", "is a file"),                                    # an existing file
+    (lambda tmp: tmp / "missing" / "out", "does not exist"),                        # a deep path from a typo
+    (lambda tmp: tmp / "file.txt" / "out", "does not exist"),                       # a file as parent
+    (lambda tmp: "", "empty"),
+])
+def test_figures_output_mistakes_exit_2_with_one_line(tmp_path, capsys, make_output, message):
+    (tmp_path / "file.txt").write_text("not a directory")
+    with pytest.raises(SystemExit) as exit_info:
+        main(["figures", "--output", str(make_output(tmp_path))])
+    assert exit_info.value.code == 2
+    error = capsys.readouterr().err
+    assert len(error.strip().splitlines()) == 1 and message in error and "Traceback" not in error
+    assert not (tmp_path / "missing").exists()                                      # nothing created
+
+
+def test_unwritable_output_exits_2(tmp_path, capsys, monkeypatch):
+    monkeypatch.setattr(provenance.os, "access", lambda path, mode: False)        # root may write anywhere
+    with pytest.raises(SystemExit) as exit_info:
+        main(["figures", "--output", str(tmp_path)])
+    assert exit_info.value.code == 2
+    assert capsys.readouterr().err.strip() == f"roughcontact figures: error: the output directory {tmp_path} is not writable"
+
+
+def test_bad_option_exits_2_with_one_line(capsys):
+    with pytest.raises(SystemExit) as exit_info:
+        main(["figures", "--fast"])                                                 # removed: it was not faster
+    assert exit_info.value.code == 2
+    assert len(capsys.readouterr().err.strip().splitlines()) == 1
+
+
+def test_help_shows_defaults_without_markup(capsys):
+    with pytest.raises(SystemExit):
+        main(["figures", "--help"])
+    out = capsys.readouterr().out
+    assert "(default: roughcontact-figures)" in out and "``" not in out and ":func:" not in out
