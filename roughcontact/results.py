@@ -3,7 +3,7 @@
 A result class inherits :class:`SavableResult`; ``result.save(path)`` writes a ``.npz`` file in which every
 array field is stored as an array and every other field (numbers, strings, dicts, tuples, a
 ``surfaces.Grid``) in the JSON metadata record, together with the class name and ``roughcontact`` version.
-``ResultClass.load(path)`` gives back an equal object.
+``ResultClass.load(path)`` gives back an equal object, with read-only arrays.
 """
 from __future__ import annotations
 
@@ -29,7 +29,7 @@ def _encode(value):
     if isinstance(value, dict):
         return {k: _encode(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
-        return [_encode(v) for v in value]
+        return type(value)(_encode(v) for v in value)      # save_npz keeps a tuple apart from a list
     return value
 
 
@@ -38,8 +38,8 @@ def _decode(value):
         return Grid.from_dict(value[_GRID_TAG])
     if isinstance(value, dict):
         return {k: _decode(v) for k, v in value.items()}
-    if isinstance(value, list):
-        return [_decode(v) for v in value]
+    if isinstance(value, (list, tuple)):
+        return type(value)(_decode(v) for v in value)
     return value
 
 
@@ -63,8 +63,10 @@ class SavableResult:
         if metadata.get("kind") != cls.__qualname__:
             raise ValueError(f"{path} holds a {metadata.get('kind')!r}, not a {cls.__qualname__}")
         kwargs = {name: _decode(value) for name, value in metadata["fields"].items()}
+        for array in arrays.values():         # results are immutable: read-only as when they were made
+            array.flags.writeable = False
         kwargs.update(arrays)
-        for f in dataclasses.fields(cls):     # tuples were stored as JSON lists
+        for f in dataclasses.fields(cls):     # files written before save_npz kept tuples stored them as lists
             if isinstance(kwargs.get(f.name), list) and "tuple" in str(f.type):
                 kwargs[f.name] = tuple(kwargs[f.name])
         return cls(**kwargs)

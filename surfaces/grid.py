@@ -11,7 +11,11 @@ from functools import cached_property
 
 import numpy as np
 
-from ._checks import check_integer, check_positive
+from ._checks import check_bool, check_integer, check_real
+
+# Valid window lengths [m]: wide enough for any physical surface (nm to km, with 40 orders to spare), narrow
+# enough that areas, squared wavevectors and the spectral moments of a grid stay inside float64.
+MIN_LENGTH, MAX_LENGTH = 1e-50, 1e50
 
 
 @dataclass(frozen=True, eq=True)
@@ -42,12 +46,14 @@ class Grid:
         for axis, n in enumerate(shape):
             check_integer(f"shape[{axis}]", n, low=1)
         periodic = self.periodic
-        periodic = (bool(periodic),) * 2 if np.ndim(periodic) == 0 else tuple(bool(p) for p in periodic)
+        periodic = (check_bool("periodic", periodic),) * 2 if np.ndim(periodic) == 0 else \
+            tuple(check_bool(f"periodic[{axis}]", p) for axis, p in enumerate(periodic))
         if len(periodic) != 2:
             raise ValueError(f"periodic must be a bool or two bools, got {self.periodic!r}")
         object.__setattr__(self, "shape", tuple(int(n) for n in shape))
-        object.__setattr__(self, "lengths",
-                           tuple(check_positive(f"lengths[{axis}]", length) for axis, length in enumerate(lengths)))
+        object.__setattr__(self, "lengths", tuple(check_real(f"lengths[{axis}]", length, low=MIN_LENGTH,
+                                                             high=MAX_LENGTH)
+                                                  for axis, length in enumerate(lengths)))
         object.__setattr__(self, "periodic", periodic)
 
     @property

@@ -30,6 +30,9 @@ class HeightField:
     heights: np.ndarray
     metadata: dict = field(default_factory=dict)
 
+    # numpy operands defer to HeightField's operators (which refuse arrays) instead of broadcasting over it
+    __array_ufunc__ = None
+
     def __post_init__(self):
         if not isinstance(self.grid, Grid):
             raise TypeError(f"grid must be a surfaces.Grid, got {type(self.grid).__name__}")
@@ -43,9 +46,11 @@ class HeightField:
     @classmethod
     def from_array(cls, heights, lengths, periodic=False, **metadata) -> "HeightField":
         """Wrap a plain array of heights [m] measured over ``lengths`` [m]."""
-        heights = np.asarray(heights, dtype=float)
+        heights = check_finite_array("heights", heights)
         if heights.ndim == 1:
             heights = heights[:, None]
+        if heights.size == 0:
+            raise ValueError(f"heights is empty (shape {heights.shape}); it needs at least one pixel per axis")
         if np.ndim(lengths) == 0:
             lengths = (lengths, lengths if heights.shape[1] > 1 else lengths / heights.shape[0])
         grid = Grid(heights.shape, tuple(lengths), periodic)
@@ -65,14 +70,20 @@ class HeightField:
             raise ValueError(f"lengths (physical size in m) is required to read {path.name}; got None")
         check_real("unit", unit, low=0.0, low_open=True)
         raw = np.load(path) if path.suffix == ".npy" else np.loadtxt(path, ndmin=2)
-        return cls.from_array(np.asarray(raw, dtype=float) * unit, lengths, periodic, source=str(path))
+        return cls.from_array(raw * unit, lengths, periodic, source=str(path))
 
     # -- arithmetic ----------------------------------------------------------------------------------------
     def _check_same_grid(self, other: "HeightField"):
         if other.grid != self.grid:
             raise ValueError(f"cannot combine height fields on different grids: {self.grid} vs {other.grid}")
 
+    def _refuse_array(self, other, operation):
+        if isinstance(other, np.ndarray) and other.ndim > 0:
+            raise TypeError(f"cannot {operation} a HeightField and a numpy array of shape {other.shape}: wrap the "
+                            "array as HeightField(field.grid, array) first (or use field.heights)")
+
     def __add__(self, other):
+        self._refuse_array(other, "add")
         if isinstance(other, HeightField):
             self._check_same_grid(other)
             return HeightField(self.grid, self.heights + other.heights,
@@ -89,6 +100,7 @@ class HeightField:
         return self * -1.0
 
     def __sub__(self, other):
+        self._refuse_array(other, "subtract")
         if not isinstance(other, (HeightField, int, float, np.floating, np.integer)):
             return NotImplemented
         return self + (-other)
@@ -97,6 +109,7 @@ class HeightField:
         return (-self) + other
 
     def __mul__(self, factor):
+        self._refuse_array(factor, "multiply")
         if not isinstance(factor, (int, float, np.floating, np.integer)):
             return NotImplemented
         factor = check_real("factor", factor)
@@ -106,6 +119,7 @@ class HeightField:
     __rmul__ = __mul__
 
     def __truediv__(self, divisor):
+        self._refuse_array(divisor, "divide")
         if not isinstance(divisor, (int, float, np.floating, np.integer)):
             return NotImplemented
         divisor = check_real("divisor", divisor)

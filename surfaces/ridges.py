@@ -59,7 +59,11 @@ _TAPER = 0.3                    # ridge amplitude (relative to its median) below
 # Orientation field
 # ---------------------------------------------------------------------------------------------------------
 def _points(name, points):
-    array = check_finite_array(name, points).reshape(-1, 2) if len(points) else np.zeros((0, 2))
+    """Singular points as a tuple of ``(x, y)`` pairs [m], from a sequence of pairs (or none)."""
+    array = check_finite_array(name, points) if len(points) else np.zeros((0, 2))
+    if array.ndim != 2 or array.shape[1] != 2:
+        raise ValueError(f"{name} must be a sequence of (x, y) pairs in m, i.e. of shape (k, 2); got shape "
+                         f"{array.shape}")
     return tuple((float(x), float(y)) for x, y in array)
 
 

@@ -158,14 +158,22 @@ def _amplitude_target(rms_height, rms_slope) -> tuple:
 
 
 def _generator(rng) -> tuple:
-    """``(numpy Generator, int seed or None)``; a fresh seed is drawn and returned when ``rng`` is None."""
+    """``(numpy Generator, int seed or None)`` from ``rng`` as ``numpy.random.default_rng`` takes it (None, an int
+    seed >= 0, a SeedSequence, a BitGenerator or a Generator); a fresh seed is drawn and returned for None. The
+    seed is the one that regenerates the stream: the int, or the entropy of an unspawned SeedSequence."""
     if rng is None:
         rng = np.random.SeedSequence().entropy
     if isinstance(rng, (int, np.integer)) and not isinstance(rng, bool):
+        if rng < 0:
+            raise ValueError(f"rng = {int(rng)} is a negative seed; valid range: int seeds >= 0, or a "
+                             "numpy.random.Generator, SeedSequence or BitGenerator")
         return np.random.default_rng(int(rng)), int(rng)
-    if isinstance(rng, np.random.Generator):
-        return rng, None
-    raise TypeError(f"rng must be None, an int seed or a numpy.random.Generator, got {type(rng).__name__}")
+    if isinstance(rng, (np.random.Generator, np.random.BitGenerator, np.random.SeedSequence)):
+        replayable = isinstance(rng, np.random.SeedSequence) and not rng.spawn_key \
+            and isinstance(rng.entropy, int) and rng.pool_size == np.random.SeedSequence().pool_size
+        return np.random.default_rng(rng), (rng.entropy if replayable else None)
+    raise TypeError(f"rng must be None, an int seed >= 0, or a numpy.random.Generator, SeedSequence or "
+                    f"BitGenerator; got {type(rng).__name__}")
 
 
 def _stream_index(kx: np.ndarray, ky: np.ndarray, profile: bool) -> np.ndarray:
@@ -317,6 +325,10 @@ def self_affine(grid: Grid, hurst: float, *, rms_height=None, rms_slope=None, pr
     axes = [0] if grid.is_profile else [0, 1]
     window = max(grid.lengths[axis] for axis in axes)
     pixel = max(grid.spacing[axis] for axis in axes)
+    if window <= 2 * pixel:
+        raise ValueError(f"grid shape {grid.shape} (lengths {grid.lengths} m) is too coarse for a self-affine "
+                         f"surface: its longest wavelength {window:g} m is not above two pixels "
+                         f"({2 * pixel:g} m); valid grids have at least 3 pixels along each axis (a profile along x)")
     if short_cutoff is not None:
         short_cutoff = _check_wavelength("short_cutoff", short_cutoff, 2 * pixel * (1 - _EDGE), window,
                                          f"at least two pixels (2 dx = {2 * pixel:g} m) and at most the window")

@@ -23,11 +23,19 @@ def _as_field(field) -> HeightField:
     return field
 
 
-def _spectral_moment(field: HeightField, order: int) -> float:
-    """``Σ_q |q|^(2*order) |ĥ_q|²`` for a periodic field (exact for band-limited fields)."""
-    h = field.heights - field.heights.mean()
+def _normalised(field: HeightField) -> tuple:
+    """``(h / s, s)`` with ``s = max |h|`` (1 for a flat zero field): the statistics work on heights of order
+    one and scale back, so that squares neither overflow (|h| ≳ 1e150 m) nor underflow (|h| ≲ 1e-150 m)."""
+    scale = float(np.max(np.abs(field.heights)))
+    scale = scale if scale > 0 else 1.0
+    return field.heights / scale, scale
+
+
+def _spectral_moment(heights: np.ndarray, grid, order: int) -> float:
+    """``Σ_q |q|^(2*order) |ĥ_q|²`` of ``heights`` on a periodic ``grid`` (exact for band-limited fields)."""
+    h = heights - heights.mean()
     power = np.abs(np.fft.fft2(h) / h.size) ** 2
-    return float(np.sum(field.grid.wavevector_magnitude() ** (2 * order) * power))
+    return float(np.sum(grid.wavevector_magnitude() ** (2 * order) * power))
 
 
 def _default_method(field: HeightField, method):
@@ -42,17 +50,16 @@ def _default_method(field: HeightField, method):
 
 def rms_height(field: HeightField) -> float:
     """Root-mean-square height about the mean, ``sqrt(<(h - <h>)²>)`` [m]."""
-    h = _as_field(field).heights
-    return float(np.sqrt(np.mean((h - h.mean()) ** 2)))
+    h, scale = _normalised(_as_field(field))
+    return scale * float(np.sqrt(np.mean((h - h.mean()) ** 2)))
 
 
-def _gradients(field: HeightField) -> list:
-    """Central-difference gradient components (second-order one-sided at non-periodic edges) [-]."""
+def _gradients(h: np.ndarray, grid) -> list:
+    """Central-difference gradient components of ``h`` (second-order one-sided at non-periodic edges)."""
     grads = []
-    for axis, (n, d, periodic) in enumerate(zip(field.grid.shape, field.grid.spacing, field.grid.periodic)):
+    for axis, (n, d, periodic) in enumerate(zip(grid.shape, grid.spacing, grid.periodic)):
         if n == 1:
             continue
-        h = field.heights
         if periodic:
             grads.append((np.roll(h, -1, axis) - np.roll(h, 1, axis)) / (2 * d))
         else:
@@ -67,27 +74,28 @@ def rms_slope(field: HeightField, method=None) -> float:
     ``'finite-difference'`` uses central differences (default for non-periodic grids).
     """
     field = _as_field(field)
+    h, scale = _normalised(field)
     if _default_method(field, method) == "spectral":
-        return float(np.sqrt(_spectral_moment(field, 1)))
-    return float(np.sqrt(sum(np.mean(g ** 2) for g in _gradients(field))))
+        return scale * float(np.sqrt(_spectral_moment(h, field.grid, 1)))
+    return scale * float(np.sqrt(sum(np.mean(g ** 2) for g in _gradients(h, field.grid))))
 
 
 def rms_curvature(field: HeightField, method=None) -> float:
     """Root-mean-square Laplacian ``sqrt(<(∇²h)²>)`` [1/m] (``= sqrt(2π ∫ q⁵ C dq)``)."""
     field = _as_field(field)
+    h, scale = _normalised(field)
     if _default_method(field, method) == "spectral":
-        return float(np.sqrt(_spectral_moment(field, 2)))
+        return scale * float(np.sqrt(_spectral_moment(h, field.grid, 2)))
     laplacian = 0.0
     for axis, (n, d, periodic) in enumerate(zip(field.grid.shape, field.grid.spacing, field.grid.periodic)):
         if n < 3:
             continue
-        h = field.heights
         if periodic:
             laplacian = laplacian + (np.roll(h, -1, axis) - 2 * h + np.roll(h, 1, axis)) / d ** 2
         else:
             laplacian = laplacian + np.gradient(np.gradient(h, d, axis=axis, edge_order=2), d, axis=axis,
                                                 edge_order=2)
-    return float(np.sqrt(np.mean(laplacian ** 2)))
+    return scale * float(np.sqrt(np.mean(laplacian ** 2)))
 
 
 def _window(field: HeightField, window):
@@ -109,7 +117,8 @@ def psd(field: HeightField, bins=None, window=None) -> tuple:
     """Radially averaged power spectral density ``(q [rad/m], C [m^4])``; for a profile ``(q, C₁ [m^3])``.
 
     ``bins``: number of radial bins (default: one per ``2π/L`` ring). ``window``: ``'hann'`` (default on
-    non-periodic axes, power-normalised) or ``'none'``. Only ``q > 0`` is returned; empty bins are dropped.
+    non-periodic axes, power-normalised; it tapers only the non-periodic axes, so on a periodic grid it
+    equals ``'none'``) or ``'none'``. Only ``q > 0`` is returned; empty bins are dropped.
     Profile: ``C₁`` averages the ``±q`` pair; the Nyquist mode (even ``n``) has no partner and is halved, so that
     ``2 Σ_q C₁(q) Δq = h_rms²`` exactly (Parseval, ``Δq = 2π/L``) for an unwindowed periodic profile.
     """

@@ -16,7 +16,7 @@ import scipy.spatial
 from ._checks import check_positive, check_real
 from .ridges import PORE_DEPTH, PORE_DIAMETER
 from .heightfield import HeightField
-from .statistics import _as_field, _gradients
+from .statistics import _as_field, _gradients, _normalised
 
 
 def dominant_wavelength(field: HeightField, band: float = np.sqrt(2.0)) -> float:
@@ -91,7 +91,7 @@ def orientation_field(field: HeightField, window=None) -> OrientationField:
     if grid.is_profile:
         raise ValueError(f"orientation_field needs a 2-D field; got grid shape {grid.shape}")
     window = dominant_wavelength(field) if window is None else check_positive("window", window)
-    gx, gy = _gradients(field)
+    gx, gy = _gradients(_normalised(field)[0], grid)      # angle and coherence do not depend on the scale
     sigma = (window / grid.spacing[0], window / grid.spacing[1])
     jxx, jyy, jxy = (_gaussian_smooth(values, sigma, grid.periodic) for values in (gx * gx, gy * gy, gx * gy))
     anisotropy = np.hypot(jxx - jyy, 2 * jxy)

@@ -145,8 +145,9 @@ def test_singular_points_default_and_override():
     assert right.deltas[0][0] == pytest.approx(L - loop.deltas[0][0])   # mirror image
     moved = surfaces.fingerprint(g, "whorl", cores=[(1e-3, 2e-3), (1e-3, 3e-3)], deltas=[(4e-3, 1e-3)] * 2,
                                  pore_density=0.0, rng=0)
-    assert moved.metadata["cores"] == [[1e-3, 2e-3], [1e-3, 3e-3]] or \
-        moved.metadata["cores"] == ((1e-3, 2e-3), (1e-3, 3e-3))
+    assert moved.metadata["cores"] == ((1e-3, 2e-3), (1e-3, 3e-3))
+    with pytest.raises(ValueError, match=r"cores must be a sequence of \(x, y\) pairs.*shape \(3,\)"):
+        surfaces.fingerprint(g, cores=[1e-3, 2e-3, 3e-3])
     # zero-pole model: half a turn of orientation around a core, minus half around a delta
     core = surfaces.RidgePattern("custom", ((0.0, 0.0),), ())
     angles = np.linspace(0, 2 * np.pi, 9)[:-1]
@@ -174,6 +175,8 @@ def test_save_load_roundtrip(tmp_path):
     field = surfaces.fingerprint(grid(n=128), "tented_arch", rng=1)
     loaded = HeightField.load(field.save(tmp_path / "print.npz"))
     assert loaded == field
+    assert loaded.metadata == field.metadata                          # every entry, tuples kept as tuples
+    assert isinstance(loaded.metadata["cores"], tuple) and isinstance(loaded.metadata["deltas"][0], tuple)
     assert loaded.metadata["pattern"] == "tented_arch" and loaded.metadata["seed"] == 1
     assert len(loaded.metadata["pore_centres"]) == round(PORE_DENSITY * L * L)
 

@@ -77,10 +77,34 @@ def test_grid_equality_hash_dict_and_pickle():
     (dict(shape=(4, 4), lengths=(0.0, L)), "lengths"),
     (dict(shape=(4, 4), lengths=(float("nan"), L)), "lengths"),
     (dict(shape=(4, 4), lengths=(L, L), periodic=(True, False, True)), "periodic"),
+    (dict(shape=(4, 4), lengths=(1e300, L)), r"lengths\[0\] = 1e\+300 is out of range; valid range \[1e-50, 1e\+50\]"),
+    (dict(shape=(4, 4), lengths=(L, 1e-300)), r"lengths\[1\] = 1e-300 is out of range"),
 ])
 def test_grid_bad_input(kwargs, name):
     with pytest.raises(ValueError, match=name):
         surfaces.Grid(**kwargs)
+
+
+@pytest.mark.parametrize("periodic", ["no", 1, None, ("yes", True), (True, 0)])
+def test_grid_periodic_must_be_booleans(periodic):
+    with pytest.raises(TypeError, match="periodic.* must be True or False"):
+        surfaces.Grid((4, 4), (L, L), periodic=periodic)
+
+
+def test_grid_periodic_accepts_numpy_booleans_and_extreme_lengths_keep_a_finite_area():
+    grid = surfaces.Grid((4, 4), (L, L), periodic=np.bool_(False))
+    assert grid.periodic == (False, False) and type(grid.periodic[0]) is bool
+    assert surfaces.Grid((4, 4), (1e50, 1e50)).area == pytest.approx(1e100, rel=1e-15)
+    assert surfaces.Grid((4, 4), (1e-50, 1e-50)).pixel_area == pytest.approx(1e-100 / 16, rel=1e-15)
+
+
+def test_check_messages_print_plain_numbers():
+    with pytest.raises(ValueError) as error:
+        surfaces.Grid((np.int64(-1), 4), (L, L))
+    assert "got -1" in str(error.value) and "np." not in str(error.value)
+    with pytest.raises(ValueError) as error:
+        surfaces.HeightField(surfaces.Grid((2, 2), (L, L)), np.array([[0.0, -np.inf], [0.0, 0.0]]))
+    assert "found -inf" in str(error.value) and "np." not in str(error.value)
 
 
 # -- HeightField --------------------------------------------------------------------------------------------
@@ -126,6 +150,11 @@ def test_heightfield_arithmetic():
         a / 0
     with pytest.raises(TypeError):
         a + "1"
+    for combine in (lambda: a + np.ones(GRID.shape), lambda: np.ones(GRID.shape) + a,
+                    lambda: np.ones(GRID.shape) * a, lambda: a - np.ones(GRID.shape)):
+        with pytest.raises(TypeError, match="HeightField and a numpy array of shape"):
+            combine()                                  # not an object array of 30 HeightFields
+    assert (a * np.float64(2.0)).heights[0, 0] == 2e-6 and (np.float64(2.0) * a) == a * 2.0
     assert b.detrended().heights.mean() == pytest.approx(0, abs=1e-20)     # round-off of 30 values ~3e-6
 
 
@@ -136,6 +165,15 @@ def test_heightfield_arithmetic():
 def test_heightfield_bad_heights(values, match):
     with pytest.raises(ValueError, match=match):
         field_of(values)
+
+
+def test_complex_heights_are_refused_everywhere(tmp_path):
+    values = np.ones((6, 5)) * (1 + 0j)                    # complex even with a zero imaginary part
+    np.save(tmp_path / "complex.npy", values)
+    for make in (lambda: field_of(values), lambda: surfaces.HeightField.from_array(values, L),
+                 lambda: surfaces.HeightField.read(tmp_path / "complex.npy", lengths=L)):
+        with pytest.raises(TypeError, match="heights must be real, got complex"):
+            make()
 
 
 def test_save_load_round_trip_is_exact(tmp_path):
@@ -176,6 +214,9 @@ def test_from_array():
     field = surfaces.HeightField.from_array(np.ones((4, 3)), L, periodic=True, source="test")
     assert field.grid == surfaces.Grid((4, 3), (L, L), True) and field.metadata["source"] == "test"
     assert surfaces.HeightField.from_array(np.ones(8), L).grid.shape == (8, 1)
+    for empty in (np.zeros(0), np.zeros((3, 0))):
+        with pytest.raises(ValueError, match="heights is empty"):
+            surfaces.HeightField.from_array(empty, 1.0)
 
 
 def test_pickle_round_trip_keeps_field_read_only():

@@ -140,6 +140,11 @@ def test_deterministic_and_global_rng_untouched():
     assert a == b and a != c
     assert a.metadata["seed"] == 3 and b.metadata["seed"] is None
     assert surfaces.self_affine(grid, hurst=0.8, rms_height=1e-6, rng=d.metadata["seed"]) == d
+    sequence = surfaces.self_affine(grid, hurst=0.8, rms_height=1e-6, rng=np.random.SeedSequence(3))
+    assert sequence == a and sequence.metadata["seed"] == 3          # normalised as numpy.random.default_rng
+    spawned = np.random.SeedSequence(3).spawn(1)[0]
+    assert surfaces.self_affine(grid, hurst=0.8, rms_height=1e-6, rng=spawned).metadata["seed"] is None
+    assert surfaces.self_affine(grid, hurst=0.8, rms_height=1e-6, rng=np.random.PCG64(3)) == a
 
 
 @pytest.mark.parametrize("shape, periodic", [((128, 128), True), ((96, 80), False), ((256, 1), True)])
@@ -262,6 +267,14 @@ def test_bad_spectrum_and_grid():
         surfaces.fourier_synthesis(GRID, lambda q: -q, rng=0)
     with pytest.raises(TypeError, match="rng"):
         surfaces.self_affine(GRID, hurst=0.8, rms_height=1e-6, rng="seed")
+    with pytest.raises(ValueError, match="rng = -1 is a negative seed; valid range: int seeds >= 0"):
+        surfaces.self_affine(GRID, hurst=0.8, rms_height=1e-6, rng=-1)
+    for shape in ((1, 1), (2, 1), (2, 2)):              # no wavelength between two pixels and the window
+        with pytest.raises(ValueError, match=r"grid shape .* too coarse.*at least 3 pixels") as error:
+            surfaces.self_affine(surfaces.Grid(shape, (L, L)), hurst=0.8, rms_height=1e-6, rng=0)
+        assert "long_cutoff" not in str(error.value)
+    assert surfaces.self_affine(surfaces.Grid((3, 1), (L, L)), hurst=0.8, rms_height=1e-6, rng=0).heights.std() \
+        == pytest.approx(1e-6, rel=1e-12)
 
 
 def test_block_processing_does_not_change_the_field():
