@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from surfaces._checks import check_finite_array, check_positive
+from surfaces._checks import check_broadcast, check_finite_array, check_positive
 
 #: Vacuum permittivity ε0 [F/m] (CODATA 2018).
 EPSILON_0 = 8.8541878128e-12
@@ -61,15 +61,28 @@ class DielectricStack:
         gap = check_finite_array("gap", gap, nonnegative=True)
         return self.dielectric_offset + gap / self.eps_a
 
-    @staticmethod
-    def _voltage_squared(voltage) -> np.ndarray:
-        return check_finite_array("voltage", voltage) ** 2
+    def _times_voltage_squared(self, name, per_volt_squared, voltage) -> np.ndarray:
+        """``per_volt_squared · U²`` for a quantity ∝ U² (``per_volt_squared`` its value at 1 V), formed as
+        ``±(U sqrt|·|)²`` so it overflows only when the result does; then ``ValueError`` with the valid range."""
+        factor = np.sqrt(np.abs(per_volt_squared))
+        with np.errstate(over="ignore"):
+            values = np.sign(per_volt_squared) * (voltage * factor) ** 2
+        if not np.all(np.isfinite(values)):
+            limit = float(np.sqrt(np.finfo(float).max) / np.max(factor))
+            raise ValueError(f"voltage = {float(np.max(np.abs(voltage))):g} V makes the {name} overflow float64 "
+                             f"at these gaps; valid range |voltage| < {limit:.3g} V")
+        return values
+
+    def _inputs(self, gap, voltage) -> tuple:
+        """``(h(d) [m], U [V])``, checked and broadcast together."""
+        gap, voltage = check_broadcast(gap=gap, voltage=voltage)
+        return self.electrical_thickness(gap), voltage
 
     # -- Eqs. 18-24 ----------------------------------------------------------------------------------------
     def fields(self, gap, voltage) -> ElectricFields:
         """Fields from D-continuity (Eq. 18) and the voltage sum (Eq. 19): ``E_k = U / (eps_k h(d))`` [V/m]."""
-        voltage = check_finite_array("voltage", voltage)
-        field_air_equivalent = voltage / self.electrical_thickness(gap)      # = D / eps0
+        thickness, voltage = self._inputs(gap, voltage)
+        field_air_equivalent = voltage / thickness                           # = D / eps0
         return ElectricFields(stratum_corneum=field_air_equivalent / self.eps_sc,
                               air=field_air_equivalent / self.eps_a,
                               insulator=field_air_equivalent / self.eps_i,
@@ -77,7 +90,8 @@ class DielectricStack:
 
     def pressure(self, gap, voltage) -> np.ndarray:
         """Electrostatic attraction per unit area σ_el = ε0 U² / (2 eps_a h(d)²) [Pa] (Eq. 21)."""
-        return EPSILON_0 * self._voltage_squared(voltage) / (2 * self.eps_a * self.electrical_thickness(gap) ** 2)
+        thickness, voltage = self._inputs(gap, voltage)
+        return self._times_voltage_squared("pressure", EPSILON_0 / (2 * self.eps_a * thickness ** 2), voltage)
 
     def pressure_derivative(self, gap, voltage, order: int = 1) -> np.ndarray:
         """d^k σ_el / dd^k for k = 1, 2 [Pa/m^k]; the 1/eps_a chain-rule factor from dh/dd is included.
@@ -86,9 +100,12 @@ class DielectricStack:
         """
         if order not in (1, 2):
             raise ValueError(f"order must be 1 or 2, got {order!r}")
-        eps_a_h = self.eps_a * self.electrical_thickness(gap)
-        sigma = self.pressure(gap, voltage)
-        return -2 * sigma / eps_a_h if order == 1 else 6 * sigma / eps_a_h ** 2
+        thickness, voltage = self._inputs(gap, voltage)
+        eps_a_h = self.eps_a * thickness
+        sigma_per_volt_squared = EPSILON_0 / (2 * self.eps_a * thickness ** 2)
+        per_volt_squared = -2 * sigma_per_volt_squared / eps_a_h if order == 1 else \
+            6 * sigma_per_volt_squared / eps_a_h ** 2
+        return self._times_voltage_squared(f"pressure derivative of order {order}", per_volt_squared, voltage)
 
     def force(self, gap, voltage, area) -> np.ndarray:
         """Electrostatic force F_el = σ_el A [N] on a plate of ``area`` [m²] (Eq. 20)."""
@@ -101,7 +118,8 @@ class DielectricStack:
 
     def work_of_adhesion(self, gap, voltage) -> np.ndarray:
         """Work of electroadhesion w(d) = ∫_d^∞ σ_el dd' = ε0 U² / (2 h(d)) [J/m²] (Eq. 22)."""
-        return EPSILON_0 * self._voltage_squared(voltage) / (2 * self.electrical_thickness(gap))
+        thickness, voltage = self._inputs(gap, voltage)
+        return self._times_voltage_squared("work of adhesion", EPSILON_0 / (2 * thickness), voltage)
 
     def energy(self, gap, voltage) -> np.ndarray:
         """Interaction energy per unit area V(d) = -w(d) [J/m²]; ``dV/dd = σ_el``."""

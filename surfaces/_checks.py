@@ -81,13 +81,16 @@ def check_bool(name: str, value) -> bool:
     return bool(value)
 
 
-def broadcast_shapes(**arrays) -> tuple:
-    """The common broadcast shape of the named arrays; ``ValueError`` naming them and their shapes if none."""
+def check_broadcast(**arrays) -> tuple:
+    """The named arrays, each checked by :func:`check_finite_array` and broadcast to their common shape;
+    ``ValueError`` naming them and their shapes if they do not broadcast."""
+    checked = [check_finite_array(name, values) for name, values in arrays.items()]
     try:
-        return np.broadcast_shapes(*(np.shape(array) for array in arrays.values()))
+        return tuple(np.broadcast_arrays(*checked))
     except ValueError:
-        shapes = ", ".join(f"{name} {np.shape(array)}" for name, array in arrays.items())
-        raise ValueError(f"shapes do not broadcast: {shapes}; give equal shapes or scalars") from None
+        shapes = ", ".join(f"{name} {array.shape}" for name, array in zip(arrays, checked))
+        raise ValueError(f"shapes do not broadcast: {shapes}; give equal shapes, scalars or numpy-broadcastable "
+                         "shapes") from None
 
 
 def check_choice(name: str, value, choices):

@@ -28,7 +28,7 @@ from surfaces._checks import check_finite_array, check_real
 
 from ..electrostatics import DielectricStack
 from ..results import SavableResult
-from .gap import LinearGap
+from .gap import LinearGap, _inputs
 from .power_law import MILLIMETRE, PowerLawContact
 
 
@@ -101,15 +101,17 @@ class SlidingFrictionModel:
 
     def gap(self, normal_force, voltage) -> np.ndarray:
         """Equivalent air gap d_eq [m] from the gap model, checked to be finite and >= 0."""
-        force, voltage = np.broadcast_arrays(check_finite_array("normal_force", normal_force),
-                                             check_finite_array("voltage", voltage))
-        gap = np.broadcast_to(np.asarray(self.gap_model(force, voltage), dtype=float), force.shape)
-        return check_finite_array("gap_model output (equivalent gap)", gap, nonnegative=True)
+        force, voltage = _inputs(normal_force, voltage)
+        gap = check_finite_array("gap_model output (equivalent gap)", self.gap_model(force, voltage),
+                                 nonnegative=True)
+        if gap.shape not in ((), force.shape):
+            raise ValueError(f"gap_model returned shape {gap.shape} for normal_force and voltage of shape "
+                             f"{force.shape}; it must return that shape (or a scalar)")
+        return np.broadcast_to(gap, force.shape)
 
     def state(self, normal_force, voltage) -> SlidingState:
         """Full sliding state at normal force F_N [N] and voltage U [V] (Eqs. 21–22, 9, 40–45)."""
-        force, voltage = np.broadcast_arrays(check_finite_array("normal_force", normal_force),
-                                             check_finite_array("voltage", voltage))
+        force, voltage = _inputs(normal_force, voltage)
         gap = self.gap(force, voltage)
         sigma = self.stack.pressure(gap, voltage)
         w = self.stack.work_of_adhesion(gap, voltage)

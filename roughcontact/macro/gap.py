@@ -10,12 +10,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from surfaces._checks import check_finite_array, check_positive, check_real
+from surfaces._checks import check_broadcast, check_finite_array, check_positive, check_real
 
 
 def _inputs(normal_force, voltage):
-    return np.broadcast_arrays(check_finite_array("normal_force", normal_force),
-                               check_finite_array("voltage", voltage))
+    return check_broadcast(normal_force=normal_force, voltage=voltage)
 
 
 @dataclass(frozen=True)

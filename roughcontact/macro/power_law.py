@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from surfaces._checks import check_finite_array, check_positive
+from surfaces._checks import check_broadcast, check_finite_array, check_integer, check_positive, check_real
 
 from ..results import SavableResult
 
@@ -185,11 +185,14 @@ class PowerLawContact:
         Solves F₁ − k F₁^s = F_N for F₁ ≥ F₁,c by Newton's method; g(F₁) = F₁ − k F₁^s − F_N is convex and
         increasing there, so the iteration started at F₁ = max(2 F_N, (2k)^(1/(1−s))) (where g ≥ 0) descends
         monotonically onto the root. Broadcasts over ``normal_force`` and ``work_of_adhesion``. A normal force
-        below the pull-off force raises ``ValueError``.
+        below the pull-off force raises ``ValueError``. ``rtol`` in (0, 1) is the relative step at which F₁ counts
+        as converged; ``maxiter`` >= 0 bounds the Newton steps (0: only inputs that need none, w = 0 or F₁ = 0).
         """
-        force = check_finite_array("normal_force", normal_force)
-        w = check_finite_array("work_of_adhesion", work_of_adhesion, nonnegative=True)
-        force, w = np.broadcast_arrays(force, w)
+        rtol = check_real("rtol", rtol, low=0.0, high=1.0, low_open=True, high_open=True)
+        maxiter = check_integer("maxiter", maxiter, low=0)
+        force, w = check_broadcast(normal_force=normal_force,
+                                   work_of_adhesion=check_finite_array("work_of_adhesion", work_of_adhesion,
+                                                                       nonnegative=True))
         s, k = self.force_exponent, self.adhesion_coefficient(w)
         pull_off = self.pull_off(w)
         # one part in 1e12 of the pull-off force is rounding, not a physically lower load
@@ -218,6 +221,7 @@ class PowerLawContact:
             still = np.zeros_like(active)
             still[active] = ~converged
             active = still
-        else:
-            raise RuntimeError(f"area(): Newton iteration did not converge in {maxiter} steps")
+        if active.any():
+            raise RuntimeError(f"area(): Newton iteration did not converge in maxiter = {maxiter} steps "
+                               f"(rtol = {rtol:g})")
         return self.nonadhesive_area(force_1)

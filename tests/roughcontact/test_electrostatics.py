@@ -164,6 +164,37 @@ def test_bad_gap_voltage_and_weights():
         TABLE1.equivalent_gap(np.ones(3) * 1e-6, weights=np.ones(4))
     with pytest.raises(TypeError, match="d_sc"):
         DielectricStack(d_sc="thick")
+    with pytest.raises(ValueError, match=r"shapes do not broadcast: gap \(3,\), voltage \(2,\)"):
+        TABLE1.pressure(np.zeros(3), np.ones(2))
+    for call in (lambda: TABLE1.pressure(0.0, 100.0 + 0j), lambda: TABLE1.work_of_adhesion(np.zeros(2) + 0j, 1.0),
+                 lambda: DielectricStack(d_sc=250e-6 + 0j)):
+        with pytest.raises(TypeError, match="complex|real number"):
+            call()
+
+
+def test_huge_voltages_are_exact_or_refused_with_their_range():
+    """σ = ε0 U²/(2h²) is formed without overflowing U² alone, so it is right up to the float64 limit
+    (measured: 3.8e301 Pa at 1e150 V, d = 0, scaling as U² to 4e-16) and beyond that a ValueError gives
+    the range."""
+    c = TABLE1.dielectric_offset
+    assert TABLE1.pressure(0.0, 1e150) == pytest.approx((1e150 * np.sqrt(EPSILON_0 / 2) / c) ** 2, rel=1e-14)
+    assert TABLE1.pressure(0.0, 1e150) / TABLE1.pressure(0.0, 1.0) == pytest.approx(1e300, rel=1e-14)
+    limit = np.sqrt(np.finfo(float).max / (EPSILON_0 / (2 * c ** 2)))          # σ(0, limit) = float max
+    with pytest.raises(ValueError, match=r"voltage = 1e\+200 V makes the pressure overflow") as error:
+        TABLE1.pressure(0, 1e200)
+    assert float(str(error.value).split("< ")[1].split(" V")[0]) == pytest.approx(limit, rel=5e-3)   # 3 digits
+    for call in (lambda: TABLE1.work_of_adhesion(0.0, 1e300), lambda: TABLE1.pressure_derivative(0.0, 1e155, 2)):
+        with pytest.raises(ValueError, match="voltage = .* overflow float64.* valid range"):
+            call()
+
+
+def test_electrical_thickness_values():
+    """h(d) = d_sc/eps_sc + d/eps_a + d_i/eps_i, by hand for the humid stack (eps_a = 1.7)."""
+    gaps = np.array([0.0, 1e-6, 3e-5])
+    expected = 30e-6 / 1500.0 + gaps / 1.7 + 2e-6 / 5.0
+    np.testing.assert_allclose(HUMID.electrical_thickness(gaps), expected, rtol=1e-15)
+    with pytest.raises(ValueError, match="gap"):
+        HUMID.electrical_thickness(-1e-9)
 
 
 def test_pickle_round_trip_is_exact():

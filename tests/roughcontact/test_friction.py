@@ -109,10 +109,21 @@ def test_below_pull_off_raises():
     (lambda: LinearGap(-1e-6, 0.5e-6), "gap_at_zero_load"),
     (lambda: SlidingFrictionModel(gap_model=lambda f, u: -1e-6 + 0 * f).tangential_force(1.0, 100.0), "gap_model"),
     (lambda: SlidingFrictionModel(gap_model=lambda f, u: np.nan + 0 * f).tangential_force(1.0, 100.0), "gap_model"),
+    (lambda: SlidingFrictionModel(gap_model=lambda f, u: np.full(3, 2e-6)).tangential_force(np.ones(2), 100.0),
+     r"gap_model returned shape \(3,\) for normal_force and voltage of shape \(2,\)"),
+    (lambda: MODEL.tangential_force(np.ones(3), np.ones(2) * 100.0), r"normal_force \(3,\), voltage \(2,\)"),
+    (lambda: ConstantGap(2e-6)(np.ones(3), np.ones(2)), r"normal_force \(3,\), voltage \(2,\)"),
 ])
 def test_bad_input_raises(call, name):
     with pytest.raises(ValueError, match=name):
         call()
+
+
+def test_complex_input_is_refused():
+    for call in (lambda: MODEL.tangential_force(1.0 + 0j, 100.0), lambda: MODEL.state(1.0, np.array([100.0 + 0j])),
+                 lambda: SlidingFrictionModel(gap_model=lambda f, u: 2e-6 + 0j * f).tangential_force(1.0, 100.0)):
+        with pytest.raises(TypeError, match="must be real, got complex"):
+            call()
 
 
 def test_gap_must_be_callable():

@@ -166,6 +166,23 @@ def test_below_pull_off_raises():
         law.area([-1e-6, 1.0], 0.0)
 
 
+def test_area_iteration_limits():
+    """maxiter = 0 is fine where no Newton step is needed (w = 0: A = α F_N^m; F_N = 0 without adhesion) and
+    a RuntimeError naming maxiter where one is; bad maxiter / rtol are refused with their range."""
+    law = LAWS["dzidek_ridge"]
+    assert law.area([0.5, 0.0], 0.0, maxiter=0) == pytest.approx([law.alpha * 0.5 ** law.m, 0.0], rel=1e-15)
+    with pytest.raises(RuntimeError, match="maxiter = 0"):
+        law.area(0.5, 0.1, maxiter=0)
+    assert law.area(0.5, 0.1, rtol=1e-6) == pytest.approx(law.area(0.5, 0.1), rel=1e-10)
+    for kwargs, message in ((dict(maxiter=-1), r"maxiter must be an integer in \[0, inf\], got -1"),
+                            (dict(maxiter=2.5), "maxiter"), (dict(rtol=-1.0), r"rtol = -1.0 .* range \(0, 1\)"),
+                            (dict(rtol=0.0), "rtol"), (dict(rtol=float("nan")), "rtol")):
+        with pytest.raises(ValueError, match=message):
+            law.area(0.5, 0.1, **kwargs)
+    with pytest.raises(ValueError, match=r"normal_force \(3,\), work_of_adhesion \(2,\)"):
+        law.area(np.ones(3), np.full(2, 0.1))
+
+
 # -- bad input, presets, pickling, import cost -----------------------------------------------------------
 @pytest.mark.parametrize("kwargs, name", [
     (dict(m=1.0, alpha=1e-4, n=1.0, beta=1e-3), "m"),
