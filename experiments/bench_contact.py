@@ -1,11 +1,14 @@
 """Peer benchmark of the FFT contact solver against the FFT floor, Tamaas and ContactMechanics (a script).
 
     python experiments/bench_contact.py                          # 256² … 2048², peers if importable
-    python experiments/bench_contact.py --sizes 256 512 --csv bench.csv --threads 1
+    python experiments/bench_contact.py --sizes 256 512 --threads 1 --output out
     python experiments/bench_contact.py --fast                   # tiny grids, no peers, seconds
 
-(from the repository root after ``pip install -e .[bench]``, or with ``PYTHONPATH=.``). All numbers come from
-one run on one machine; see ``docs/benchmarks.md`` for the method, the peer conventions and measured values.
+(from the repository root after ``pip install -e .[bench]``). All numbers come from one run on one machine;
+see ``docs/benchmarks.md`` for the method, the peer conventions and measured values. Writes, into
+``--output``, ``bench_contact.csv`` (every row below) and ``bench_contact.md`` (the summary table of
+docs/benchmarks.md: per grid the FFT pair, our time to solution and its ratio to the FFT floor, the other
+starts, and the peers' times as multiples of ours), both with their provenance.
 
 Sections (column ``section`` of the table and the CSV):
 
@@ -33,7 +36,6 @@ from __future__ import annotations
 
 import argparse
 import cProfile
-import csv
 import itertools
 import os
 import pickle
@@ -43,28 +45,14 @@ import tracemalloc
 import numpy as np
 import scipy.fft
 
-import surfaces
 from roughcontact import ElasticHalfSpace, load_path, solve_contact
+from roughcontact.benchmarks import E_STAR, LENGTH, PRESSURE, SWEEP_STEPS, rough_surface, sweep_pressures
+from roughcontact.provenance import output_directory, parse_arguments, write_csv
 
-LENGTH = 1e-3            # periodic square window [m]
-E_STAR = 1e6             # contact modulus [Pa] (results scale with p̄/E*; only the ratio matters)
-PRESSURE = 0.01 * E_STAR  # default mean pressure of the runs [Pa] (--pressure, in units of E*)
-HURST, RMS_SLOPE, CUTOFF_PIXELS = 0.8, 0.1, 4
-SWEEP_STEPS = 20
 PAIRS_PER_SAMPLE = 12    # FFT floors: best of --repeat means over this many consecutive pairs (a multiple of 6)
 COLUMNS = ("section", "solver", "n", "time_s", "iterations", "fft_pairs_per_iteration",
            "time_per_iteration_s", "ratio", "contact_fraction", "mean_gap_m", "rel_diff_contact_fraction",
            "rel_diff_mean_gap", "converged", "note")
-
-
-def rough_surface(n: int, seed: int = 0, periodic: bool = True) -> surfaces.HeightField:
-    """Seeded self-affine surface on an n² grid: H = 0.8, rms slope 0.1, short cutoff 4 pixels (seed 0: the
-    benchmark's; ``periodic=False``: the same heights on a free-surface grid)."""
-    grid = surfaces.Grid((n, n), (LENGTH, LENGTH), periodic=True)
-    field = surfaces.self_affine(grid, hurst=HURST, rms_slope=RMS_SLOPE, short_cutoff=CUTOFF_PIXELS * LENGTH / n,
-                                 rng=seed)
-    return field if periodic else surfaces.HeightField(surfaces.Grid((n, n), (LENGTH, LENGTH), periodic=False),
-                                                       field.heights)
 
 
 def best_time(run, repeat: int, number: int = 1) -> float:
@@ -101,7 +89,7 @@ def timed_solve(surface, half, pressure, tol, repeat, **options):
 
 
 SOLVE_VARIANTS = (("pyfftw", "pyfftw", {}),                                   # the defaults: preconditioned, nested
-                  ("pyfftw,pk start", "pyfftw", {"cold_start": "pk"}),      # PK's uniform start (sessions 1-3)
+                  ("pyfftw,pk start", "pyfftw", {"cold_start": "pk"}),      # PK's uniform start
                   ("pyfftw,plain", "pyfftw", {"preconditioned": False}),
                   ("scipy", "scipy", {}))
 SWEEP_VARIANTS = (("cold start", {"warm_start": False}),                     # every step nested from scratch
@@ -135,8 +123,7 @@ def peak_memory(surface, pressure, tol) -> float:
     (``tracemalloc`` sees numpy's and pyFFTW's buffers)."""
     grid, heights = surface.grid, surface.heights.copy()
     # the same solve untraced first: every kernel it calls is compiled (or loaded from numba's cache) outside
-    # the trace, since JIT memory is not the solver's (a 2-step warm-up missed some: 13.8 instead of 10.2 at
-    # 256² whenever the cache was cold)
+    # the trace, since JIT memory is not the solver's (a shorter warm-up leaves kernels to compile inside it)
     solve_contact(heights, ElasticHalfSpace(grid, E_star=E_STAR), mean_pressure=pressure, tol=tol)
     tracemalloc.start()
     try:
@@ -312,7 +299,7 @@ def run(sizes, pressure, threads, tol, planner, sweep_size, sweep_tols, repeat, 
                       note="ratio = peer time / our time (pyfftw); differences relative to ours"))
     surface = rough_surface(sweep_size)
     half = ElasticHalfSpace(surface.grid, E_star=E_STAR, threads=threads, planner_effort=planner)
-    pressures = pressure * np.arange(1, SWEEP_STEPS + 1) / SWEEP_STEPS
+    pressures = sweep_pressures(pressure)
     for sweep_tol in sweep_tols:
         sweeps = {}
         for label, options in SWEEP_VARIANTS:
@@ -347,11 +334,41 @@ def format_row(values: dict) -> str:
                      f" {values['note']}"])
 
 
+def _find(rows, section, solver, n=None):
+    return next((r for r in rows if r["section"] == section and r["solver"] == solver and n in (None, r["n"])), None)
+
+
+def summary_table(rows) -> str:
+    """The Markdown tables of docs/benchmarks.md from the rows of one run: per grid the cache-warm pyFFTW pair,
+    our time to solution and its ratio to the FFT floor, the other starts and backends, the peers' times as
+    multiples of ours; then the load sweeps."""
+    def solve(n, label):
+        r = _find(rows, "solve", f"roughcontact[{label}]", n)
+        return f"{r['time_s']:.4g} ({r['iterations']})" if r else ""
+
+    def peer(n, name):
+        r = _find(rows, "peer", name, n)
+        return f"{r['time_s']:.3g} ({r['ratio']:.1f}×)" if r and r["time_s"] != "" else ""
+
+    lines = ["| n | pair [ms] | ours [s] (iter.) | ratio to the FFT floor | PK start [s] (iter.) | plain PK [s] (iter.) "
+             "| scipy.fft [s] (iter.) | Tamaas [s] (× ours) | ContactMechanics [s] (× ours) |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for n in dict.fromkeys(r["n"] for r in rows if r["section"] == "solve"):
+        pair, ours = _find(rows, "fft_floor", "pyfftw", n), _find(rows, "solve", "roughcontact[pyfftw]", n)
+        lines.append(f"| {n} | {1e3 * pair['time_s']:.3g} | {solve(n, 'pyfftw')} | {ours['ratio']:.2f} | "
+                     f"{solve(n, 'pyfftw,pk start')} | {solve(n, 'pyfftw,plain')} | {solve(n, 'scipy')} | "
+                     f"{peer(n, 'tamaas')} | {peer(n, 'ContactMechanics')} |")
+    lines += ["", "| sweep | n | time [s] | iterations | nested cold time / this |", "|---|---|---|---|---|"]
+    lines += [f"| {r['solver']}, {r['note'].split(';')[0]} | {r['n']} | {r['time_s']:.3g} | {r['iterations']} | "
+              f"{r['ratio']:.2f} |" for r in rows if r["section"] == "sweep"]
+    return "\n".join(lines) + "\n"
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--sizes", type=int, nargs="+", default=[256, 512, 1024, 2048], help="grid sizes n (n²)")
     parser.add_argument("--fast", action="store_true", help="tiny grids (32², 64²), no peers: a smoke run")
-    parser.add_argument("--csv", default="out/bench_contact.csv", help="CSV output path")
+    parser.add_argument("--output", default="out", help="output directory (its parent must exist)")
     parser.add_argument("--threads", type=int, default=1, help="FFT threads (ours, the floor; Tamaas via OpenMP)")
     parser.add_argument("--tol", type=float, default=1e-10,
                         help="our tol = Tamaas tol; ContactMechanics pentol = tol x rms height")
@@ -367,7 +384,8 @@ def main(argv=None):
     parser.add_argument("--peers", nargs="+", choices=list(PEERS), default=list(PEERS), help="peers to run")
     parser.add_argument("--wisdom", help="FFTW wisdom file: imported if it exists, saved at the end, so that "
                                          "repeated runs use the same FFT plans (see docs/benchmarks.md)")
-    args = parser.parse_args(argv)
+    args, provenance = parse_arguments(parser, argv, "python experiments/bench_contact.py")
+    output = output_directory(args.output)
     if args.fast:
         args.sizes, args.sweep_size, args.repeat, args.solve_repeat, args.no_peers = [32, 64], 32, 2, 1, True
         args.planner = "FFTW_ESTIMATE"
@@ -387,22 +405,22 @@ def main(argv=None):
                   contact_fraction="A/A0", mean_gap_m="<g> [m]", rel_diff_contact_fraction="dA/A",
                   rel_diff_mean_gap="d<g>/<g>", note="note")
     print(format_row(header))
-    os.makedirs(os.path.dirname(args.csv) or ".", exist_ok=True)
-    with open(args.csv, "w", newline="") as stream:
-        writer = csv.DictWriter(stream, fieldnames=COLUMNS)
-        writer.writeheader()
+    rows = []
 
-        def write(values):
-            writer.writerow(values)
-            stream.flush()
-            print(format_row(values), flush=True)
-        run(args.sizes, args.pressure * E_STAR, args.threads, args.tol, args.planner, args.sweep_size,
-            args.sweep_tol, args.repeat, args.solve_repeat, peers, write)
+    def write(values):                              # the CSV is rewritten after every row: a long run that is
+        rows.append(values)                         # interrupted keeps what it measured
+        write_csv(output / "bench_contact.csv", rows, provenance, COLUMNS)
+        print(format_row(values), flush=True)
+    run(args.sizes, args.pressure * E_STAR, args.threads, args.tol, args.planner, args.sweep_size,
+        args.sweep_tol, args.repeat, args.solve_repeat, peers, write)
+    table = summary_table(rows)
+    (output / "bench_contact.md").write_text(f"<!-- {provenance.line} -->\n\n{table}")
+    print(f"\n{table}")
     if args.wisdom:
         import pyfftw
         with open(args.wisdom, "wb") as stream:
             pickle.dump(pyfftw.export_wisdom(), stream)
-    print(f"load average at the end {os.getloadavg()[0]:.2f}; CSV: {args.csv}")
+    print(f"load average at the end {os.getloadavg()[0]:.2f}; written to {output}/bench_contact.csv and .md")
 
 
 if __name__ == "__main__":

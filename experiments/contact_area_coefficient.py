@@ -1,10 +1,10 @@
 """Small-load contact-area coefficient κ = (A/A0) / (p̄/(E* h'_rms)) of self-affine roughness: how it depends on
 the resolution of the short cutoff λ_s/Δx, the spectral breadth λ_r/λ_s, the load and the seed (a script).
 
-    python experiments/contact_area_coefficient.py --output out/kappa     # the study of docs/contact_area.md
-    python experiments/contact_area_coefficient.py --fast --output /tmp/k # tiny grids, seconds
+    python experiments/contact_area_coefficient.py                 # the study of docs/contact_area.md, into out/
+    python experiments/contact_area_coefficient.py --fast          # tiny grids, seconds
 
-(from the repository root after ``pip install -e .``, or with ``PYTHONPATH=.``). H = 0.8, rms slope h' = 0.1
+(from the repository root after ``pip install -e .``). H = 0.8, rms slope h' = 0.1
 (spectral, i.e. the continuum value), periodic L × L window, λ_L = L, plateau between L and λ_r, hard-wall
 contact solved by ``roughcontact.solve_contact`` (tol 1e-8) along the load path p̄/(E* h') = 0.0025 … 0.04.
 
@@ -26,28 +26,22 @@ from __future__ import annotations
 
 import argparse
 import math
-import sys
 import time
 from dataclasses import asdict, dataclass
-from pathlib import Path
 
 import numpy as np
-import scipy.ndimage
-import scipy.sparse
-import scipy.sparse.csgraph
 
 import surfaces
 from roughcontact import ElasticHalfSpace, load_path
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))    # the experiments' shared output writers
-from _output import write_csv  # noqa: E402
+from roughcontact.benchmarks import contact_patches
+from roughcontact.provenance import output_directory, parse_arguments, save_figure, write_csv
 
 LENGTH = 1e-3            # periodic square window L [m]
 E_STAR = 1e6             # contact modulus [Pa] (κ depends only on p̄/(E* h'))
 HURST, RMS_SLOPE = 0.8, 0.1
 LOADS = (0.0025, 0.005, 0.01, 0.02, 0.04)       # p̄ / (E* h'_rms)
 EXTRAPOLATION_MAX_LOAD = 0.01                   # κ(p̄) fitted linearly over p̄ ≤ this to get κ at p̄ → 0
-BAND = (1.6, 2.3)                               # issue 4's bar for κ
+BAND = (1.6, 2.3)                               # the band that κ of rigorous numerics falls in (docs/contact_area.md)
 TOL = 1e-8
 SERIES = ("resolution", "breadth", "ensemble")
 ENSEMBLE_SEEDS = 16                             # seeds of the two broad, resolved 1024² cases
@@ -88,16 +82,6 @@ def rough_surface(case: Case) -> surfaces.HeightField:
                                 rolloff=case.rolloff, rng=case.seed)
 
 
-def patches(contact: np.ndarray) -> int:
-    """Number of contact patches (4-connected, patches touching across the periodic edges merged)."""
-    labels, count = scipy.ndimage.label(contact)
-    pairs = [(labels[0], labels[-1]), (labels[:, 0], labels[:, -1])]
-    first = np.concatenate([a[(a > 0) & (b > 0)] for a, b in pairs])
-    second = np.concatenate([b[(a > 0) & (b > 0)] for a, b in pairs])
-    links = scipy.sparse.coo_matrix((np.ones(first.size), (first, second)), shape=(count + 1, count + 1))
-    return scipy.sparse.csgraph.connected_components(links, directed=False)[0] - 1    # minus the label 0
-
-
 def solve_case(case: Case, loads=LOADS, tol=TOL) -> list:
     """Rows (dicts of ``COLUMNS``) of ``case`` along the load path p̄ = load · E* h' (warm-started)."""
     field = rough_surface(case)
@@ -112,7 +96,7 @@ def solve_case(case: Case, loads=LOADS, tol=TOL) -> list:
                      "contact_fraction": result.contact_fraction, "kappa_pixels": kappa,
                      "kappa_corrected": result.corrected_contact_fraction / load,
                      "kappa_pixels_fd_slope": kappa * finite_difference / spectral,
-                     "boundary_edges": result.perimeter_edges, "patches": patches(result.contact),
+                     "boundary_edges": result.perimeter_edges, "patches": contact_patches(result.contact),
                      "rms_slope_spectral": spectral, "rms_slope_fd": finite_difference,
                      "iterations": result.iterations, "converged": result.converged,
                      "wall_time_s": result.wall_time})
@@ -180,7 +164,7 @@ def summarise(rows: list) -> list:
     return summary
 
 
-def draw(summary: list, path: Path, reference_load=EXTRAPOLATION_MAX_LOAD):
+def draw(summary: list, path, provenance, reference_load=EXTRAPOLATION_MAX_LOAD):
     """κ vs λ_s/Δx (resolution series, at ``reference_load`` and p̄ → 0), vs load and vs breadth; band shaded."""
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(1, 3, figsize=(14.5, 4.3), constrained_layout=True)
@@ -222,34 +206,33 @@ def draw(summary: list, path: Path, reference_load=EXTRAPOLATION_MAX_LOAD):
     ax.set_xlabel("λ_r / λ_s")
     ax.set_title("breadth series")
     for ax in axes:
-        ax.axhspan(*BAND, color="tab:green", alpha=0.12, label="issue bar [1.6, 2.3]")
+        ax.axhspan(*BAND, color="tab:green", alpha=0.12, label="band of rigorous numerics [1.6, 2.3]")
         ax.axhline(math.sqrt(8 / math.pi), color="gray", lw=0.8, ls=":")
         ax.axhline(math.sqrt(2 * math.pi), color="gray", lw=0.8, ls="-.")
         ax.set_ylabel("κ = (A/A0) / (p̄/(E* h'_rms))")
         ax.legend(fontsize=6)
     fig.suptitle("dotted: Persson √(8/π); dash-dot: Bush–Gibson–Thomas √(2π)", fontsize=9)
-    fig.savefig(path, dpi=90)
+    save_figure(fig, path, provenance, dpi=90)
     plt.close(fig)
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--fast", action="store_true", help="tiny grids (32²–64²), two seeds: a smoke run")
-    parser.add_argument("--output", default="out/contact_area_coefficient", help="output directory")
+    parser.add_argument("--output", default="out", help="output directory (its parent must exist)")
     parser.add_argument("--seeds", type=int, default=4, help="seeds per case (full mode)")
     parser.add_argument("--tol", type=float, default=TOL, help="solver tolerance")
     parser.add_argument("--series", nargs="+", choices=SERIES, default=list(SERIES), help="series to run")
-    args = parser.parse_args(argv)
+    args, provenance = parse_arguments(parser, argv, "python experiments/contact_area_coefficient.py")
+    output = output_directory(args.output)
     import matplotlib
     matplotlib.use("Agg")
-    output = Path(args.output)
-    output.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
     rows = run_study(study_plan(args.fast, args.seeds, args.series), tol=args.tol)
     summary = summarise(rows)
-    write_csv(output / "contact_area_coefficient.csv", rows, COLUMNS)
-    write_csv(output / "contact_area_summary.csv", summary, SUMMARY_COLUMNS)
-    draw(summary, output / "contact_area_coefficient.png")
+    write_csv(output / "contact_area_coefficient.csv", rows, provenance, COLUMNS)
+    write_csv(output / "contact_area_summary.csv", summary, provenance, SUMMARY_COLUMNS)
+    draw(summary, output / "contact_area_coefficient.png", provenance)
     print(f"{'series':10s} {'n':>5s} {'λs/Δx':>6s} {'λr/λs':>6s} {'p̄/E*h′':>8s} {'seeds':>5s} "
           f"{'κ pixels':>14s} {'κ corrected':>14s} {'patches':>7s} {'h′fd/h′':>8s}")
     for entry in summary:

@@ -4,8 +4,8 @@
     python experiments/solver_robustness.py --sizes 1024 --seeds 2
     python experiments/solver_robustness.py --fast                # 128², 1 seed, 4 loads (the CI smoke run)
 
-On seeded self-affine surfaces like the benchmark's (``bench_contact.rough_surface``: H = 0.8, rms slope 0.1,
-short cutoff 4 px; seeds 0 … ``--seeds`` − 1) every load p̄ = 0.0005 … 0.01 E* is solved by each variant:
+On seeded self-affine surfaces like the benchmark's (``roughcontact.benchmarks.rough_surface``: H = 0.8, rms
+slope 0.1, short cutoff 4 px; seeds 0 … ``--seeds`` − 1) every load p̄ = 0.0005 … 0.01 E* is solved by each variant:
 
 * ``nested`` — the defaults (periodic, preconditioned, nested cold start, float64): the reference;
 * ``pk`` — Polonsky–Keer's uniform start; ``plain`` — the same without the preconditioner;
@@ -14,7 +14,7 @@ short cutoff 4 px; seeds 0 … ``--seeds`` − 1) every load p̄ = 0.0005 … 0.
 * ``displacement`` — displacement control at the reference's penetration (must give back p̄);
 * ``free`` — the same heights on a free (non-periodic) surface: other physics, convergence only.
 
-Writes ``solver_robustness.csv`` (one row per solve: iterations, converged, the step from which the stall
+Writes, into ``--output``, ``solver_robustness.csv`` (one row per solve: iterations, converged, the step from which the stall
 fallback restarted on every entry, contact fraction, mean gap, mean pressure and their relative differences to
 the reference solve of the same surface and load) and prints a summary per variant (solves, not converged,
 fallbacks, median and largest iterations, largest differences), also in ``solver_robustness_summary.csv``.
@@ -22,18 +22,13 @@ fallbacks, median and largest iterations, largest differences), also in ``solver
 from __future__ import annotations
 
 import argparse
-import os
-import sys
-from pathlib import Path
 
 import numpy as np
 from tqdm import tqdm
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))    # the benchmark's surface and the output writer, shared
-from _output import write_csv  # noqa: E402
-from bench_contact import E_STAR, PRESSURE, SWEEP_STEPS, rough_surface  # noqa: E402
-
-from roughcontact import ElasticHalfSpace, load_path, solve_contact  # noqa: E402
+from roughcontact import ElasticHalfSpace, load_path, solve_contact
+from roughcontact.benchmarks import E_STAR, PRESSURE, SWEEP_STEPS, rough_surface, sweep_pressures
+from roughcontact.provenance import output_directory, parse_arguments, write_csv
 
 FLOAT32_TOL = 1e-5
 VARIANTS = ("nested", "pk", "plain", "warm", "float32", "displacement", "free")
@@ -98,16 +93,16 @@ def main(argv=None):
     parser.add_argument("--loads", type=int, default=SWEEP_STEPS, help="loads 0.01 E* k/loads, k = 1 … loads")
     parser.add_argument("--tol", type=float, default=1e-8, help="solver tolerance (float32: at least 1e-5)")
     parser.add_argument("--maxiter", type=int, default=2000, help="iteration cap of every solve")
-    parser.add_argument("--output", default="out/solver_robustness", help="output directory")
+    parser.add_argument("--output", default="out", help="output directory (its parent must exist)")
     parser.add_argument("--fast", action="store_true", help="128², one seed, four loads: a smoke run")
-    args = parser.parse_args(argv)
+    args, provenance = parse_arguments(parser, argv, "python experiments/solver_robustness.py")
+    output = output_directory(args.output)
     if args.fast:
         args.sizes, args.seeds, args.loads = [128], 1, 4
-    os.makedirs(args.output, exist_ok=True)
-    pressures = PRESSURE * np.arange(1, args.loads + 1) / args.loads
+    pressures = sweep_pressures(PRESSURE, args.loads)
     all_rows = list(rows(args.sizes, args.seeds, pressures, args.tol, args.maxiter))
-    write_csv(Path(args.output) / "solver_robustness.csv", all_rows)
-    write_csv(Path(args.output) / "solver_robustness_summary.csv", summary(all_rows), echo=True)
+    write_csv(output / "solver_robustness.csv", all_rows, provenance)
+    write_csv(output / "solver_robustness_summary.csv", summary(all_rows), provenance, echo=True)
 
 
 if __name__ == "__main__":

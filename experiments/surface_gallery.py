@@ -1,32 +1,31 @@
 """Gallery of synthetic surfaces: the five fingerprint classes and self-affine roughness at several Hurst
 exponents, each with its PSD (PNG), plus their measured statistics (CSV).
 
-    python experiments/surface_gallery.py [--fast] [--output DIR]   # after pip install -e . (or PYTHONPATH=.)
+    python experiments/surface_gallery.py [--fast] [--output DIR]   # after pip install -e .
 
 Writes ``fingerprint_classes.png`` (height maps with cores ● and deltas ▲, and PSDs with the requested
 ridge wavenumber), ``fingerprint_detail.png`` (a 3 mm zoom: minutiae, pores, a cross-section),
 ``roughness_hurst.png`` (maps and PSDs against the slope −2(1+H)) and ``gallery_statistics.csv``. Full mode:
 20 mm fingerprints at 1024², 1 mm roughness at 512² (≈ 20 s); ``--fast``: 10 mm at 256², 128² (≈ 3 s).
-The pictures in ``docs/img`` are the full-mode output (``--output docs/img``).
+The pictures in ``docs/img`` are the full-mode output (``--output docs/img``); every PNG carries its
+provenance in its metadata.
 """
 from __future__ import annotations
 
 import argparse
-import sys
-from pathlib import Path
 
 import numpy as np
 
 import surfaces
+from roughcontact.provenance import output_directory, parse_arguments, save_figure, write_csv
 from surfaces.plotting import plot_map, plot_profile, plot_psd
 from surfaces.ridges import PATTERNS, PORE_DENSITY, RIDGE_PERIOD
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))    # the experiments' shared output writers
-from _output import write_csv  # noqa: E402
 
 HURST_EXPONENTS = (0.3, 0.5, 0.8)
 SHORT_CUTOFF_PIXELS = 4         # short-wavelength cutoff of the roughness, in pixels
 _MM = 1e3
+#: PNG palette size and resolution of the gallery pictures (they go into docs/img: < 200 kB each).
+PALETTE_COLOURS, GALLERY_DPI = 128, 80
 
 
 def fingerprint_fields(n: int, length: float, rng: int = 1) -> dict:
@@ -42,21 +41,14 @@ def roughness_fields(n: int, length: float, rng: int = 2) -> dict:
             for hurst in HURST_EXPONENTS}
 
 
-def save_small(fig, path: Path, dpi: int = 80):
-    """Save ``fig`` as a 128-colour palette PNG (the gallery pictures go into docs/img: < 200 kB each)."""
-    import io
-
+def save_small(fig, path, provenance):
+    """Save ``fig`` as a small palette PNG with its provenance, and close it."""
     import matplotlib.pyplot as plt
-    from PIL import Image
-    buffer = io.BytesIO()
-    fig.savefig(buffer, dpi=dpi, format="png")
+    save_figure(fig, path, provenance, dpi=GALLERY_DPI, colors=PALETTE_COLOURS)
     plt.close(fig)
-    buffer.seek(0)
-    with Image.open(buffer) as image:
-        image.convert("RGB").quantize(colors=128).save(path, optimize=True)
 
 
-def draw_fingerprints(prints: dict, path: Path):
+def draw_fingerprints(prints: dict, path, provenance):
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(2, len(prints), figsize=(3.1 * len(prints), 6.0), constrained_layout=True)
     for column, (pattern, field) in enumerate(prints.items()):
@@ -77,10 +69,10 @@ def draw_fingerprints(prints: dict, path: Path):
         ax.set_xlim(1e3, 1e6)
         if column == 0:
             ax.legend(fontsize=8, loc="lower left")
-    save_small(fig, path)
+    save_small(fig, path, provenance)
 
 
-def draw_detail(field, path: Path, zoom: float = 3e-3):
+def draw_detail(field, path, provenance, zoom: float = 3e-3):
     """A ``zoom`` × ``zoom`` corner of a print at full resolution, its detected pores, and a cross-section."""
     import matplotlib.pyplot as plt
     grid = field.grid
@@ -96,10 +88,10 @@ def draw_detail(field, path: Path, zoom: float = 3e-3):
     left.set_title(f"{field.metadata['pattern']}: {pores.count} pores found ({pores.density / 1e4:.0f} cm⁻²)")
     plot_profile(crop, ax=right, axis=0, color="tab:blue")
     right.set_title("cross-section along the blue line")
-    save_small(fig, path)
+    save_small(fig, path, provenance)
 
 
-def draw_roughness(rough: dict, path: Path):
+def draw_roughness(rough: dict, path, provenance):
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(1, len(rough) + 1, figsize=(3.3 * (len(rough) + 1), 3.4), constrained_layout=True)
     for ax, (hurst, field) in zip(axes, rough.items()):
@@ -120,7 +112,7 @@ def draw_roughness(rough: dict, path: Path):
     ax.set_ylim(bottom=0.1 * floor)
     ax.set_title("PSD, dotted: q^−2(1+H)")
     ax.legend(fontsize=8)
-    save_small(fig, path)
+    save_small(fig, path, provenance)
 
 
 def statistics_rows(prints: dict, rough: dict) -> list:
@@ -139,19 +131,19 @@ def statistics_rows(prints: dict, rough: dict) -> list:
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--fast", action="store_true", help="small grids (seconds)")
-    parser.add_argument("--output", default="out/surface_gallery", help="output directory")
-    args = parser.parse_args(argv)
+    parser.add_argument("--output", default="out", help="output directory (its parent must exist)")
+    args, provenance = parse_arguments(parser, argv, "python experiments/surface_gallery.py")
+    output = output_directory(args.output)
     import matplotlib
     matplotlib.use("Agg")
-    output = Path(args.output)
-    output.mkdir(parents=True, exist_ok=True)
     prints = fingerprint_fields(256, 10e-3) if args.fast else fingerprint_fields(1024, 20e-3)
     rough = roughness_fields(128, 1e-3) if args.fast else roughness_fields(512, 1e-3)
-    draw_fingerprints(prints, output / "fingerprint_classes.png")
-    draw_detail(prints["whorl"], output / "fingerprint_detail.png")
-    draw_roughness(rough, output / "roughness_hurst.png")
+    draw_fingerprints(prints, output / "fingerprint_classes.png", provenance)
+    draw_detail(prints["whorl"], output / "fingerprint_detail.png", provenance)
+    draw_roughness(rough, output / "roughness_hurst.png", provenance)
     rows = statistics_rows(prints, rough)
-    write_csv(output / "gallery_statistics.csv", rows, echo=True)
+    # no provenance line yet: tests/surfaces/test_gallery.py reads this file with a plain csv.DictReader
+    write_csv(output / "gallery_statistics.csv", rows, None, echo=True)
     print(f"written to {output}/")
     return rows
 

@@ -86,17 +86,17 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
-    from .provenance import OutputPathError, Provenance
+    from .provenance import OutputPathError, parse_arguments
 
-    argv = sys.argv[1:] if argv is None else list(argv)
     parser = build_parser()
-    args = parser.parse_args(argv)
-    parameters = {key: value for key, value in vars(args).items() if key not in ("run", "command")}
+    args, provenance = parse_arguments(parser, argv, "roughcontact")
     try:
-        return args.run(args, Provenance.of_command("roughcontact", argv, parameters))
-    except (OutputPathError, OSError) as error:
-        message = error.strerror if isinstance(error, OSError) and error.strerror else error
-        parser.exit(USAGE_ERROR, f"roughcontact {args.command}: error: {message}\n")
+        return args.run(args, provenance)
+    except OutputPathError as error:
+        parser.exit(USAGE_ERROR, f"roughcontact {args.command}: error: {error}\n")
+    except OSError as error:                      # e.g. the disk filled up while writing
+        parser.exit(USAGE_ERROR, f"roughcontact {args.command}: error: cannot write {error.filename}: "
+                                 f"{error.strerror}\n")
 
 
 if __name__ == "__main__":

@@ -19,6 +19,7 @@ import csv
 import json
 import os
 import shlex
+import sys
 from dataclasses import dataclass, field
 from datetime import datetime, timezone
 from pathlib import Path
@@ -48,8 +49,9 @@ class Provenance:
 
     @classmethod
     def of_command(cls, program: str, argv, parameters: dict) -> Provenance:
-        """The provenance of ``program`` run with the arguments ``argv`` (a list, shell-quoted here)."""
-        return cls(command=shlex.join([program, *map(str, argv)]), parameters=dict(parameters))
+        """The provenance of ``program`` (a command line, e.g. ``python experiments/x.py``) run with the
+        arguments ``argv`` (a list, shell-quoted here)."""
+        return cls(command=" ".join([program, shlex.join(map(str, argv))]).strip(), parameters=dict(parameters))
 
     @property
     def line(self) -> str:
@@ -61,6 +63,15 @@ class Provenance:
     def png_metadata(self) -> dict:
         """PNG text chunks for matplotlib's ``savefig(..., metadata=...)``."""
         return {"Software": f"roughcontact {self.version}", "Comment": self.line}
+
+
+def parse_arguments(parser, argv, program: str) -> tuple:
+    """``(args, provenance)``: ``parser``'s arguments from ``argv`` (default: the command line) and the
+    provenance of running ``program`` with them (the parameters: the parsed arguments, callables left out)."""
+    argv = sys.argv[1:] if argv is None else list(argv)
+    args = parser.parse_args(argv)
+    parameters = {key: value for key, value in vars(args).items() if not callable(value)}
+    return args, Provenance.of_command(program, argv, parameters)
 
 
 def output_directory(path) -> Path:
@@ -84,13 +95,14 @@ def output_directory(path) -> Path:
     return path
 
 
-def write_csv(path, rows, provenance: Provenance, columns=None, echo=False) -> Path:
+def write_csv(path, rows, provenance: Provenance | None, columns=None, echo=False) -> Path:
     """Write ``rows`` (dicts) to the CSV file ``path`` after the provenance comment, with ``columns`` as header
     (default: the first row's keys; other keys are ignored, missing ones left empty); ``echo`` also prints
-    each row as ``key=value, …``."""
+    each row as ``key=value, …``. ``provenance=None`` writes no comment line, for a reader that cannot skip one."""
     rows = list(rows)
     with open(path, "w", newline="") as stream:
-        stream.write(f"# {provenance.line}\n")
+        if provenance is not None:
+            stream.write(f"# {provenance.line}\n")
         writer = csv.DictWriter(stream, fieldnames=columns or list(rows[0]), extrasaction="ignore", restval="")
         writer.writeheader()
         writer.writerows(rows)

@@ -1,4 +1,3 @@
-import csv
 import importlib.util
 import os
 import sys
@@ -14,7 +13,7 @@ EXPERIMENTS = Path(__file__).resolve().parents[1] / "experiments"
 @pytest.fixture(scope="session")
 def load_experiment():
     """``load_experiment(name)`` imports the script ``experiments/<name>.py`` as the module ``name``, registered in
-    ``sys.modules`` (dataclasses look their module up there; the scripts import each other by name)."""
+    ``sys.modules`` (dataclasses look their module up there)."""
     def load(name):
         if name not in sys.modules:
             spec = importlib.util.spec_from_file_location(name, EXPERIMENTS / f"{name}.py")
@@ -37,8 +36,11 @@ def fast_run(load_experiment, tmp_path_factory):
 
 @pytest.fixture(scope="session")
 def read_csv():
-    """``read_csv(path)``: the rows of a CSV file as dicts of strings."""
+    """``read_csv(path)``: the rows of a CSV file as dicts of strings, after checking its provenance line."""
+    from roughcontact.provenance import read_csv as read_rows
+
     def read(path):
-        with open(path, newline="") as stream:
-            return list(csv.DictReader(stream))
+        with open(path) as stream:
+            assert stream.readline().startswith("# roughcontact ")
+        return read_rows(path)
     return read

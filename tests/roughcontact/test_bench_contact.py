@@ -1,16 +1,23 @@
 """The peer benchmark runs in fast mode and its numbers are self-consistent (no timing is asserted)."""
-import csv
-
 import pytest
 
 
 @pytest.fixture(scope="module")
-def rows(load_experiment, tmp_path_factory):
-    bench = load_experiment("bench_contact")
-    path = tmp_path_factory.mktemp("bench") / "bench.csv"
-    bench.main(["--fast", "--csv", str(path)])
-    with open(path, newline="") as stream:
-        return list(csv.DictReader(stream))
+def output(fast_run):
+    return fast_run("bench_contact")
+
+
+@pytest.fixture(scope="module")
+def rows(output, read_csv):
+    return read_csv(output / "bench_contact.csv")
+
+
+def test_summary_table_for_the_docs(output):
+    text = (output / "bench_contact.md").read_text()
+    assert text.startswith("<!-- roughcontact ")                     # provenance
+    table = [line for line in text.splitlines() if line.startswith("| 32 ") or line.startswith("| 64 ")]
+    assert len(table) == 2 and all(line.count("|") == 10 for line in table)
+    assert text.count("| cold start, tol") == text.count("| warm start, tol") == 2
 
 
 def select(rows, section, solver=None):

@@ -74,7 +74,7 @@ def test_every_figures_output_carries_its_provenance(figures_run):
         assert abs(datetime.fromisoformat(date) - datetime.now(timezone.utc)) < timedelta(hours=1)
         command, parameters = line.split(", command: ")[1].split(", parameters: ")
         assert command == f"roughcontact figures --output {output}"
-        assert json.loads(parameters) == {"output": str(output)}
+        assert json.loads(parameters) == {"command": "figures", "output": str(output)}
 
 
 def test_figures_csv_readers_skip_the_provenance(figures_run):

@@ -3,6 +3,7 @@ import math
 
 import numpy as np
 import pytest
+from PIL import Image
 
 from roughcontact.contact import PERIMETER_CORRECTION
 
@@ -17,10 +18,12 @@ def output(fast_run):
     return fast_run("contact_area_coefficient")
 
 
-def test_files_written(output):
-    for name in ("contact_area_coefficient.csv", "contact_area_summary.csv", "contact_area_coefficient.png"):
-        assert (output / name).stat().st_size > 0
-    assert (output / "contact_area_coefficient.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+def test_files_written_with_provenance(output):
+    for name in ("contact_area_coefficient.csv", "contact_area_summary.csv"):
+        assert (output / name).read_text().startswith("# roughcontact ")
+    with Image.open(output / "contact_area_coefficient.png") as image:
+        assert image.format == "PNG"
+        assert "command: python experiments/contact_area_coefficient.py --fast" in image.text["Comment"]
 
 
 def test_rows_consistent(study, output, read_csv):
@@ -55,13 +58,6 @@ def test_summary_means(output, read_csv):
         assert len(values) == int(entry["seeds"]) == 2
         assert float(entry["kappa_pixels_mean"]) == pytest.approx(np.mean(values), rel=1e-12)
         assert float(entry["kappa_pixels_std"]) == pytest.approx(np.std(values, ddof=1), rel=1e-9, abs=1e-15)
-
-
-def test_patches(study):
-    contact = np.zeros((8, 8), dtype=bool)
-    contact[2:4, 2:5] = True                      # a 2×3 block: perimeter 10 edges
-    contact[0, 0] = contact[-1, 0] = contact[0, -1] = True   # three pixels joined across the periodic edges
-    assert study.patches(contact) == 2
 
 
 def test_extrapolation_recovers_a_line(study):
