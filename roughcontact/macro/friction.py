@@ -14,6 +14,12 @@ Chain for a normal force F_N [N] and voltage U [V]:
    exact and smooth as σ_el → 0 (it gives F_T = μ0 F_N exactly at U = 0, where Eq. 45 is 0·∞).
 5. μ = F_T / F_N (Eq. 42).
 
+Inputs outside the physics: the voltage enters only through U² (Eqs. 21–22), so −U and U give the same state
+(a DC voltage of either polarity; an AC amplitude). μ is defined for F_N > 0 only:
+:meth:`SlidingFrictionModel.friction_coefficient` refuses F_N <= 0, because at F_N = 0 a voltage alone still
+produces a finite friction force (use :meth:`~SlidingFrictionModel.tangential_force`), while the
+``friction_coefficient`` field of :class:`SlidingState` records +inf there.
+
 Saturation rule (outside the paper's 0–2.3 N): the empirical reduction law would make A_R negative when
 c₂ (μ0 F_N)² > A_R0² (about 18 N for Table 1). A contact area cannot be negative, so A_R = max(A_R0 − η F_T², 0);
 the self-consistent solution there is A_R = 0, F_T = μ0 F_N, reported by ``area_saturated``.
@@ -123,8 +129,8 @@ class SlidingFrictionModel:
         drive = self.mu0 * force + kappa * initial_area           # X [N]
         if (drive < 0).any():
             index = tuple(np.argwhere(drive < 0)[0])
-            raise ValueError(f"normal_force = {force[index]!r} N is so tensile that μ0 F_N + (τ0 + μ0 σ_el) A_R0 "
-                             f"< 0 at voltage {voltage[index]!r} V; the friction law needs it >= 0")
+            raise ValueError(f"normal_force = {float(force[index])} N is so tensile that μ0 F_N + (τ0 + μ0 σ_el) A_R0 "
+                             f"< 0 at voltage {float(voltage[index])} V; the friction law needs it >= 0")
         tangential = 2 * drive / (1 + np.sqrt(1 + 4 * kappa * self.c2 * (mean_pressure + kappa)))
         saturated = self.c2 * (self.mu0 * force) ** 2 > initial_area ** 2
         tangential = np.where(saturated, self.mu0 * force, tangential)
@@ -142,5 +148,11 @@ class SlidingFrictionModel:
         return self.state(normal_force, voltage).tangential_force
 
     def friction_coefficient(self, normal_force, voltage) -> np.ndarray:
-        """Apparent friction coefficient μ = F_T/F_N = μ0 (1 + F_el/F_N) (Eq. 42)."""
-        return self.state(normal_force, voltage).friction_coefficient
+        """Apparent friction coefficient μ = F_T/F_N = μ0 (1 + F_el/F_N) (Eq. 42) at normal forces F_N > 0 [N]
+        (``ValueError`` otherwise: μ is unbounded as F_N → 0 under voltage) and voltages U of either sign (only
+        U² enters)."""
+        force = check_finite_array("normal_force", normal_force)
+        if (force <= 0).any():
+            raise ValueError(f"friction_coefficient needs normal_force > 0, got {float(force[force <= 0].flat[0])} N: "
+                             "μ = F_T/F_N is unbounded as F_N → 0 under voltage; use tangential_force() there")
+        return self.state(force, voltage).friction_coefficient

@@ -93,6 +93,18 @@ def test_saturation_is_continuous():
     assert 0 < jump < 2 * 0.26 * (forces[1] - forces[0])
 
 
+@pytest.mark.parametrize("force", [0.0, -1e-4, np.array([1.0, 0.0])])     # -1e-4 N: above the pull-off force
+def test_friction_coefficient_needs_a_positive_normal_force(force):
+    with pytest.raises(ValueError, match=r"normal_force > 0, got (0\.0|-0\.0001) N"):
+        MODEL.friction_coefficient(force, 200.0)
+    assert np.isfinite(MODEL.tangential_force(force, 200.0)).all()     # the force itself is defined there
+
+
+def test_only_the_square_of_the_voltage_enters():
+    np.testing.assert_array_equal(MODEL.friction_coefficient(FORCES, -150.0), MODEL.friction_coefficient(FORCES, 150.0))
+    np.testing.assert_array_equal(MODEL.state(FORCES, -150.0).area, MODEL.state(FORCES, 150.0).area)
+
+
 def test_below_pull_off_raises():
     with pytest.raises(ValueError, match="pull-off"):
         MODEL.tangential_force(-0.1, 200.0)
