@@ -18,6 +18,11 @@ _LAZY = {
     "solve_contact": "contact",
     "load_path": "contact",
     "ContactResult": "contact",
+    "ContactProblem": "contact",
+    "HardWall": "interactions",
+    "ElectrostaticInteraction": "interactions",
+    "ExponentialAdhesion": "interactions",
+    "MaugisDugdale": "interactions",
 }
 
 __getattr__, __dir__, __all__ = lazy_attributes(__name__, _LAZY, ["__version__"])

@@ -230,10 +230,16 @@ def boundary_edges(contact: np.ndarray, periodic=(True, True)) -> int:
 class ContactResult(SavableResult):
     """Solution of one contact problem. Fields in SI units; see ``docs/conventions.md`` for signs.
 
-    ``pressure`` [Pa], ``displacement`` u [m], ``gap`` g [m] (≥ 0, exactly 0 on the contact set), ``contact``
-    (bool mask p > 0), ``contact_fraction`` A/A0, ``mean_pressure`` [Pa], ``mean_gap`` [m], ``penetration``
-    δ = max(h) − s [m], ``elastic_energy`` ½∫p u dA [J], ``iterations`` (CG steps), ``residuals`` (history of
-    the relative rms gap error on the contact set), ``converged``, ``message``, ``wall_time`` [s], ``params``.
+    Tractions [Pa], positive compressive: ``pressure`` p, the total normal traction that deforms the body
+    (u = K p), = ``contact_pressure`` (the wall's multiplier: ≥ 0, non-zero on the contact set only) +
+    ``interaction_traction`` p_int(g) of the ``interaction`` law (everywhere; −σ_el(g) for electroadhesion, 0
+    for the hard wall). ``mean_pressure`` <p> [Pa] is the external load (any sign; ``total_force`` [N]).
+    Geometry [m]: ``displacement`` u, ``gap`` g (≥ 0, 0 on the contact set), ``flat_position`` s, with
+    g = s − h + u, ``penetration`` δ = max(h) − s, ``mean_gap``; ``contact`` (bool mask), ``contact_fraction``
+    A/A0. Energies [J]: ``elastic_energy`` ½∫p u dA, ``interaction_energy`` ∫V(g) dA. Convergence:
+    ``iterations``, ``residuals`` (history of the relative error), ``converged``, ``message``, ``wall_time``
+    [s]. ``control`` ("mean_pressure", "total_force" or "penetration") and ``requested`` say what was fixed;
+    ``params`` the solver's settings and diagnostics.
     """
 
     pressure: np.ndarray
@@ -251,6 +257,13 @@ class ContactResult(SavableResult):
     message: str
     wall_time: float
     params: dict = field(default_factory=dict)
+    contact_pressure: np.ndarray | None = None
+    interaction_traction: np.ndarray | None = None
+    flat_position: float = math.nan
+    interaction_energy: float = 0.0
+    interaction: Interaction = HardWall()
+    control: str = ""
+    requested: float = math.nan
 
     @functools.cached_property
     def perimeter_edges(self) -> int:
@@ -266,8 +279,33 @@ class ContactResult(SavableResult):
 
     @property
     def total_force(self) -> float:
-        """Total normal force F = <p> Lx Ly [N]."""
+        """Total normal force F = <p> Lx Ly [N]: the external load, positive pushing the bodies together."""
         return self.mean_pressure * self.params["grid"].area
+
+    @property
+    def total_energy(self) -> float:
+        """Elastic plus interaction energy [J] (the external load's work not included)."""
+        return self.elastic_energy + self.interaction_energy
+
+    @property
+    def electrostatic_force(self) -> float:
+        """Total electrostatic attraction F_el = ∫σ_el(g) dA [N] (≥ 0) of an electrostatic solve."""
+        stack, voltage = self._electrostatics()
+        return float(np.sum(stack.pressure(self.gap, voltage), dtype=np.float64)) * self.params["grid"].pixel_area
+
+    @property
+    def equivalent_gap(self) -> float:
+        """Equivalent air gap d_eq of seed Eq. 25 over the solved window (contact points included) [m]:
+        ``DielectricStack.equivalent_gap`` of ``gap``."""
+        stack, _ = self._electrostatics()
+        return stack.equivalent_gap(self.gap)
+
+    def _electrostatics(self):
+        from .interactions import ElectrostaticInteraction
+        if not isinstance(self.interaction, ElectrostaticInteraction):
+            raise ValueError(f"the result's interaction is {type(self.interaction).__name__}, not an "
+                             "ElectrostaticInteraction; use DielectricStack.equivalent_gap(result.gap) for another stack")
+        return self.interaction.stack, self.interaction.voltage
 
     def __repr__(self):
         return (f"ContactResult(contact_fraction={self.contact_fraction:.6g}, mean_pressure={self.mean_pressure:.6g} "
@@ -356,6 +394,20 @@ def _restart(p, t, z_in, index, been_in_contact) -> int:
     return _contact_index(p, index, been_in_contact)
 
 
+def _checked_interaction(interaction) -> Interaction:
+    """The law to solve with (HardWall() for None), checked."""
+    if interaction is None:
+        return HardWall()
+    if not isinstance(interaction, Interaction):
+        raise TypeError(f"interaction must be an Interaction (roughcontact.interactions), got "
+                        f"{type(interaction).__name__}")
+    if type(interaction) is Interaction:
+        raise ValueError("interaction = Interaction() is the abstract base class; pass a law such as HardWall(), "
+                         "ElectrostaticInteraction(stack, voltage) or a subclass that implements energy, traction "
+                         "and stiffness")
+    return interaction
+
+
 def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, total_force=None,
                   penetration=None, tol=1e-8, maxiter=10000, x0=None, cold_start="nested", callback=None,
                   preconditioned=True, interaction: Interaction | None = None, warn=True) -> ContactResult:
@@ -368,7 +420,9 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     half : ElasticHalfSpace
         The elastic body (kernel, FFT backend, dtype).
     mean_pressure, total_force, penetration
-        Exactly one: <p> [Pa] > 0, F = <p> Lx Ly [N] > 0, or δ = max(h) − s [m] (displacement control).
+        Exactly one: the external load <p> [Pa] or F = <p> Lx Ly [N] (> 0 for the hard wall; any sign with a
+        smooth interaction, where a tensile load beyond pull-off is reported as no equilibrium), or the
+        penetration δ = max(h) − s [m] (displacement control; any sign).
     tol : float
         Relative tolerance of the convergence criterion (module docstring), in (0, 1).
     maxiter : int
@@ -388,17 +442,21 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
         steps (rough 1024²: 159 → 93 steps; Hertz 512² free surface: 64 → 27 steps, 0.61 → 0.49 s;
         ``docs/solver.md``).
     interaction : Interaction, optional
-        Surface interaction law; only :class:`~roughcontact.interactions.HardWall` (the default) so far.
+        Surface interaction law (:mod:`roughcontact.interactions`): :class:`~roughcontact.interactions.HardWall`
+        (the default; Polonsky–Keer, this module) or a smooth law acting with the wall
+        (:mod:`roughcontact.gap_solver`, periodic grids; ``x0`` then a previous result, ``cold_start`` and
+        ``preconditioned`` do not apply). A law that vanishes (0 V) is solved as the hard wall.
     warn : bool
         Emit a :class:`~roughcontact.results.ConvergenceWarning` when not converged.
     """
     start = time.perf_counter()
     if not isinstance(half, ElasticHalfSpace):
         raise TypeError(f"half must be an ElasticHalfSpace, got {type(half).__name__}")
-    interaction = HardWall() if interaction is None else interaction
-    if not isinstance(interaction, HardWall):
-        raise ValueError(f"interaction = {interaction!r} is not supported yet; only HardWall() (the default) is "
-                         "implemented (see docs/solver.md for how smooth interactions will plug in)")
+    interaction = _checked_interaction(interaction)
+    if interaction.smooth and not interaction.vanishes:    # (a law that vanishes, e.g. at 0 V, is the hard wall)
+        from .gap_solver import solve_smooth
+        return solve_smooth(height_field, half, interaction, mean_pressure=mean_pressure, total_force=total_force,
+                            penetration=penetration, tol=tol, maxiter=maxiter, x0=x0, callback=callback, warn=warn)
     given = {name: value for name, value in (("mean_pressure", mean_pressure), ("total_force", total_force),
                                              ("penetration", penetration)) if value is not None}
     if len(given) != 1:
@@ -424,7 +482,8 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
               "preconditioned": preconditioned, "start": "x0" if warm is not None else "pk", "nested_iterations": [],
               "restart_every_entry_from": None,
               "control": next(iter(given)), "requested": float(next(iter(given.values()))),
-              "interaction": type(interaction).__name__, "kernel": half.description, "version": __version__}
+              "interaction": type(interaction).__name__, "law": interaction, "kernel": half.description,
+              "version": __version__}
 
     n_points = heights.size
     h = heights.reshape(-1)
@@ -592,13 +651,44 @@ def _result(p, u, h, shift, half, params, iterations, residuals, converged, mess
     for array in (pressure, displacement, gap, contact):
         array.flags.writeable = False
     params = {**params, "fft_pairs": transforms / 2}
+    law = params.pop("law")
     return ContactResult(
         pressure=pressure, displacement=displacement, gap=gap, contact=contact,
         contact_fraction=float(np.count_nonzero(contact)) / contact.size,
         mean_pressure=float(p.mean(dtype=np.float64)), mean_gap=float(gap.mean(dtype=np.float64)),
         penetration=float(h.max()) - float(shift), elastic_energy=half.elastic_energy(pressure, displacement),
         iterations=int(iterations), residuals=np.asarray(residuals, dtype=np.float64), converged=bool(converged),
-        message=message, wall_time=time.perf_counter() - start, params=params)
+        message=message, wall_time=time.perf_counter() - start, params=params,
+        contact_pressure=pressure, interaction_traction=np.broadcast_to(np.zeros((), half.dtype), grid.shape),
+        flat_position=float(shift), interaction=law, control=params["control"], requested=params["requested"])
+
+
+@dataclass(frozen=True)
+class ContactProblem:
+    """What to solve: the topography ``surface`` h [m], the elastic ``body`` and the ``interaction`` law.
+
+    ``problem.solve(mean_pressure=…)`` (or ``total_force=`` [N], ``penetration=`` [m]; solver options as in
+    :func:`solve_contact`) returns a :class:`ContactResult`; ``problem.load_path(loads)`` sweeps the load.
+    """
+
+    surface: HeightField
+    body: ElasticHalfSpace
+    interaction: Interaction = HardWall()
+
+    def __post_init__(self):
+        if not isinstance(self.body, ElasticHalfSpace):
+            raise TypeError(f"body must be an ElasticHalfSpace, got {type(self.body).__name__}")
+        if not isinstance(self.surface, HeightField):
+            object.__setattr__(self, "surface", HeightField(self.body.grid, _heights(self.surface, self.body)))
+        elif self.surface.grid != self.body.grid:
+            raise ValueError(f"surface.grid {self.surface.grid} differs from the body's grid {self.body.grid}")
+        object.__setattr__(self, "interaction", _checked_interaction(self.interaction))
+
+    def solve(self, **control_and_options) -> ContactResult:
+        return solve_contact(self.surface, self.body, interaction=self.interaction, **control_and_options)
+
+    def load_path(self, mean_pressures, **options):
+        return load_path(self.surface, self.body, mean_pressures, interaction=self.interaction, **options)
 
 
 PREDICTORS = ("secant", "previous")
@@ -648,6 +738,7 @@ def load_path(height_field, half: ElasticHalfSpace, mean_pressures, warm_start=T
     if start is not None and not warm_start:
         raise ValueError("start= warm-starts the first step; it contradicts warm_start=False")
     check_choice("predictor", predictor, PREDICTORS)
+    smooth = _checked_interaction(solver_options.get("interaction")).smooth   # (its warm start is the last gap)
     from tqdm.auto import tqdm
 
     previous = starts[-1] if starts else None
@@ -655,7 +746,7 @@ def load_path(height_field, half: ElasticHalfSpace, mean_pressures, warm_start=T
     steps = tqdm(mean_pressures, desc="load path", unit="step", disable=not progress)
     for mean_pressure in steps:
         x0 = previous if warm_start else None
-        if warm_start and predictor == "secant" and before is not None:
+        if warm_start and predictor == "secant" and before is not None and not smooth:
             x0 = _secant_prediction(previous, before, mean_pressure)
         result = solve_contact(height_field, half, mean_pressure=mean_pressure, x0=x0, **solver_options)
         previous, before = result, previous

@@ -1,17 +1,21 @@
 """Interaction laws between the elastic surface and the rigid counter-face, as functions of the gap g [m].
 
-An interaction is described by three per-area quantities (``docs/conventions.md``; ``docs/solver.md``):
+An interaction is described by three per-area quantities (``docs/conventions.md``; ``docs/interactions.md``):
 
-* ``energy(g)``     V(g) [J/m²], the interaction energy per unit area;
+* ``energy(g)``     V(g) [J/m²], the interaction energy per unit area, V → 0 as g → ∞;
 * ``traction(g)``   p_int(g) = −dV/dg [Pa], the normal traction it exerts on the elastic body, positive
                     compressive (repulsive); an attraction such as electroadhesion is negative;
-* ``stiffness(g)``  k(g) = dp_int/dg [Pa/m], what a Newton step on the gap needs.
+* ``stiffness(g)``  k(g) = dp_int/dg = −d²V/dg² [Pa/m].
 
-The hard wall (non-penetration, no adhesion) is the singular member of the family: V = 0 for g ≥ 0 and
-+∞ for g < 0; its traction is not a function of the gap but the Lagrange multiplier that the constrained
-conjugate-gradient solver computes, so ``HardWall.traction``/``stiffness`` are zero wherever it is smooth
-(g > 0). Smooth laws (the dielectric stack's attraction −σ_el(g)) add their traction to the wall's
-multiplier; ``docs/solver.md`` describes how the solver takes them.
+Every law acts together with the impenetrable flat (g ≥ 0). The hard wall alone (:class:`HardWall`: no
+adhesion) is the singular member of the family: its traction is not a function of the gap but the Lagrange
+multiplier that the Polonsky–Keer solver computes. The smooth laws (:class:`ElectrostaticInteraction`,
+:class:`ExponentialAdhesion`, :class:`MaugisDugdale`, or a user's subclass of :class:`Interaction`) add the
+traction p_int(g) everywhere, the wall's contact pressure where g = 0.
+
+A user's own law subclasses :class:`Interaction`, is a frozen dataclass (so that results can be saved and
+pickled with it) and implements the three methods on float arrays, plus ``length``, the gap scale [m] over
+which it varies (the solver's scale for "far away"). ``docs/interactions.md`` has an example.
 """
 from __future__ import annotations
 
@@ -19,14 +23,21 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from surfaces._checks import check_finite_array
+from surfaces._checks import check_finite_array, check_positive, check_real
+
+from .electrostatics import DielectricStack
 
 
 class Interaction:
-    """Base class: a gap-dependent interaction law (energy, traction, stiffness; see module docstring)."""
+    """Base class: a gap-dependent interaction law (energy, traction, stiffness; see the module docstring)."""
 
-    #: True when the law contains the non-penetration constraint g ≥ 0.
-    hard_wall: bool = False
+    #: Every law acts together with the impenetrable flat (g ≥ 0).
+    hard_wall: bool = True
+    #: False for the hard wall alone, whose traction is a multiplier, not a function of the gap.
+    smooth: bool = True
+    #: True where the law exerts no traction at any gap (the hard wall alone solves it).
+    vanishes: bool = False
+    #: A law also has ``length``: the gap scale [m] over which it varies (a field or a property).
 
     def energy(self, gap) -> np.ndarray:
         raise NotImplementedError
@@ -46,7 +57,8 @@ class HardWall(Interaction):
     p ≥ 0, g ≥ 0, p g = 0); away from contact the wall exerts no traction.
     """
 
-    hard_wall = True
+    smooth = False
+    length = 0.0               # the wall acts at g = 0 only
 
     def energy(self, gap) -> np.ndarray:
         """V(g) [J/m²]: 0 where g ≥ 0, +inf where the wall is penetrated."""
@@ -60,3 +72,107 @@ class HardWall(Interaction):
     def stiffness(self, gap) -> np.ndarray:
         """k(g) = dp_int/dg [Pa/m] for g > 0: zero."""
         return np.zeros_like(check_finite_array("gap", gap, nonnegative=True))
+
+
+@dataclass(frozen=True)
+class ElectrostaticInteraction(Interaction):
+    """The attraction of the dielectric stack at ``voltage`` [V] across the air gap (seed Eqs. 20–22).
+
+    V(g) = −w(g) = −ε0 U² / (2 h(g)), p_int = −σ_el(g) = −ε0 U² / (2 ε_a h(g)²), h(g) = c + g/ε_a
+    (:class:`~roughcontact.electrostatics.DielectricStack`; only U² enters, so the sign of the voltage does
+    not matter). The parallel-plate field is taken pixel by pixel.
+    """
+
+    stack: DielectricStack = DielectricStack()
+    voltage: float = 0.0
+
+    def __post_init__(self):
+        if not isinstance(self.stack, DielectricStack):
+            raise TypeError(f"stack must be a DielectricStack, got {type(self.stack).__name__}")
+        object.__setattr__(self, "voltage", check_real("voltage", self.voltage))
+
+    @property
+    def vanishes(self) -> bool:
+        """At 0 V there is no attraction: the hard-wall solver answers."""
+        return self.voltage == 0.0
+
+    @property
+    def length(self) -> float:
+        """ε_a c [m]: the gap at which σ_el has fallen to a quarter of its contact value."""
+        return self.stack.eps_a * self.stack.dielectric_offset
+
+    def energy(self, gap) -> np.ndarray:
+        return self.stack.energy(gap, self.voltage)
+
+    def traction(self, gap) -> np.ndarray:
+        return -self.stack.pressure(gap, self.voltage)
+
+    def stiffness(self, gap) -> np.ndarray:
+        return -self.stack.pressure_derivative(gap, self.voltage)
+
+
+@dataclass(frozen=True)
+class ExponentialAdhesion(Interaction):
+    """V(g) = −w e^{−g/ρ} [J/m²]: work of adhesion ``work_of_adhesion`` w [J/m²] over the range ``length`` ρ [m].
+
+    p_int = −(w/ρ) e^{−g/ρ}, k = (w/ρ²) e^{−g/ρ}. As ρ → 0 (Tabor parameter → ∞) contacts follow JKR.
+    """
+
+    work_of_adhesion: float
+    length: float
+
+    def __post_init__(self):
+        object.__setattr__(self, "work_of_adhesion", check_positive("work_of_adhesion", self.work_of_adhesion))
+        object.__setattr__(self, "length", check_positive("length", self.length))
+
+    def energy(self, gap) -> np.ndarray:
+        return -self.work_of_adhesion * np.exp(-np.asarray(gap, dtype=float) / self.length)
+
+    def traction(self, gap) -> np.ndarray:
+        return self.energy(gap) / self.length
+
+    def stiffness(self, gap) -> np.ndarray:
+        return -self.energy(gap) / self.length ** 2
+
+
+@dataclass(frozen=True)
+class MaugisDugdale(Interaction):
+    """Dugdale cohesive zone (Maugis 1992): a constant attraction σ0 = w/δ_c up to the gap δ_c, none beyond.
+
+    V(g) = −σ0 (δ_c − g) for g < δ_c, 0 beyond [J/m²]; p_int = −σ0 for g < δ_c, 0 beyond; k = 0 except the
+    jump at δ_c. ``work_of_adhesion`` w [J/m²], ``length`` δ_c [m].
+    """
+
+    work_of_adhesion: float
+    length: float
+
+    def __post_init__(self):
+        object.__setattr__(self, "work_of_adhesion", check_positive("work_of_adhesion", self.work_of_adhesion))
+        object.__setattr__(self, "length", check_positive("length", self.length))
+
+    @property
+    def cohesive_stress(self) -> float:
+        """σ0 = w/δ_c [Pa]."""
+        return self.work_of_adhesion / self.length
+
+    def energy(self, gap) -> np.ndarray:
+        return -self.cohesive_stress * np.maximum(self.length - np.asarray(gap, dtype=float), 0.0)
+
+    def traction(self, gap) -> np.ndarray:
+        return np.where(np.asarray(gap, dtype=float) < self.length, -self.cohesive_stress, 0.0)
+
+    def stiffness(self, gap) -> np.ndarray:
+        return np.zeros_like(np.asarray(gap, dtype=float))
+
+
+#: The laws that results can be saved and loaded with (by class name).
+LAWS = {law.__name__: law for law in (HardWall, ElectrostaticInteraction, ExponentialAdhesion, MaugisDugdale)}
+
+
+def tabor_parameter(radius, work_of_adhesion, E_star, length) -> float:
+    """Tabor's μ_T = (R w² / (E*² z0³))^{1/3} of a sphere of radius R [m] with a law of range z0 [m]."""
+    return (radius * work_of_adhesion ** 2 / (E_star ** 2 * length ** 3)) ** (1.0 / 3.0)
+
+
+__all__ = ["Interaction", "HardWall", "ElectrostaticInteraction", "ExponentialAdhesion", "MaugisDugdale",
+           "tabor_parameter"]

@@ -33,9 +33,19 @@ def _encode(value):
     return value
 
 
+def _dataclass_types() -> dict:
+    """The dataclasses a result may hold as a field, by name (the interaction laws and the dielectric stack)."""
+    from .electrostatics import DielectricStack
+    from .interactions import LAWS
+    return {**LAWS, "DielectricStack": DielectricStack}
+
+
 def _decode(value):
     if isinstance(value, dict) and _GRID_TAG in value:
         return Grid.from_dict(value[_GRID_TAG])
+    if isinstance(value, dict) and value.get("__dataclass__") in _dataclass_types():
+        kind = _dataclass_types()[value["__dataclass__"]]
+        return kind(**{k: _decode(v) for k, v in value.items() if k != "__dataclass__"})
     if isinstance(value, dict):
         return {k: _decode(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
