@@ -1,11 +1,11 @@
 """Analytic reference solutions for frictionless contact of an elastic body (contact modulus E*) with a rigid
-flat, used to validate the FFT boundary-element solver. SI units. Formulas: ``/work/shared/references.md`` §4.
+flat, used to validate the FFT boundary-element solver. SI units. Formulas and sources: docs/references.md §4.
 
 * Hertz (sphere of radius R): Johnson (1985), Contact Mechanics, §4.2.
 * Westergaard (1939) 1-D sinusoid h(x) = h0 cos(2πx/λ) (profile 2 h0 sin²(πx/λ) below its crest), plane strain:
-  Johnson (1985) §13.2; mean gap and energy as in references §4.1.
+  Johnson (1985) §13.2; mean gap and energy as in docs/references.md §4.1.
 * Bi-sinusoid h0 cos(2πx/λ) cos(2πy/λ): Johnson, Greenwood & Higginson (1985), Int. J. Mech. Sci. 27:383;
-  low- and high-load asymptotes of the contact area (references §4.2).
+  low- and high-load asymptotes of the contact area (docs/references.md §4.2).
 """
 from __future__ import annotations
 
