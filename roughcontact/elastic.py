@@ -31,6 +31,11 @@ from .fft import make_backend
 
 BOTTOMS = ("bonded", "frictionless")
 
+# A rigid base's uniform column t/M is kept while it is at most 1/sqrt(ε) ≈ 6.7e7 times the compliance of the
+# longest wavelength of the window; beyond that the layer takes the half-space convention for q = 0
+# (docs/layered.md, "A layer much thicker than the window").
+_COLUMN_LIMIT = 1.0 / np.sqrt(np.finfo(np.float64).eps)
+
 
 def love_pixel_displacement(x, y, dx, dy, E_star):
     """Displacement u(x, y) [m per Pa] of a half-space under unit pressure on the pixel |x'| ≤ dx/2, |y'| ≤ dy/2.
@@ -172,8 +177,19 @@ class ElasticHalfSpace:
                          substrate_poisson=check_real("substrate_poisson", substrate_poisson, low=-1.0,
                                                       high=0.5, low_open=True))
         else:
-            layer.update(kind="layer on rigid base", bottom=bottom)
+            layer.update(kind="layer on rigid base", bottom=bottom,
+                         uniform_mode=self._uniform_mode(layer["thickness"], layer["poisson"], bottom))
         return layer
+
+    def _uniform_mode(self, thickness, poisson, bottom) -> str:
+        """``"column"`` (⟨u⟩ = ⟨p⟩ t/M) or ``"half-space"`` (⟨u⟩ = 0) for a layer on a rigid base: the column is
+        dropped when it exceeds the compliance of the window's longest wavelength by more than _COLUMN_LIMIT."""
+        from .layered import layer_on_rigid_base_compliance
+        window = max(length for length, n in zip(self.grid.lengths, self.grid.shape) if n > 1) \
+            if self.grid.size > 1 else max(self.grid.lengths)
+        longest = layer_on_rigid_base_compliance(2 * np.pi / window, self.E_star, poisson, thickness, bottom=bottom)
+        column = layer_on_rigid_base_compliance(0.0, self.E_star, poisson, thickness, bottom="bonded")
+        return "column" if column <= _COLUMN_LIMIT * longest else "half-space"
 
     def compliance(self, q) -> np.ndarray:
         """Fourier multiplier Φ(q) [m/Pa] at wavevector magnitudes ``q`` > 0 [rad/m] (ũ = Φ p̃)."""
@@ -207,8 +223,10 @@ class ElasticHalfSpace:
         M = E*(1 − ν)²/(1 − 2ν), whatever the bottom condition (by symmetry a uniform load on a laterally
         periodic layer moves nothing sideways; it is not the q → 0 limit of the frictionless Φ(q), t/E*, for
         which the layer can spread over a long wavelength). 0 for the half-space and the layer on a
-        half-space (q = 0 mode undetermined, set to 0)."""
-        if self.layer is None or self.layer["kind"] != "layer on rigid base":
+        half-space (q = 0 mode undetermined, set to 0), and for a layer so thick that the column would exceed the
+        compliance of the window's longest wavelength 6.7e7-fold (``layer["uniform_mode"] == "half-space"``;
+        ``docs/layered.md``, "A layer much thicker than the window")."""
+        if self.layer is None or self.layer.get("uniform_mode") != "column":
             return 0.0
         from .layered import layer_on_rigid_base_compliance
         # the uniaxial column is the q → 0 limit of the *bonded* layer (no lateral strain at the base)
@@ -266,12 +284,17 @@ class ElasticHalfSpace:
     def backend(self) -> str:
         return self._fft.name
 
-    @property
+    @functools.cached_property
     def pixel_compliance(self) -> float:
-        """Displacement of a pixel under unit pressure on that pixel alone [m/Pa] (diagonal of K)."""
-        unit = np.zeros(self.grid.shape, self.dtype)
-        unit[0, 0] = 1.0
-        return float(self.displacement_into(unit, unit)[0, 0])
+        """Displacement of a pixel under unit pressure on that pixel alone [m/Pa] (diagonal of K).
+
+        The unit impulse has a flat spectrum, so this is Σ_q Φ_q / N over the full transform grid, summed from the
+        stored half spectrum without a transform (it may be read between :meth:`quadratic_form` and
+        :meth:`pending_displacement_into`) and cached."""
+        n_last = self.transform_shape[1]
+        columns = np.arange(self._multiplier.shape[1])
+        weights = np.where((columns == 0) | (2 * columns == n_last), 1.0, 2.0)
+        return float(np.sum(self._multiplier.astype(np.float64) * weights))
 
     # -- the operator ------------------------------------------------------------------------------------------
     def empty(self) -> np.ndarray:
@@ -282,8 +305,11 @@ class ElasticHalfSpace:
         """Write u = K p [m] for ``pressure`` [Pa] (``grid.shape``, this dtype) into ``out``; ``out`` is returned.
 
         No allocation; with arrays from :meth:`empty` (periodic grids) no copy either. Free surface: p is
-        placed in the corner of the zero-padded 2n buffer and u read back from the same corner.
+        placed in the corner of the zero-padded 2n buffer and u read back from the same corner. Shapes are
+        checked (``ValueError``); values are not (that is :meth:`displacement`'s job).
         """
+        self._check_shape("pressure", pressure)
+        self._check_shape("out", out)
         self._forward(pressure)
         _apply_multiplier(self._fft.spectrum, self._multiplier)
         return self._backward_into(out)
@@ -315,6 +341,10 @@ class ElasticHalfSpace:
             raise RuntimeError("no pending displacement: call quadratic_form(p) first (any other transform in "
                                "between discards it)")
         return self._backward_into(out)
+
+    def _check_shape(self, name, array):
+        if np.shape(array) != self.grid.shape:
+            raise ValueError(f"{name} has shape {np.shape(array)}, but grid.shape is {self.grid.shape}")
 
     def _forward(self, source):
         """Forward transform of ``source`` (zero-padded to the transform grid on a free surface)."""

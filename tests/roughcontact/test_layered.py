@@ -3,7 +3,7 @@ problem per Fourier mode, and against their thin/thick-layer limits."""
 import numpy as np
 import pytest
 
-from roughcontact.layered import layer_on_half_space_compliance, layer_on_rigid_base_compliance
+from roughcontact.layered import THICK_X, layer_on_half_space_compliance, layer_on_rigid_base_compliance
 
 
 # ---------------------------------------------------------------------------------------------------------
@@ -161,6 +161,21 @@ def test_stable_at_extreme_qt():
         assert np.isfinite(phi).all() and (phi > 0).all()
         np.testing.assert_allclose(phi[1:], 2 / (E_layer * q[1:]), rtol=1e-15)
     assert layer_on_half_space_compliance(0.0, 1e7, 0.45, 1.0, 1e5, 0.49) == np.inf
+
+
+@pytest.mark.parametrize("thickness", [1e6, 1e9, 1e30, 1e300])
+def test_thick_layer_is_exactly_the_half_space(thickness):
+    """Beyond q t = THICK_X = 25 every kernel returns 2/(E* q) itself (docs/layered.md), also where q t overflows
+    (1e300 m × 1e10 rad/m was NaN); just below it the formula agrees to round-off (measured 1.1e-15, bound 4e-15)."""
+    q = np.array([1e2, 1e4, 1e10])
+    for phi in (layer_on_rigid_base_compliance(q, 1e6, 0.3, thickness),
+                layer_on_rigid_base_compliance(q, 1e6, 0.3, thickness, bottom="frictionless"),
+                layer_on_half_space_compliance(q, 1e6, 0.3, thickness, 1e3, 0.49)):
+        np.testing.assert_array_equal(phi, 2 / (1e6 * q))
+    below = THICK_X * (1 - 1e-9)
+    for phi in (layer_on_rigid_base_compliance(1.0, 1.0, 0.3, below),
+                layer_on_half_space_compliance(1.0, 1.0, 0.3, below, 1e-3, 0.49)):
+        assert phi == pytest.approx(2.0, rel=4e-15)
 
 
 @pytest.mark.parametrize("kernel", ["bonded", "frictionless", "stiff layer", "soft layer"])

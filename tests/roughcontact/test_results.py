@@ -35,6 +35,8 @@ def test_save_load_round_trip(tmp_path):
     assert loaded.grid == original.grid
     assert (loaded.converged, loaded.iterations, loaded.shape, loaded.params) == \
            (original.converged, original.iterations, original.shape, original.params)
+    assert isinstance(loaded.shape, tuple) and isinstance(loaded.params["nested"]["names"], list)
+    assert not loaded.pressure.flags.writeable                   # immutable, as when it was made
     assert load_npz(path)[1]["version"] == __version__
 
 
@@ -49,5 +51,9 @@ def test_load_refuses_another_kind(tmp_path):
 
 
 def test_pickle_round_trip():
-    clone = pickle.loads(pickle.dumps(_toy()))
-    assert clone.grid == _toy().grid and clone.params == _toy().params
+    original = _toy()
+    clone = pickle.loads(pickle.dumps(original))
+    np.testing.assert_array_equal(clone.pressure, original.pressure)
+    assert clone.pressure.dtype == original.pressure.dtype
+    assert (clone.grid, clone.converged, clone.iterations, clone.shape, clone.params) == \
+           (original.grid, original.converged, original.iterations, original.shape, original.params)
