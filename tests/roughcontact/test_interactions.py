@@ -1,0 +1,236 @@
+"""Interaction laws and the contact solver for smooth laws with the wall (roughcontact.gap_solver).
+
+References: finite differences of the laws; the hard wall (Polonsky–Keer) at a vanishing law; parallel plates;
+Johnson's (1995) adhesive sinusoid in the JKR limit; force balance, complementarity and u = K p recomputed
+from the solver's own fields.
+"""
+import math
+
+import numpy as np
+import pytest
+
+from surfaces import Grid, HeightField, self_affine
+from roughcontact import (ContactProblem, ContactResult, ElasticHalfSpace, ElectrostaticInteraction,
+                          ExponentialAdhesion, HardWall, MaugisDugdale, solve_contact)
+from roughcontact.electrostatics import DielectricStack
+
+STACK = DielectricStack()
+
+
+@pytest.mark.parametrize("law, gaps", [
+    (ElectrostaticInteraction(STACK, 200.0), [0.0, 1e-7, 1e-6, 3e-6]),
+    (ElectrostaticInteraction(DielectricStack(eps_a=2.0), -150.0), [0.0, 1e-7, 1e-6, 3e-6]),
+    (ExponentialAdhesion(0.05, 2e-7), [0.0, 1e-7, 5e-7, 1e-6]),
+    (MaugisDugdale(0.05, 2e-7), [0.0, 1e-7, 3e-7, 1e-6]),          # away from the jump at δ_c
+])
+def test_law_traction_and_stiffness_are_derivatives(law, gaps):
+    gaps = np.array(gaps) + 1e-9
+    step = 1e-11                                # central differences: error O(step²/length²) ~ 1e-8 relative
+    traction = -(law.energy(gaps + step) - law.energy(gaps - step)) / (2 * step)
+    stiffness = (law.traction(gaps + step) - law.traction(gaps - step)) / (2 * step)
+    np.testing.assert_allclose(law.traction(gaps), traction, rtol=1e-6, atol=1e-9 * abs(law.traction(0.0)))
+    np.testing.assert_allclose(law.stiffness(gaps), stiffness, rtol=1e-6, atol=1e-3)
+    assert np.all(law.traction(gaps) <= 0) and abs(law.energy(1.0)) <= 1e-6 * abs(law.energy(0.0))   # V(∞) = 0
+
+
+def test_laws_reject_bad_parameters():
+    with pytest.raises(ValueError, match="work_of_adhesion"):
+        ExponentialAdhesion(-1.0, 1e-6)
+    with pytest.raises(ValueError, match="length"):
+        MaugisDugdale(0.1, 0.0)
+    with pytest.raises(TypeError, match="stack"):
+        ElectrostaticInteraction("stack", 10.0)
+    with pytest.raises(ValueError, match="voltage"):
+        ElectrostaticInteraction(STACK, math.nan)
+
+
+# -- rough patch helpers ---------------------------------------------------------------------------------------
+def rough_patch(n=64, E_star=1e6, **body):
+    grid = Grid((n, n), (1e-3, 1e-3), periodic=True)
+    surface = self_affine(grid, hurst=0.8, rms_height=3e-6, short_cutoff=8e-3 / n, rng=1)
+    return surface, ElasticHalfSpace(grid, E_star=E_star, **body)
+
+
+def check_equilibrium(res, surface, half, tol_traction):
+    """Force balance, u = K p, g = s − h + u ≥ 0 and complementarity from the result's raw fields; returns the
+    largest traction imbalance on the open gap [Pa]."""
+    recomputed = half.displacement(res.pressure) + half.uniform_compliance * res.mean_pressure
+    np.testing.assert_allclose(res.displacement, recomputed, atol=1e-9 * np.ptp(surface.heights))
+    raw_gap = res.flat_position - surface.heights + res.displacement
+    np.testing.assert_allclose(res.gap, raw_gap, atol=1e-9 * np.ptp(surface.heights))
+    assert res.gap.min() >= 0 and np.all(res.gap[res.contact] == 0)
+    assert res.contact_pressure.min() >= -tol_traction
+    assert res.mean_pressure == pytest.approx(float(np.mean(res.pressure)), abs=1e-9 * abs(res.pressure).max())
+    open_gap = ~res.contact
+    return float(np.max(np.abs(res.pressure - res.interaction_traction)[open_gap], initial=0.0))
+
+
+def test_zero_voltage_is_the_hard_wall_bit_for_bit():
+    surface, half = rough_patch()
+    hard = solve_contact(surface, half, mean_pressure=1e3)
+    law = ElectrostaticInteraction(STACK, 0.0)
+    res = solve_contact(surface, half, mean_pressure=1e3, interaction=law)
+    np.testing.assert_array_equal(res.pressure, hard.pressure)
+    np.testing.assert_array_equal(res.gap, hard.gap)
+    assert res.interaction == law and hard.interaction == HardWall()
+    assert res.equivalent_gap == STACK.equivalent_gap(hard.gap) and res.electrostatic_force == 0.0
+
+
+def test_vanishing_attraction_matches_polonsky_keer():
+    # 1e-6 V: σ_el ~ 1e-16 Pa, negligible; the smooth solver must reach the hard-wall answer by its own path
+    surface, half = rough_patch()
+    hard = solve_contact(surface, half, mean_pressure=1e3, tol=1e-10)
+    res = solve_contact(surface, half, mean_pressure=1e3, interaction=ElectrostaticInteraction(STACK, 1e-6),
+                        tol=1e-10)
+    assert res.converged and res.params["method"] == "projected-cg-gap"
+    np.testing.assert_array_equal(res.contact, hard.contact)
+    # measured 3e-9 of max p; the bound is the solvers' tolerance times a margin of 100 on the gap scale
+    assert np.max(np.abs(res.pressure - hard.pressure)) <= 1e-6 * hard.pressure.max()
+
+
+def test_parallel_plates():
+    grid = Grid((16, 16), (1e-3, 1e-3), periodic=True)
+    half = ElasticHalfSpace(grid, E_star=1e6)
+    law = ElectrostaticInteraction(STACK, 200.0)
+    gap = 2e-6
+    res = solve_contact(HeightField(grid, np.zeros(grid.shape)), half, penetration=-gap, interaction=law)
+    sigma = float(STACK.pressure(gap, 200.0))
+    assert res.converged and res.contact_fraction == 0.0
+    np.testing.assert_allclose(res.gap, gap, rtol=1e-14)
+    assert res.mean_pressure == pytest.approx(-sigma, rel=1e-12)
+    assert res.electrostatic_force == pytest.approx(sigma * grid.area, rel=1e-12)
+    assert res.equivalent_gap == pytest.approx(gap, rel=1e-12)
+    assert res.interaction_energy == pytest.approx(float(STACK.energy(gap, 200.0)) * grid.area, rel=1e-12)
+
+
+# -- Johnson (1995): adhesive sinusoid in the JKR limit ---------------------------------------------------------
+def sinusoid(n):
+    """h = −(1 − cos 2πx) on a unit wavelength, E* = 1/π, so that p* = π E* h/λ = 1."""
+    grid = Grid((n, 1), (1.0, 1.0 / n), periodic=True)
+    x = (np.arange(n) + 0.5) / n - 0.5
+    return HeightField(grid, -(1 - np.cos(2 * np.pi * x))[:, None]), ElasticHalfSpace(grid, E_star=1 / np.pi)
+
+
+def johnson_load(half_width, alpha):
+    """p̄/p* = sin²(πa/λ) − α √tan(πa/λ) (Johnson 1995)."""
+    s = np.pi * half_width
+    return np.sin(s) ** 2 - alpha * np.sqrt(np.tan(s))
+
+
+def johnson_law(alpha, length):
+    return ExponentialAdhesion(alpha ** 2 * np.pi / 2, length)      # α² = 2 w λ / (π² E* h²)
+
+
+@pytest.mark.parametrize("load", [0.1, 0.3])
+def test_johnson_sinusoid_load_versus_contact_width(load):
+    n = 2048
+    surface, half = sinusoid(n)
+    res = solve_contact(surface, half, mean_pressure=load, interaction=johnson_law(0.2, np.sqrt(1 / n)))
+    assert res.converged
+    half_width = np.count_nonzero(res.contact) / n / 2
+    # measured 0.0049 and 0.0044 p* (range √Δx: finite-range and pixel errors); the bar is 1 %
+    assert abs(johnson_load(half_width, 0.2) - load) <= 0.01
+    unconverged = solve_contact(surface, half, mean_pressure=load, interaction=johnson_law(0.2, np.sqrt(1 / n)),
+                                maxiter=2, warn=False)
+    assert not unconverged.converged
+    assert abs(johnson_load(np.count_nonzero(unconverged.contact) / n / 2, 0.2) - load) > 0.01
+
+
+@pytest.mark.parametrize("alpha, half_width", [(0.5, 0.2515), (0.55, 0.2924), (0.6, 0.5)])
+def test_johnson_sinusoid_jump_to_full_contact(alpha, half_width):
+    # from a hard-wall contact of half-width 0.27 λ released to zero load: a partial contact holds below
+    # α ≈ 0.57 (at the JKR root), above it the contact closes. The range 0.05 λ lets the cohesive zone span
+    # several pixels (a shorter one pins the crack front on the grid and stops it anywhere).
+    n = 2048
+    surface, half = sinusoid(n)
+    start = solve_contact(surface, half, mean_pressure=np.sin(np.pi * 0.27) ** 2)
+    res = solve_contact(surface, half, mean_pressure=0.0, interaction=johnson_law(alpha, 0.05), x0=start)
+    assert res.converged
+    # measured 0.2480, 0.2896, 0.5 (full contact): within 1.5 % of the JKR roots 0.2515, 0.2924
+    assert np.count_nonzero(res.contact) / n / 2 == pytest.approx(half_width, rel=0.015)
+
+
+def test_tensile_load_beyond_pull_off_is_reported():
+    n = 512
+    surface, half = sinusoid(n)
+    with pytest.warns(UserWarning, match="no equilibrium"):
+        res = solve_contact(surface, half, mean_pressure=-0.5, interaction=johnson_law(0.2, np.sqrt(1 / n)))
+    assert not res.converged and res.params["detached"] and res.contact_fraction == 0
+    assert np.isfinite(res.gap).all() and np.isfinite(res.pressure).all()
+
+
+# -- electroadhesion on a rough patch ---------------------------------------------------------------------------
+def test_rough_patch_grows_with_voltage():
+    surface, half = rough_patch()
+    results = [solve_contact(surface, half, mean_pressure=1e3, interaction=ElectrostaticInteraction(STACK, U))
+               for U in (0.0, 10.0, 30.0, 100.0)]
+    assert all(res.converged for res in results)
+    areas = [res.contact_fraction for res in results]
+    forces = [res.electrostatic_force for res in results]
+    gaps = [res.equivalent_gap for res in results]
+    assert np.all(np.diff(areas) > 0) and np.all(np.diff(forces) > 0) and np.all(np.diff(gaps) < 0)
+    for res in results[1:]:
+        history = np.array(res.params["energy_history"])
+        assert np.all(np.diff(history) <= 1e-12 * np.abs(history).max())   # the energy never rises
+        assert res.equivalent_gap == STACK.equivalent_gap(res.gap)
+        imbalance = check_equilibrium(res, surface, half, tol_traction=1e-6 * 1e3)
+        assert imbalance <= 1e-3 * 1e3                                      # measured ≤ 3e-6 p̄
+
+
+def test_equilibrium_checks_fail_on_an_unconverged_result():
+    surface, half = rough_patch()
+    res = solve_contact(surface, half, mean_pressure=1e3, interaction=ElectrostaticInteraction(STACK, 30.0),
+                        maxiter=2, warn=False)
+    assert not res.converged
+    assert check_equilibrium(res, surface, half, tol_traction=np.inf) > 1e-3 * 1e3
+
+
+def test_equivalent_gap_falls_with_load():
+    surface, half = rough_patch()
+    law = ElectrostaticInteraction(STACK, 30.0)
+    gaps = [solve_contact(surface, half, mean_pressure=p, interaction=law).equivalent_gap for p in (5e2, 1e3, 2e3)]
+    assert np.all(np.diff(gaps) < 0)
+
+
+@pytest.mark.parametrize("body", [{}, {"thickness": 2e-4, "poisson": 0.45}])
+def test_load_and_position_control_agree(body):
+    surface, half = rough_patch(**body)
+    law = ElectrostaticInteraction(STACK, 30.0)
+    by_load = solve_contact(surface, half, mean_pressure=1e3, interaction=law, tol=1e-10)
+    # started from the load-controlled answer (a non-convex problem has several equilibria; each start finds one)
+    by_position = solve_contact(surface, half, penetration=by_load.penetration, interaction=law, tol=1e-10,
+                                x0=by_load)
+    assert by_load.converged and by_position.converged
+    assert by_position.mean_pressure == pytest.approx(1e3, rel=1e-5)
+    np.testing.assert_allclose(by_position.gap, by_load.gap, atol=1e-6 * 3e-6)          # 1e-6 of the rms height
+
+
+@pytest.mark.parametrize("voltage, load, penetration", [
+    (30.0, 0.0, None),            # voltage-only contact: no external load
+    (2000.0, 1e3, None),          # far beyond full contact
+    (30.0, None, -5e-6),          # the flat 5 µm above the highest summit still pulls
+])
+def test_extremes_converge(voltage, load, penetration):
+    surface, half = rough_patch()
+    control = {"mean_pressure": load} if load is not None else {"penetration": penetration}
+    res = solve_contact(surface, half, interaction=ElectrostaticInteraction(STACK, voltage), **control)
+    assert res.converged and np.isfinite(res.pressure).all()
+    if load == 0.0:
+        assert res.contact_fraction > 0 and res.mean_pressure == 0.0
+    if voltage == 2000.0:
+        assert res.contact_fraction == 1.0
+
+
+def test_problem_object_and_saved_result(tmp_path):
+    surface, half = rough_patch()
+    law = ElectrostaticInteraction(STACK, 30.0)
+    res = ContactProblem(surface, half, law).solve(total_force=1e3 * surface.grid.area)
+    assert res.control == "total_force" and res.interaction == law
+    loaded = ContactResult.load(res.save(tmp_path / "res.npz"))
+    assert loaded.interaction == law and loaded.flat_position == res.flat_position
+    np.testing.assert_array_equal(loaded.interaction_traction, res.interaction_traction)
+    with pytest.raises(TypeError, match="interaction"):
+        ContactProblem(surface, half, "electrostatic")
+    free = ElasticHalfSpace(Grid((64, 64), (1e-3, 1e-3), periodic=False), E_star=1e6)
+    with pytest.raises(ValueError, match="periodic"):
+        solve_contact(np.zeros((64, 64)), free, mean_pressure=1e3, interaction=law)
