@@ -8,6 +8,8 @@ from roughcontact import ContactResult, ElasticHalfSpace, load_path, solve_conta
 from roughcontact.contact import PERIMETER_CORRECTION, STALL_STEPS, boundary_edges
 from surfaces import Grid, rms_slope, self_affine
 
+from contact_checks import check_contact_state
+
 L, E_STAR, SLOPE = 1e-3, 1e6, 0.1
 
 
@@ -104,6 +106,7 @@ def test_result_save_load_and_pickle(rough, tmp_path):
     loaded = ContactResult.load(result.save(tmp_path / "contact.npz"))
     for name in ("pressure", "displacement", "gap", "contact", "residuals"):
         np.testing.assert_array_equal(getattr(loaded, name), getattr(result, name))
+        assert not getattr(loaded, name).flags.writeable                  # read-only, like the solver's result
     for name in ("contact_fraction", "mean_pressure", "mean_gap", "penetration", "elastic_energy", "iterations",
                  "converged", "message", "wall_time"):
         assert getattr(loaded, name) == getattr(result, name)
@@ -259,7 +262,11 @@ def test_layered_contact(layer):
     load = 0.05 * E_STAR * SLOPE
     results = [solve_contact(field, half, mean_pressure=load, tol=1e-10, preconditioned=flag) for flag in (True, False)]
     for result in results:
-        assert result.converged and (result.gap >= 0).all() and np.all(result.pressure * result.gap == 0)
+        assert result.converged
+        check_contact_state(field, result)                   # raw gap s − h + u, including ⟨u⟩ = p̄ t/M
+    unconverged = solve_contact(field, half, mean_pressure=load, maxiter=2, warn=False)
+    with pytest.raises(AssertionError, match="complementarity|interpenetration"):
+        check_contact_state(field, unconverged)
     assert results[0].contact_fraction == results[1].contact_fraction
     assert results[0].mean_gap == pytest.approx(results[1].mean_gap, rel=1e-8)
     result = results[0]
