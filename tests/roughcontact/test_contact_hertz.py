@@ -36,17 +36,17 @@ def solutions():
 def test_hertz_512(solutions):
     result, r = solutions[512]
     assert result.converged and result.total_force == pytest.approx(FORCE, rel=1e-12)
-    # bar: force–penetration within 1 %; measured 6e-6 at 512², so assert 1e-4
-    assert result.penetration == pytest.approx(ref.hertz_penetration(FORCE, R, E_STAR), rel=1e-4)
-    # bar: contact radius within 2 %; measured 0.08 % (pixel counting of the contact set), assert 0.5 %
+    # bar: force–penetration within 1 %; measured 6.0e-6 at 512², assert 2e-5 (margin 3)
+    assert result.penetration == pytest.approx(ref.hertz_penetration(FORCE, R, E_STAR), rel=2e-5)
+    # bar: contact radius within 2 %; measured 0.084 % (pixel counting of the contact set), assert 0.2 %
     radius = np.sqrt(result.contact_fraction * L * L / np.pi)
-    assert radius == pytest.approx(ref.hertz_contact_radius(FORCE, R, E_STAR), rel=5e-3)
-    # bar: pressure within 1e-3 E* inside 0.95 a; measured 1.9e-4 p0 = 1.8e-6 E*
+    assert radius == pytest.approx(ref.hertz_contact_radius(FORCE, R, E_STAR), rel=2e-3)
+    # bar: pressure within 1e-3 E* inside 0.95 a; measured 1.9e-4 p0 (= 1.8e-6 E*), assert 4e-4 p0 (margin 2)
     inside = r < 0.95 * A
     error = np.abs(result.pressure - ref.hertz_pressure(r, FORCE, R, E_STAR))[inside].max()
-    assert error < 1e-3 * E_STAR and error < 5e-4 * P0
-    # elastic energy (2/5) F δ; measured 2e-6
-    assert result.elastic_energy == pytest.approx(ref.hertz_elastic_energy(FORCE, R, E_STAR), rel=1e-4)
+    assert error < 4e-4 * P0
+    # elastic energy (2/5) F δ; measured 2.2e-6, assert 5e-6 (margin 2.3)
+    assert result.elastic_energy == pytest.approx(ref.hertz_elastic_energy(FORCE, R, E_STAR), rel=5e-6)
 
 
 def test_hertz_error_falls_at_first_order(solutions):
