@@ -40,7 +40,9 @@ def test_small_load_area_coefficient():
         result = solve_contact(field, half, mean_pressure=load, tol=1e-8)
         assert result.converged
         kappas.append(result.contact_fraction / (load / (E_STAR * SLOPE)))
-    assert 1.6 <= np.mean(kappas) <= 2.3
+    # centred on the 16-seed mean 2.27 ± 3 standard errors of a 4-seed mean (3 × 0.11/√4), inside issue 4's bar
+    # [1.6, 2.3]: a change of the contact set by more than the seed scatter fails (measured 2.24)
+    assert max(1.6, 2.27 - 3 * 0.11 / 2) <= np.mean(kappas) <= min(2.3, 2.27 + 3 * 0.11 / 2)
 
 
 def test_area_coefficient_falls_with_resolution_of_short_cutoff():
@@ -189,9 +191,10 @@ def test_float32_and_scipy_backend_agree(rough):
     single = solve_contact(field, ElasticHalfSpace(grid, E_star=E_STAR, dtype=np.float32),
                            mean_pressure=result.mean_pressure, tol=1e-5)
     assert single.converged and single.pressure.dtype == np.float32 and single.params["kernel"]["dtype"] == "float32"
-    # float32 resolves the gap to ~1e-7 of the heights: contact fraction within 0.5 %, mean gap within 1e-4
-    assert single.contact_fraction == pytest.approx(result.contact_fraction, rel=5e-3)
-    assert single.mean_gap == pytest.approx(result.mean_gap, rel=1e-4)
+    # float32 resolves the gap to ~1e-7 of the heights: measured contact fraction 3.1e-4 (a few of ~7000 contact
+    # pixels) and mean gap 1.1e-7 from float64; asserted 1e-3 and 5e-7 (margins 3 and 4.6)
+    assert single.contact_fraction == pytest.approx(result.contact_fraction, rel=1e-3)
+    assert single.mean_gap == pytest.approx(result.mean_gap, rel=5e-7)
 
 
 def test_warm_start_from_array_is_rescaled(rough):
