@@ -153,6 +153,13 @@ def test_nan_and_inf_heights(heights, word):
         solve_contact(values, ElasticHalfSpace(grid, E_star=E_STAR), mean_pressure=1.0)
 
 
+def test_complex_heights_are_refused():
+    """A complex array was cast to its real part with only a ComplexWarning."""
+    grid = Grid((8, 8), (1e-3, 1e-3))
+    with pytest.raises(TypeError, match="height_field must be real, got complex"):
+        solve_contact(np.zeros(grid.shape, complex), ElasticHalfSpace(grid, E_star=E_STAR), mean_pressure=1.0)
+
+
 @pytest.mark.parametrize("kwargs, exc, word", [
     ({"mean_pressure": 0.0}, ValueError, "mean_pressure"),
     ({"mean_pressure": -1.0}, ValueError, "mean_pressure"),
