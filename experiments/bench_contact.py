@@ -350,8 +350,9 @@ def summary_table(rows) -> str:
         r = _find(rows, "peer", name, n)
         return f"{r['time_s']:.3g} ({r['ratio']:.1f}×)" if r and r["time_s"] != "" else ""
 
-    lines = ["| n | pair [ms] | ours [s] (iter.) | ratio to the FFT floor | PK start [s] (iter.) | plain PK [s] (iter.) "
-             "| scipy.fft [s] (iter.) | Tamaas [s] (× ours) | ContactMechanics [s] (× ours) |",
+    lines = ["| n | pair [ms] | roughcontact [s] (iter.) | ratio to the FFT floor | PK start [s] (iter.) "
+             "| plain PK [s] (iter.) | scipy.fft [s] (iter.) | Tamaas [s] (× roughcontact) "
+             "| ContactMechanics [s] (× roughcontact) |",
              "|---|---|---|---|---|---|---|---|---|"]
     for n in dict.fromkeys(r["n"] for r in rows if r["section"] == "solve"):
         pair, ours = _find(rows, "fft_floor", "pyfftw", n), _find(rows, "solve", "roughcontact[pyfftw]", n)

@@ -1,6 +1,6 @@
 """Does the contact solver converge wherever a study may take it? (a script; docs/solver.md, "Robustness")
 
-    python experiments/solver_robustness.py                       # 256², 512²; 4 seeds; 20 loads; ≈ 4 min
+    python experiments/solver_robustness.py                       # 256², 512²; 4 seeds; 20 loads; minutes
     python experiments/solver_robustness.py --sizes 1024 --seeds 2
     python experiments/solver_robustness.py --fast                # 128², 1 seed, 4 loads (the CI smoke run)
 
@@ -14,10 +14,11 @@ slope 0.1, short cutoff 4 px; seeds 0 … ``--seeds`` − 1) every load p̄ = 0.
 * ``displacement`` — displacement control at the reference's penetration (must give back p̄);
 * ``free`` — the same heights on a free (non-periodic) surface: other physics, convergence only.
 
-Writes, into ``--output``, ``solver_robustness.csv`` (one row per solve: iterations, converged, the step from which the stall
-fallback restarted on every entry, contact fraction, mean gap, mean pressure and their relative differences to
-the reference solve of the same surface and load) and prints a summary per variant (solves, not converged,
-fallbacks, median and largest iterations, largest differences), also in ``solver_robustness_summary.csv``.
+Writes, into ``--output``, ``solver_robustness.csv`` (one row per solve: iterations, converged, the step from
+which the stall fallback restarted on every entry, contact fraction, mean gap, mean pressure and their relative
+differences to the reference solve of the same surface and load) and prints a summary per variant (solves, not
+converged, fallbacks, median and largest iterations, largest differences), also in
+``solver_robustness_summary.csv``; both with their provenance.
 """
 from __future__ import annotations
 

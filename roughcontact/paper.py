@@ -1,8 +1,9 @@
 """Reproduction of the seed paper's figures 3, 4, 5, 9, 10, 11 and of the numbers it quotes (checkpoint table).
 
 ``reproduce(output_dir)`` writes one PNG and one CSV per figure plus ``checkpoints.csv`` and returns the
-:class:`CheckpointTable`; every file carries its provenance (:mod:`roughcontact.provenance`). Every "computed" value in the table is computed here from the model; the "quoted"
-values are the numbers printed in Heß & Forsbach (2020). Figures use matplotlib's object API with the Agg
+:class:`CheckpointTable`; every file carries its provenance (:mod:`roughcontact.provenance`). Every "computed"
+value in the table is computed here from the model; the "quoted" values are the numbers printed in Heß &
+Forsbach (2020). Figures use matplotlib's object API with the Agg
 canvas (no pyplot state, no rcParams edits); matplotlib is imported only when a figure is drawn.
 """
 from __future__ import annotations

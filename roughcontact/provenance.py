@@ -3,7 +3,7 @@
 Every CSV written here starts with one comment line, and every PNG carries the same line in its metadata
 (PNG text chunks ``Comment`` and ``Software``)::
 
-    # roughcontact 0.1.0, 2026-01-31T12:00:00+00:00, command: roughcontact figures --output out, parameters: {"output": "out"}
+    # roughcontact 0.1.0, 2026-01-31T12:00:00+00:00, command: roughcontact figures --output out, parameters: {...}
 
 Readers skip it: ``pandas.read_csv(path, comment="#")``, ``numpy.loadtxt(path, delimiter=",", skiprows=2)``
 (numpy counts the comment among the skipped lines; comment lines after it are skipped anyway), or

@@ -46,7 +46,8 @@ def test_every_section_and_size_present(rows):
 def test_backends_agree_and_converge(rows):
     # same problem, FFT backends differing by round-off: results agree far below the 1e-10 solver tolerance
     for n in ("32", "64"):
-        a, b = (next(r for r in select(rows, "solve", f"roughcontact[{k}]") if r["n"] == n) for k in ("pyfftw", "scipy"))
+        a, b = (next(r for r in select(rows, "solve", f"roughcontact[{k}]") if r["n"] == n)
+                for k in ("pyfftw", "scipy"))
         assert a["converged"] == b["converged"] == "True"
         assert a["contact_fraction"] == b["contact_fraction"]
         assert float(a["mean_gap_m"]) == pytest.approx(float(b["mean_gap_m"]), rel=1e-9)

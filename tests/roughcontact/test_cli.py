@@ -106,7 +106,8 @@ def test_unwritable_output_exits_2(tmp_path, capsys, monkeypatch):
     with pytest.raises(SystemExit) as exit_info:
         main(["figures", "--output", str(tmp_path)])
     assert exit_info.value.code == 2
-    assert capsys.readouterr().err.strip() == f"roughcontact figures: error: the output directory {tmp_path} is not writable"
+    error = capsys.readouterr().err.strip()
+    assert error == f"roughcontact figures: error: the output directory {tmp_path} is not writable"
 
 
 def test_bad_option_exits_2_with_one_line(capsys):
