@@ -11,7 +11,7 @@ from numbers import Real
 import numpy as np
 
 
-def _plain(value) -> str:
+def plain(value) -> str:
     """``repr`` of ``value`` with numpy scalars printed as plain numbers (``-1.0``, not ``np.float64(-1.0)``)."""
     return repr(value.item() if isinstance(value, np.generic) else value)
 
@@ -25,7 +25,7 @@ def check_real(name: str, value, *, low=None, high=None, low_open=False, high_op
     if value is None and allow_none:
         return None
     if isinstance(value, bool) or not isinstance(value, (Real, np.floating, np.integer)):
-        raise TypeError(f"{name} must be a real number, got {_plain(value)} of type {type(value).__name__}")
+        raise TypeError(f"{name} must be a real number, got {plain(value)} of type {type(value).__name__}")
     value = float(value)
     lo = "-inf" if low is None else f"{low:g}"
     hi = "inf" if high is None else f"{high:g}"
@@ -50,7 +50,7 @@ def check_integer(name: str, value, *, low=None, high=None) -> int:
     hi = "inf" if high is None else str(high)
     if (isinstance(value, bool) or not isinstance(value, (int, np.integer))
             or (low is not None and value < low) or (high is not None and value > high)):
-        raise ValueError(f"{name} must be an integer in [{lo}, {hi}], got {_plain(value)}")
+        raise ValueError(f"{name} must be an integer in [{lo}, {hi}], got {plain(value)}")
     return int(value)
 
 
@@ -66,10 +66,10 @@ def check_finite_array(name: str, values, *, nonnegative=False, dtype=np.float64
     finite = np.isfinite(array)
     if not finite.all():
         bad = array[~finite].flat[0]
-        raise ValueError(f"{name} must be finite everywhere; found {_plain(bad)} at "
+        raise ValueError(f"{name} must be finite everywhere; found {plain(bad)} at "
                          f"{np.argwhere(~finite)[0].tolist()} (valid range: finite reals)")
     if nonnegative and (array < 0).any():
-        raise ValueError(f"{name} must be >= 0 everywhere; minimum is {_plain(array.min())} "
+        raise ValueError(f"{name} must be >= 0 everywhere; minimum is {plain(array.min())} "
                          "(valid range [0, inf))")
     return array
 
@@ -77,7 +77,7 @@ def check_finite_array(name: str, values, *, nonnegative=False, dtype=np.float64
 def check_bool(name: str, value) -> bool:
     """Return ``bool(value)`` after checking it is a ``bool`` or ``numpy.bool_`` (a truthy string is refused)."""
     if not isinstance(value, (bool, np.bool_)):
-        raise TypeError(f"{name} must be True or False, got {_plain(value)} of type {type(value).__name__}")
+        raise TypeError(f"{name} must be True or False, got {plain(value)} of type {type(value).__name__}")
     return bool(value)
 
 
@@ -96,5 +96,5 @@ def check_broadcast(**arrays) -> tuple:
 def check_choice(name: str, value, choices):
     """Return ``value`` after checking it is one of ``choices``."""
     if value not in choices:
-        raise ValueError(f"{name} = {_plain(value)} is not valid; choose one of {sorted(choices)}")
+        raise ValueError(f"{name} = {plain(value)} is not valid; choose one of {sorted(choices)}")
     return value

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from surfaces._checks import check_broadcast, check_finite_array, check_positive, check_real
+from surfaces._checks import check_broadcast, check_finite_array, check_positive, check_real, plain
 
 
 def _inputs(normal_force, voltage):
@@ -95,7 +95,7 @@ class PowerLawGap:
     def __call__(self, normal_force, voltage) -> np.ndarray:
         force, _ = _inputs(normal_force, voltage)
         if (force < 0).any():
-            raise ValueError(f"normal_force must be >= 0 for a power-law gap; minimum is {force.min()!r} N "
+            raise ValueError(f"normal_force must be >= 0 for a power-law gap; minimum is {plain(force.min())} N "
                              "(valid range [0, inf))")
         with np.errstate(divide="ignore"):
             gap = self.gap_ref * (force / self.force_ref) ** (-self.exponent)
@@ -141,8 +141,8 @@ class TabulatedGap:
         if axis.size == 1:       # a single voltage: the gap does not depend on it
             return np.zeros(values.shape, dtype=int), np.zeros(values.shape)
         if (values < axis[0]).any() or (values > axis[-1]).any():
-            raise ValueError(f"{name} outside the table: values span [{values.min()!r}, {values.max()!r}], "
-                             f"valid range [{axis[0]!r}, {axis[-1]!r}]")
+            raise ValueError(f"{name} outside the table: values span [{plain(values.min())}, {plain(values.max())}], "
+                             f"valid range [{plain(axis[0])}, {plain(axis[-1])}]")
         index = np.clip(np.searchsorted(axis, values, side="right") - 1, 0, axis.size - 2)
         return index, (values - axis[index]) / (axis[index + 1] - axis[index])
 

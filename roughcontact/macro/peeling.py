@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from surfaces._checks import check_choice, check_finite_array, check_positive, check_real
+from surfaces._checks import check_choice, check_finite_array, check_positive, check_real, plain
 
 from .power_law import PowerLawContact
 
@@ -121,8 +121,9 @@ class SavkoorBriggsPeeling:
             values = h(grid, f_t, f_n, ww)
             rising = np.nonzero((values[:-1] <= 0) & (values[1:] > 0))[0]
             if rising.size == 0:
-                raise ValueError(f"no stable contact for tangential_force = {f_t!r} N at normal_force = {f_n!r} N "
-                                 f"(w = {ww!r} J/m², lam = {lam!r}): beyond the critical tangential force")
+                raise ValueError(f"no stable contact for tangential_force = {plain(f_t)} N at normal_force = "
+                                 f"{plain(f_n)} N (w = {plain(ww)} J/m², lam = {plain(lam)}): beyond the critical "
+                                 "tangential force")
             low, high = grid[rising[-1]], grid[rising[-1] + 1]
             for _ in range(200):
                 middle = 0.5 * (low + high)
@@ -154,7 +155,7 @@ def hutchinson_suo_toughness(psi, lam, form: int = 1) -> np.ndarray:
     """
     psi = check_finite_array("psi", psi)
     if (np.abs(psi) >= np.pi / 2).any():
-        raise ValueError(f"psi must lie in (-pi/2, pi/2); got extreme value {psi.flat[np.abs(psi).argmax()]!r}")
+        raise ValueError(f"psi must lie in (-pi/2, pi/2); got extreme value {plain(psi.flat[np.abs(psi).argmax()])}")
     lam = check_real("lam", lam, low=0.0, high=1.0)
     check_choice("form", form, {1, 2, 3})
     if form == 1:

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from surfaces._checks import check_broadcast, check_finite_array, check_integer, check_positive, check_real
+from surfaces._checks import check_broadcast, check_finite_array, check_integer, check_positive, check_real, plain
 
 from ..results import SavableResult
 
@@ -199,8 +199,8 @@ class PowerLawContact:
         too_low = force < pull_off.force * (1 + 1e-12)
         if too_low.any():
             index = np.argwhere(too_low)[0]
-            raise ValueError(f"normal_force = {force[tuple(index)]!r} N is below the pull-off force "
-                             f"{pull_off.force[tuple(index)]!r} N (w = {w[tuple(index)]!r} J/m²); "
+            raise ValueError(f"normal_force = {plain(force[tuple(index)])} N is below the pull-off force "
+                             f"{plain(pull_off.force[tuple(index)])} N (w = {plain(w[tuple(index)])} J/m²); "
                              "valid range [pull-off force, inf)")
         force_1_c = (s * k) ** (1 / (1 - s))
         force_1 = np.maximum(2 * np.maximum(force, 0.0), (2 * k) ** (1 / (1 - s)))
