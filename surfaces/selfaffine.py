@@ -26,7 +26,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 import scipy.fft
 
-from ._checks import check_positive, check_real
+from ._checks import check_bool, check_positive, check_real
 from .grid import Grid
 from .heightfield import HeightField
 
@@ -82,7 +82,7 @@ class SelfAffinePSD:
         object.__setattr__(self, "short_cutoff", short)
         object.__setattr__(self, "rolloff", rolloff)
         object.__setattr__(self, "long_cutoff", long)
-        object.__setattr__(self, "profile", bool(self.profile))
+        object.__setattr__(self, "profile", check_bool("profile", self.profile))
 
     @property
     def exponent(self) -> float:
@@ -348,8 +348,7 @@ def self_affine(grid: Grid, hurst: float, *, rms_height=None, rms_slope=None, pr
     if len(amplitudes) != 1:
         raise ValueError("give exactly one amplitude of rms_height [m], rms_slope [-], prefactor [m^4]; "
                          f"got {sorted(amplitudes) or 'none'}")
-    if not isinstance(normalise, (bool, np.bool_)):
-        raise TypeError(f"normalise must be True or False, got {normalise!r}")
+    normalise = check_bool("normalise", normalise)
     spectrum = SelfAffinePSD(hurst, 1.0 if prefactor is None else check_positive("prefactor", prefactor),
                              long_cutoff, rolloff, short_cutoff, grid.is_profile)
     exact = normalise and prefactor is None
@@ -364,4 +363,4 @@ def self_affine(grid: Grid, hurst: float, *, rms_height=None, rms_slope=None, pr
     metadata["spectrum"]["prefactor"] *= metadata["normalisation_factor"] ** 2   # the PSD actually realised
     return HeightField(grid, heights, {"generator": "self_affine", "hurst": spectrum.hurst,
                                        "rms_height": rms_height, "rms_slope": rms_slope,
-                                       "normalise": bool(normalise), **metadata})
+                                       "normalise": normalise, **metadata})

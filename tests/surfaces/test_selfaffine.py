@@ -267,6 +267,10 @@ def test_bad_spectrum_and_grid():
         surfaces.fourier_synthesis(GRID, lambda q: -q, rng=0)
     with pytest.raises(TypeError, match="rng"):
         surfaces.self_affine(GRID, hurst=0.8, rms_height=1e-6, rng="seed")
+    with pytest.raises(TypeError, match="profile must be True or False, got 'no'"):
+        SelfAffinePSD(0.8, 1, L, L, L / 8, profile="no")
+    with pytest.raises(TypeError, match="normalise must be True or False"):
+        surfaces.self_affine(GRID, hurst=0.8, rms_height=1e-6, normalise="no", rng=0)
     with pytest.raises(ValueError, match="rng = -1 is a negative seed; valid range: int seeds >= 0"):
         surfaces.self_affine(GRID, hurst=0.8, rms_height=1e-6, rng=-1)
     for shape in ((1, 1), (2, 1), (2, 2)):              # no wavelength between two pixels and the window
