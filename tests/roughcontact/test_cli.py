@@ -3,13 +3,14 @@ import json
 import subprocess
 import sys
 from datetime import datetime, timedelta, timezone
+from pathlib import Path
 
 import numpy as np
 import pytest
 from PIL import Image
 
 from roughcontact import __version__, provenance
-from roughcontact.cli import info, main
+from roughcontact.cli import DEFAULT_FIGURES_OUTPUT, info, main
 from roughcontact.provenance import read_csv
 
 
@@ -122,3 +123,8 @@ def test_help_shows_defaults_without_markup(capsys):
         main(["figures", "--help"])
     out = capsys.readouterr().out
     assert "(default: roughcontact-figures)" in out and "``" not in out and ":func:" not in out
+
+
+def test_default_output_directory_is_git_ignored():
+    gitignore = Path(__file__).resolve().parents[2] / ".gitignore"
+    assert f"{DEFAULT_FIGURES_OUTPUT}/" in gitignore.read_text().split()
