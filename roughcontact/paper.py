@@ -22,6 +22,14 @@ VOLTAGE = 200.0
 GAP_REALISTIC = 1e-6
 #: Effective Hertz radius of the finger used for the Hertz/JKR comparison and peeling (Figs. 3, 5) [m].
 RADIUS = 1e-2
+#: Normal force at which the Hertz contact is fitted to the apparent-area law (E* = 47.4 kPa) [N].
+FIT_FORCE = 1.0
+#: The work of adhesion at which the seed evaluates its apparent-area numbers and Fig. 5 [J/m²].
+W_QUOTED = 0.132
+#: Largest normal force of Figs. 3–4 and of the seed's friction range (Table 1, Figs. 9–11) [N].
+AREA_MAX_FORCE, FRICTION_MAX_FORCE = 2.0, 2.3
+#: Smallest normal force of Fig. 11 [N] (μ → ∞ as F_N → 0 under voltage).
+MU_MIN_FORCE = 0.05
 #: Voltages of Figs. 9–11 [V].
 FRICTION_VOLTAGES = (0.0, 50.0, 100.0, 150.0, 200.0)
 MM2 = 1e-6   # 1 mm² in m²
@@ -119,7 +127,6 @@ def checkpoint_table() -> CheckpointTable:
     apparent, ridge, ridge_t1 = (PowerLawContact.dzidek_apparent(), PowerLawContact.dzidek_ridge(),
                                  PowerLawContact.table1_ridge())
     model = SlidingFrictionModel.paper_table1()
-    w_quoted = 0.132   # the seed evaluates its apparent-area numbers "at w = 0.132 J/m²"
     truncated = "printed truncated, not rounded (one unit of the last digit)"
 
     def reduction(force, voltage):
@@ -136,12 +143,12 @@ def checkpoint_table() -> CheckpointTable:
                    f"{1e6 * stack.dielectric_offset:.5f} µm. Fig. 4's 11.7 mN and 23.8 % reproduce only with "
                    f"{w_contact:.3f}, so 0.532 is a typo for 0.521", explained=True),
         Checkpoint("E* of the Hertz fit to Eq. 27 at 1 N, R* = 1 cm", 47.4,
-                   hertz_modulus_matching(apparent, RADIUS, 1.0) / 1e3, "kPa", 0.05 / 47.4),
+                   hertz_modulus_matching(apparent, RADIUS, FIT_FORCE) / 1e3, "kPa", 0.05 / 47.4),
         Checkpoint("apparent-area pull-off force at w = 0.132 (Eq. 27)", 6.74,
-                   -1e3 * float(apparent.pull_off(w_quoted).force), "mN", 0.01 / 6.74, truncated),
+                   -1e3 * float(apparent.pull_off(W_QUOTED).force), "mN", 0.01 / 6.74, truncated),
         Checkpoint("apparent-area zero-load area at w = 0.132", 24.14,
-                   float(apparent.zero_load_area(w_quoted)) / MM2, "mm²", 0.01 / 24.14, truncated),
-        Checkpoint("apparent-area change at 0.5 N, w = 0.132", 9.0, 100 * _area_change(apparent, 0.5, w_quoted),
+                   float(apparent.zero_load_area(W_QUOTED)) / MM2, "mm²", 0.01 / 24.14, truncated),
+        Checkpoint("apparent-area change at 0.5 N, w = 0.132", 9.0, 100 * _area_change(apparent, 0.5, W_QUOTED),
                    "%", 0.5 / 9.0),
         Checkpoint("ridge pull-off, 1 µm gap (Eq. 28, w = 0.1322)", 2.3, -1e3 * float(ridge.pull_off(w_gap).force),
                    "mN", 0.05 / 2.3),
@@ -177,7 +184,7 @@ def checkpoint_table() -> CheckpointTable:
                    0.0, kind="at least"),
         Checkpoint("Table 1: μ(200 V)/μ(0 V) at 2.3 N", 2.0, mu(2.3, 200.0) / mu(2.3, 0.0), "-", 0.0,
                    "the paper's 'more than doubled' holds for F_N <= {:.2f} N only (not explained)".format(
-                       _force_where_ratio_reaches(model, 2.0, 200.0, np.linspace(1.0, 2.3, 131))),
+                       _force_where_ratio_reaches(model, 2.0, 200.0, np.linspace(1.0, FRICTION_MAX_FORCE, 131))),
                    kind="at least"),
     ]
     return CheckpointTable(rows=tuple(rows))
@@ -217,20 +224,20 @@ def _area_figure(output_dir, name, law, title, with_hertz, provenance):
     works = (0.0, float(stack.work_of_adhesion(GAP_REALISTIC, VOLTAGE)), float(stack.work_of_adhesion(0.0, VOLTAGE)))
     labels = ["non-adhesive", f"w = {works[1]:.3f} J/m² (200 V, 1 µm)", f"w = {works[2]:.3f} J/m² (200 V, 0 µm)"]
     fig, (ax_full, ax_zoom) = _new_figure(2)
-    curves = plot_adhesive_area(ax_full, law, works, labels, float(law.area(2.0, works[-1])))
+    curves = plot_adhesive_area(ax_full, law, works, labels, float(law.area(AREA_MAX_FORCE, works[-1])))
     rows = [(0, w, f, a) for w, f, a in curves]
     zoom_area = 2 * float(law.zero_load_area(works[-1]))
     plot_adhesive_area(ax_zoom, law, works, labels, zoom_area, force_scale=1e3)
     if with_hertz:
-        hertz = PowerLawContact.hertz(RADIUS, hertz_modulus_matching(law, RADIUS, 1.0))
+        hertz = PowerLawContact.hertz(RADIUS, hertz_modulus_matching(law, RADIUS, FIT_FORCE))
         for w, label in zip(works, ("Hertz", "JKR (1 µm)", "JKR (0 µm)")):
-            area = np.linspace(0.0, float(hertz.area(2.0, w)), AREA_POINTS)
+            area = np.linspace(0.0, float(hertz.area(AREA_MAX_FORCE, w)), AREA_POINTS)
             force = hertz.normal_force(area, w)
             ax_full.plot(force, area / MM2, "--", label=label)
             rows.append((1, w, force, area))
         ax_full.legend(fontsize=7)
     ax_zoom.set_xlim(1.2e3 * float(law.pull_off(works[-1]).force), 10.0)
-    ax_full.set_xlim(right=2.0)
+    ax_full.set_xlim(right=AREA_MAX_FORCE)
     ax_full.set_title(f"{title} (A)")
     ax_zoom.set_title("pull-off region (B)")
     columns = [np.concatenate([np.full(f.size, kind) for kind, w, f, a in rows]),
@@ -255,9 +262,9 @@ def figure4(output_dir, provenance):
 def figure5(output_dir, provenance, normal_forces=(0.25, 0.5, 1.0, 2.0)):
     """Fig. 5: apparent area vs tangential force up to F_T,c (Eqs. 31–32), R* = 1 cm, E* = 47.4 kPa fit,
     w = 0.132 J/m², G*/E* = 2/3."""
-    E_star = hertz_modulus_matching(PowerLawContact.dzidek_apparent(), RADIUS, 1.0)
+    E_star = hertz_modulus_matching(PowerLawContact.dzidek_apparent(), RADIUS, FIT_FORCE)
     peeling = SavkoorBriggsPeeling.incompressible_on_rigid(RADIUS, E_star)
-    w = 0.132
+    w = W_QUOTED
     fig, (ax,) = _new_figure(1)
     columns = [[], [], []]
     for force in normal_forces:
@@ -269,7 +276,7 @@ def figure5(output_dir, provenance, normal_forces=(0.25, 0.5, 1.0, 2.0)):
             column.append(values)
     ax.set_xlabel("tangential force F_T [N]")
     ax.set_ylabel("apparent contact area [mm²]")
-    ax.set_title("peeling (Savkoor–Briggs), w = 0.132 J/m²")
+    ax.set_title(f"peeling (Savkoor–Briggs), w = {W_QUOTED} J/m²")
     ax.legend(fontsize=7)
     return _write(fig, output_dir, "fig5_peeling", ["normal_force_N", "tangential_force_N", "area_mm2"],
                   [np.concatenate(c) for c in columns], provenance)
@@ -277,7 +284,7 @@ def figure5(output_dir, provenance, normal_forces=(0.25, 0.5, 1.0, 2.0)):
 
 def _friction_sweep(start=0.0):
     model = SlidingFrictionModel.paper_table1()
-    forces = np.linspace(start, 2.3, FORCE_POINTS)
+    forces = np.linspace(start, FRICTION_MAX_FORCE, FORCE_POINTS)
     states = [model.state(forces, voltage) for voltage in FRICTION_VOLTAGES]
     return forces, states
 
@@ -321,7 +328,7 @@ def figure10(output_dir, provenance):
 
 def figure11(output_dir, provenance):
     """Fig. 11: apparent friction coefficient μ = F_T/F_N (Eq. 42) vs F_N (from 0.05 N; μ → ∞ as F_N → 0)."""
-    forces, states = _friction_sweep(start=0.05)
+    forces, states = _friction_sweep(start=MU_MIN_FORCE)
     return _friction_figure(output_dir, "fig11_friction_coefficient", forces, [s.friction_coefficient for s in states],
                             "apparent friction coefficient μ [-]", "friction_coefficient", provenance)
 
