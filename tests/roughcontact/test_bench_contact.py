@@ -39,8 +39,11 @@ def test_every_section_and_size_present(rows):
     assert {r["solver"] for r in select(rows, "sweep")} == {"cold start", "cold start (pk)", "warm start"}
     assert not select(rows, "peer")                     # --fast skips the peers
     assert all(float(r["time_s"]) > 0 for r in rows if r["section"] != "memory")
-    # peak memory in grid arrays: at least p, u and h; the bound is loose on tiny grids (fixed overheads)
-    assert all(3 < float(r["ratio"]) < 100 for r in select(rows, "memory"))
+    # peak memory in float64 grid arrays (tracemalloc: no timing): fast mode measures 11.6 and 10.5 periodic,
+    # 18.8 and 18.0 on the free surface (32², 64²; docs: 10.2 and 17.6 at 256²); bands of ±15 %
+    for r in select(rows, "memory"):
+        low, high = (9.0, 13.5) if r["note"].startswith("periodic") else (15.5, 21.5)
+        assert low < float(r["ratio"]) < high, r
 
 
 def test_backends_agree_and_converge(rows):

@@ -1,6 +1,4 @@
 """The κ study (experiments/contact_area_coefficient.py) runs in fast mode and writes sane, self-consistent files."""
-import math
-
 import numpy as np
 import pytest
 from PIL import Image
@@ -45,8 +43,9 @@ def test_rows_consistent(study, output, read_csv):
         assert float(row["kappa_corrected"]) == pytest.approx(corrected, rel=1e-12)
         assert float(row["kappa_corrected"]) < float(row["kappa_pixels"])
         assert 1 <= int(row["patches"]) <= fraction * n2
-        # sane magnitude on tiny grids: between Persson's √(8/π) and 4× it
-        assert math.sqrt(8 / math.pi) < float(row["kappa_corrected"]) < 4 * math.sqrt(8 / math.pi)
+        # fast mode's tiny grids measure κ_corrected from 2.16 to 3.96 (above Persson's √(8/π) = 1.60: coarse
+        # pixels and few contacts); the band keeps 8 % either side
+        assert 2.0 < float(row["kappa_corrected"]) < 4.3
 
 
 def test_summary_means(output, read_csv):
