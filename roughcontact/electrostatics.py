@@ -109,7 +109,8 @@ class DielectricStack:
 
     def force(self, gap, voltage, area) -> np.ndarray:
         """Electrostatic force F_el = σ_el A [N] on a plate of ``area`` [m²] (Eq. 20)."""
-        area = check_finite_array("area", area, nonnegative=True)
+        gap, voltage, area = check_broadcast(gap=gap, voltage=voltage,
+                                             area=check_finite_array("area", area, nonnegative=True))
         return self.pressure(gap, voltage) * area
 
     def strong_troxel_pressure(self, voltage) -> np.ndarray:

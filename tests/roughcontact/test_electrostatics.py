@@ -166,6 +166,8 @@ def test_bad_gap_voltage_and_weights():
         DielectricStack(d_sc="thick")
     with pytest.raises(ValueError, match=r"shapes do not broadcast: gap \(3,\), voltage \(2,\)"):
         TABLE1.pressure(np.zeros(3), np.ones(2))
+    with pytest.raises(ValueError, match=r"gap \(3,\), voltage \(\), area \(2,\)"):
+        TABLE1.force(np.zeros(3), 1.0, np.ones(2))
     for call in (lambda: TABLE1.pressure(0.0, 100.0 + 0j), lambda: TABLE1.work_of_adhesion(np.zeros(2) + 0j, 1.0),
                  lambda: DielectricStack(d_sc=250e-6 + 0j)):
         with pytest.raises(TypeError, match="complex|real number"):
