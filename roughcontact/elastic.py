@@ -11,7 +11,8 @@ Fourier multipliers Φ(q) [m/Pa] with ũ(q) = Φ(q) p̃(q) (u positive into the 
   (DC-FFT, Liu, Wang & Liu 2000, Wear 243:101; Hockney 1970) — the linear, not circular, convolution;
 * a layer of thickness t on a rigid base or on a softer half-space: Φ(q) from :mod:`roughcontact.layered`.
   On a rigid base the uniform (q = 0) mode is the uniaxial-strain compression t/M (see
-  :attr:`ElasticHalfSpace.uniform_compliance`), so <u> = <p> t/M; on a half-space it is set to 0.
+  :attr:`ElasticHalfSpace.uniform_compliance`), so <u> = <p> t/M; on a half-space it is set to 0. A layer much
+  thicker than the window is the half-space (docs/layered.md, "A layer much thicker than the window").
 
 Periodicity comes from the grid and is never changed: a 2-D grid must be periodic on both axes or on none
 (mixed periodicity raises ``ValueError``); a profile (shape ``(n, 1)``, plane strain) must be periodic
