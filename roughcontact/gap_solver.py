@@ -15,9 +15,12 @@ s = ⟨g⟩ + ⟨h⟩ − Φ(0) P̄; under the constraint λ is its multiplier.
 Method: projected non-linear conjugate gradients (Polak–Ribière⁺) on the free set F = {g > 0} ∪ {g = 0, G < 0},
 preconditioned by the compliance K (the inverse of the elastic Hessian; its q = 0 mode given the largest
 compliance), with a projected Armijo line search on Π started from the step that minimises the local
-quadratic model (curvature ⟨d, K⁻¹ d⟩ − ⟨k d²⟩). Each step costs one FFT pair for z = K r and one for K⁻¹ d,
-plus one where the projection clipped the step. Π decreases monotonically. Convergence criterion, with
-``gap_scale`` the rms height of h (the law's length on a flat surface):
+quadratic model (curvature ⟨d, K⁻¹ d⟩ − ⟨k d²⟩). No point whose gap can be stable closes by more than g + law
+length in one step (no tunnelling through an energy barrier into contact). Each step costs one FFT
+pair for z = K r and one for K⁻¹ d, plus one where the projection clipped the step; the pointwise work is in
+fused numba passes (the built-in laws evaluated inside them; a user's law through its numpy methods).
+Π decreases monotonically. Convergence criterion, with ``gap_scale`` the rms height of h (the law's length
+on a flat surface):
 
     sqrt(⟨(K r)²⟩_F) ≤ tol · gap_scale,   r = G on F,
 
@@ -32,28 +35,237 @@ import time
 import warnings
 
 import numpy as np
+from numba import njit
 
-from surfaces import HeightField
-from surfaces._checks import check_finite_array, check_integer, check_real
+from surfaces._checks import check_integer, check_real
 
 from ._version import __version__
 from .contact import ContactResult, SolverState, _heights, solve_contact
+from .electrostatics import EPSILON_0
+from .interactions import ElectrostaticInteraction, ExponentialAdhesion, MaugisDugdale
 from .results import ConvergenceWarning
 
 METHOD = "projected-cg-gap"
-ARMIJO = 1e-4            # sufficient-decrease constant of the projected line search
-MAX_HALVINGS = 40        # line-search step halvings before the direction is given up
-APPROACH = 0.5          # the largest fraction of (gap + law length) by which a point may close in one step
+ARMIJO = 1e-4             # sufficient-decrease constant of the projected line search
+MAX_HALVINGS = 40         # line-search step halvings before the direction is given up
+APPROACH = 1.0            # a stable point closes by at most this times (gap + law length) in one step
 ENERGY_ROUND_OFF = 1e-12  # relative round-off of the energy sums, below which a rise is not a rise
+_REFRESH = 50             # exact recomputation of p_el at least every _REFRESH incremental steps
+
+# built-in laws evaluated inside the kernels: (kind, a, b, c)
+_ELECTROSTATIC, _EXPONENTIAL, _DUGDALE, _USER = 0, 1, 2, -1
+
+
+def _law_code(law):
+    """(kind, a, b, c) of a built-in law for :func:`_law_at`; ``_USER`` for any other (numpy methods)."""
+    if isinstance(law, ElectrostaticInteraction):
+        stack = law.stack                                   # V = −a/h, h = c + g/ε_a, a = ε0 U²/2
+        return _ELECTROSTATIC, 0.5 * EPSILON_0 * law.voltage ** 2, stack.eps_a, stack.dielectric_offset
+    if isinstance(law, ExponentialAdhesion):
+        return _EXPONENTIAL, law.work_of_adhesion, law.length, 0.0
+    if isinstance(law, MaugisDugdale):
+        return _DUGDALE, law.cohesive_stress, law.length, 0.0
+    return _USER, 0.0, 0.0, 0.0
+
+
+@njit(cache=True)
+def _law_at(kind, a, b, c, g):
+    """V [J/m²], p_int = −dV/dg [Pa] and k = dp_int/dg [Pa/m] of a built-in law at the gap g."""
+    if kind == 0:
+        h = c + g / b
+        return -a / h, -a / (b * h * h), 2.0 * a / (b * b * h * h * h)
+    if kind == 1:
+        e = a * math.exp(-g / b)
+        return -e, -e / b, e / (b * b)
+    if g < b:
+        return -a * (b - g), -a, 0.0
+    return 0.0, 0.0, 0.0
+
+
+@njit(cache=True)
+def _evaluate_law(kind, a, b, c, g, energy, traction, stiffness):
+    """energy, traction, stiffness ← the law at every g; returns Σ V."""
+    total = 0.0
+    for i in range(g.size):
+        energy[i], traction[i], stiffness[i] = _law_at(kind, a, b, c, g[i])
+        total += energy[i]
+    return total
+
+
+def _law_into(law, code, g, energy, traction, stiffness) -> float:
+    """Evaluate the law at g into the three arrays (numba for a built-in law); Σ V."""
+    if code[0] != _USER:
+        return _evaluate_law(*code, g, energy, traction, stiffness)
+    energy[:], traction[:], stiffness[:] = law.energy(g), law.traction(g), law.stiffness(g)
+    return float(np.sum(energy, dtype=np.float64))
+
+
+@njit(cache=True)
+def _open_mean_imbalance(g, pel, traction):
+    """⟨p_int − p_el⟩ over the open points (g > 0), the multiplier of the mean-gap constraint; and their number."""
+    total, count = 0.0, 0
+    for i in range(g.size):
+        if g[i] > 0:
+            total += traction[i] - pel[i]
+            count += 1
+    return total, count
+
+
+@njit(cache=True)
+def _residual(g, pel, traction, load, r, free):
+    """G = p_el + λ − p_int; the free set F = {g > 0} ∪ {g = 0, G < 0}; r ← G on F, 0 elsewhere. Returns |F|,
+    Σ r, the number of points at the wall and the largest attraction −p_int."""
+    n_free, sum_r, at_wall, largest_pull = 0, 0.0, 0, 0.0
+    for i in range(g.size):
+        gradient = pel[i] + load - traction[i]
+        largest_pull = max(largest_pull, -traction[i])
+        if g[i] > 0 or gradient < 0:
+            free[i] = True
+            r[i] = gradient
+            n_free += 1
+            sum_r += gradient
+        else:
+            free[i] = False
+            r[i] = 0.0
+        if g[i] <= 0:
+            at_wall += 1
+    return n_free, sum_r, at_wall, largest_pull
+
+
+@njit(cache=True)
+def _mask_shift(z, free, shift):
+    """z ← z + shift on F, 0 elsewhere; returns Σ z over F."""
+    total = 0.0
+    for i in range(z.size):
+        if free[i]:
+            z[i] += shift
+            total += z[i]
+        else:
+            z[i] = 0.0
+    return total
+
+
+@njit(cache=True)
+def _centre_on_free(values, free, mean):
+    for i in range(values.size):
+        if free[i]:
+            values[i] -= mean
+
+
+@njit(cache=True)
+def _moments(z, r, r_prev):
+    """Σ z², Σ r z, Σ r_prev z."""
+    zz, rz, pz = 0.0, 0.0, 0.0
+    for i in range(z.size):
+        zz += z[i] * z[i]
+        rz += r[i] * z[i]
+        pz += r_prev[i] * z[i]
+    return zz, rz, pz
+
+
+@njit(cache=True)
+def _direction(d, z, free, beta):
+    """d ← β d − z on F, 0 elsewhere; returns Σ d."""
+    total = 0.0
+    for i in range(d.size):
+        if free[i]:
+            d[i] = beta * d[i] - z[i]
+            total += d[i]
+        else:
+            d[i] = 0.0
+    return total
+
+
+@njit(cache=True)
+def _dot(x, y):
+    total = 0.0
+    for i in range(x.size):
+        total += x[i] * y[i]
+    return total
+
+
+@njit(cache=True)
+def _centred_into(d, mean, out):
+    for i in range(d.size):
+        out[i] = d[i] - mean
+
+
+@njit(cache=True)
+def _curvature_and_cap(g, d, w, stiffness, length, pixel_compliance, approach):
+    """Σ d K⁻¹d, Σ k d², and the largest step τ by which no stable approaching point (k K_ii < 1) closes by
+    more than ``approach`` (g + ρ) (inf if none)."""
+    dw, kdd, cap = 0.0, 0.0, np.inf
+    for i in range(d.size):
+        dw += d[i] * w[i]
+        kdd += stiffness[i] * d[i] * d[i]
+        if d[i] < 0 and stiffness[i] * pixel_compliance < 1.0:
+            cap = min(cap, approach * (g[i] + length) / -d[i])
+    return dw, kdd, cap
+
+
+@njit(cache=True)
+def _trial_gap(g, d, tau, r, trial):
+    """trial ← max(g + τ d, 0); returns whether any point was clipped, Σ trial and Σ r (trial − g)."""
+    clipped, total, predicted = False, 0.0, 0.0
+    for i in range(g.size):
+        value = g[i] + tau * d[i]
+        if value < 0:
+            value = 0.0
+            clipped = True
+        trial[i] = value
+        total += value
+        predicted += r[i] * (value - g[i])
+    return clipped, total, predicted
+
+
+@njit(cache=True)
+def _advance_traction(pel, w, tau, out):
+    for i in range(pel.size):
+        out[i] = pel[i] + tau * w[i]
+
+
+@njit(cache=True)
+def _work_terms(gap, h_f, pel):
+    """Σ g, Σ (g + h_f) p_el and Σ p_el: the elastic energy ½⟨u_f p_el⟩ without a pass over u_f."""
+    gap_sum, work, total = 0.0, 0.0, 0.0
+    for i in range(gap.size):
+        gap_sum += gap[i]
+        work += (gap[i] + h_f[i]) * pel[i]
+        total += pel[i]
+    return gap_sum, work, total
+
+
+@njit(cache=True)
+def _restore_mean(g, target):
+    """g ← max(g + c, 0) with c such that ⟨g⟩ = target > 0: the Euclidean projection onto {g ≥ 0, ⟨g⟩ = target}
+    (Newton on the convex, piecewise linear mean, from above: exact in a few passes)."""
+    n = g.size
+    total = 0.0
+    for i in range(n):
+        total += g[i]
+    c = target - total / n
+    for _ in range(100):
+        excess, positive = 0.0, 0
+        for i in range(n):
+            value = g[i] + c
+            if value > 0:
+                excess += value
+                positive += 1
+        excess = excess / n - target
+        if excess <= 1e-15 * target or positive == 0:
+            break
+        c -= excess * n / positive
+    for i in range(n):
+        g[i] = max(g[i] + c, 0.0)
 
 
 class _Energy:
-    """Π/A and its gradient for one control (module docstring); holds the body, law and the fixed fields."""
+    """Π/A for one control (module docstring): the load term and the elastic traction of a gap field."""
 
-    def __init__(self, h, half, law, load, flat_position):
-        self.half, self.law, self.load, self.flat_position = half, law, load, flat_position
+    def __init__(self, h, half, load, flat_position):
+        self.half, self.load, self.flat_position = half, load, flat_position
         self.h_mean = float(h.mean(dtype=np.float64))
-        self.h_f = h - self.h_mean
+        self.h_f = (h - self.h_mean).astype(half.dtype)
         self.uniform = half.uniform_compliance                  # Φ(0) [m/Pa]
         self.constrained = load is None and self.uniform == 0.0
         self.mean_target = None if flat_position is None else flat_position - self.h_mean
@@ -61,26 +273,23 @@ class _Energy:
     def elastic_traction(self, g, out, work):
         """out ← p_el = K⁻¹ u_f for the flat gap g (one FFT pair); ``work`` (grid-shaped) holds u_f."""
         flat = work.reshape(-1)
-        np.subtract(g, float(g.mean(dtype=np.float64)), out=flat)
+        _centred_into(g, float(g.mean(dtype=np.float64)), flat)
         flat += self.h_f
-        return self.half.stiffness_into(work, out)
+        return self.half.stiffness_into(work, out).reshape(-1)
 
-    def external_load(self, g_mean, p_el, p_int, free):
-        """λ [Pa]: P̄, the layer's ū/Φ(0), or the multiplier that balances the free set's mean residual."""
+    def external_load(self, g_mean, imbalance=None):
+        """λ [Pa]: P̄, the layer's ū/Φ(0), or (under the ⟨g⟩ constraint) the given mean imbalance."""
         if self.load is not None:
             return self.load
         if not self.constrained:
             return (g_mean + self.h_mean - self.flat_position) / self.uniform
-        n_free = np.count_nonzero(free)
-        if n_free == 0:
-            return float(np.mean(p_int - p_el, dtype=np.float64))
-        return float(np.mean((p_int - p_el)[free], dtype=np.float64))
+        return imbalance
 
-    def value(self, g, p_el):
-        """Π/A [J/m²] and its three parts' magnitudes (for the round-off allowance)."""
-        g_mean = float(g.mean(dtype=np.float64))
-        elastic = 0.5 * float(np.dot((g - g_mean + self.h_f).astype(np.float64), p_el.astype(np.float64))) / g.size
-        interaction = float(np.mean(self.law.energy(g), dtype=np.float64))
+    def value(self, g_sum, work, pel_sum, energy_sum, n):
+        """Π/A [J/m²] from the pass sums, and the magnitude of its parts (for the round-off allowance)."""
+        g_mean = g_sum / n
+        elastic = 0.5 * (work - g_mean * pel_sum) / n
+        interaction = energy_sum / n
         if self.load is not None:
             external = self.load * g_mean
         elif not self.constrained:
@@ -90,27 +299,13 @@ class _Energy:
         return elastic + interaction + external, abs(elastic) + abs(interaction) + abs(external)
 
 
-def _restore_mean(g, target):
-    """g ← max(g + c, 0) with c such that ⟨g⟩ = target > 0: the Euclidean projection onto {g ≥ 0, ⟨g⟩ = target}
-    (Newton on the convex, piecewise linear mean from above: exact in a few passes)."""
-    c = target - float(g.mean(dtype=np.float64))
-    for _ in range(100):
-        shifted = g + c
-        positive = shifted > 0
-        excess = float(np.sum(shifted[positive], dtype=np.float64)) / g.size - target
-        if excess <= 1e-15 * target:
-            break
-        c -= excess * g.size / max(np.count_nonzero(positive), 1)
-    np.maximum(g + c, 0.0, out=g)
-
-
-def _start_gap(h, half, law, load, flat_position, x0, tol, maxiter):
+def _start_gap(h, half, load, flat_position, x0, tol, maxiter):
     """The initial gap [m]: ``x0``'s gap, else the hard-wall solution at the same control where it exists, else the
-    undeformed gap with the flat at ``flat_position`` (or touching the highest point); and its name."""
+    undeformed gap with the flat at ``flat_position`` (or touching the highest point); its name and FFT pairs."""
     if isinstance(x0, ContactResult):
         if x0.gap.shape != h.shape:
             raise ValueError(f"x0 has shape {x0.gap.shape}, but the grid has shape {h.shape}")
-        return np.array(x0.gap, dtype=half.dtype), "x0"
+        return np.array(x0.gap, dtype=half.dtype), "x0", 0.0
     if x0 is not None:
         raise TypeError(f"x0 of a smooth interaction must be a ContactResult (its gap starts the solve), got "
                         f"{type(x0).__name__}")
@@ -122,8 +317,8 @@ def _start_gap(h, half, law, load, flat_position, x0, tol, maxiter):
                               warn=False)
     else:
         position = h_max if flat_position is None else flat_position
-        return (position - h).astype(half.dtype), "rigid"
-    return np.array(start.gap, dtype=half.dtype), "hard wall"
+        return (position - h).astype(half.dtype), "rigid", 0.0
+    return np.array(start.gap, dtype=half.dtype), "hard wall", start.params["fft_pairs"]
 
 
 def solve_smooth(height_field, half, law, *, mean_pressure=None, total_force=None, penetration=None, tol=1e-8,
@@ -154,187 +349,204 @@ def solve_smooth(height_field, half, law, *, mean_pressure=None, total_force=Non
     h = heights.reshape(-1)
     load = requested / grid.area if control == "total_force" else requested if control == "mean_pressure" else None
     flat_position = None if load is not None else float(h.max()) - requested
-    energy = _Energy(h, half, law, load, flat_position)
+    energy = _Energy(h, half, load, flat_position)
     if energy.constrained and energy.mean_target <= 0:
         raise ValueError(f"penetration = {requested!r} m leaves no room for a gap on a periodic half-space: the mean "
                          f"gap ⟨g⟩ = s − ⟨h⟩ must be > 0, i.e. penetration < max(h) − ⟨h⟩ = "
                          f"{float(h.max()) - energy.h_mean!r} m")
-
-    g, start_kind = _start_gap(heights, half, law, load, flat_position, x0, tol, maxiter)
+    g, start_kind, start_pairs = _start_gap(heights, half, load, flat_position, x0, tol, maxiter)
     g = g.reshape(-1)
     np.maximum(g, 0.0, out=g)
     if energy.constrained:
         _restore_mean(g, energy.mean_target)
-    deviation = h - energy.h_mean
-    gap_scale = float(np.sqrt(np.mean(deviation * deviation, dtype=np.float64))) or law.length or 1.0
-    del deviation
-    # work arrays (the transforms take and fill arrays of the body's own layout)
-    field = grid.shape
-    p_el, work, z, w = (half.empty() for _ in range(4))
-    d = np.zeros(g.size, half.dtype)
-    trial = np.empty(g.size, half.dtype)
-    p_trial = half.empty()
-    largest_compliance = max(float(half.compliance(2 * math.pi / max(grid.lengths))), energy.uniform)
+    gap_scale = float(np.sqrt(np.mean(np.square(energy.h_f, dtype=np.float64)))) or law.length or 1.0
+    state = _Solver(g, energy, law, gap_scale, start_pairs)
+    return state.run(tol, maxiter, callback, warn, heights, control, requested, start_kind, start)
 
-    def elastic(gap, out):
-        return energy.elastic_traction(gap, out, work).reshape(-1)
 
-    pel = elastic(g, p_el)
-    value, magnitude = energy.value(g, pel)
-    transforms = 2
-    residuals, iterations, converged, message = [], 0, False, ""
-    previous_rz, tau, since_exact, detached = 0.0, 0.0, 0, False
-    r_prev = np.zeros(g.size, half.dtype)
-    history = [value]
-    while True:
-        p_int = law.traction(g)
-        g_mean = float(g.mean(dtype=np.float64))
-        at_wall = g <= 0
-        free0 = ~at_wall
-        load_now = energy.external_load(g_mean, pel, p_int, free0)
-        gradient = pel + load_now - p_int
-        free = free0 | (gradient < 0)
-        if energy.constrained:                              # the multiplier of ⟨g⟩ balances the free set
-            load_now = energy.external_load(g_mean, pel, p_int, free)
-            gradient = pel + load_now - p_int
-        r = np.where(free, gradient, 0.0).astype(half.dtype)
-        # preconditioned residual z = K r on F (+ the largest compliance for the mean mode), zero mean on F
-        # under the ⟨g⟩ constraint
-        zf = half.displacement_into(r.reshape(field), z).reshape(-1)
-        transforms += 2
-        zf += (largest_compliance - energy.uniform) * float(r.mean(dtype=np.float64))
-        zf[~free] = 0.0
-        if energy.constrained and free.any():
-            zf[free] -= float(zf[free].mean(dtype=np.float64))
-        residual = float(np.sqrt(np.mean(np.square(zf, dtype=np.float64)))) / gap_scale
-        residuals.append(residual)
-        if callback is not None and iterations:
-            try:
-                callback(SolverState(iterations, residual, float(np.count_nonzero(at_wall)) / g.size))
-            except StopIteration:
-                message = f"halted by callback after {iterations} iterations (relative residual {residual:.3g})"
+class _Solver:
+    """The work arrays and the iteration of :func:`solve_smooth` (fields, not closures, so that each step's
+    buffers swap without allocation)."""
+
+    def __init__(self, g, energy, law, gap_scale, start_pairs):
+        half = energy.half
+        self.energy, self.law, self.half, self.gap_scale = energy, law, half, gap_scale
+        self.code = _law_code(law)
+        n, dtype = g.size, half.dtype
+        self.n = n
+        self.g, self.trial = g, np.empty(n, dtype)
+        self.pel_field, self.trial_field, self.work, self.z_field, self.w_field = (half.empty() for _ in range(5))
+        self.d, self.r, self.r_prev = np.zeros(n, dtype), np.zeros(n, dtype), np.zeros(n, dtype)
+        self.free = np.zeros(n, np.bool_)
+        self.law_now = [np.empty(n, dtype) for _ in range(3)]     # V, p_int, k at g
+        self.law_trial = [np.empty(n, dtype) for _ in range(3)]   # the same at the trial gap
+        grid = half.grid
+        self.largest_compliance = max(float(half.compliance(2 * math.pi / max(grid.lengths))), energy.uniform)
+        self.pixel_compliance = half.pixel_compliance
+        self.transforms = 2 * start_pairs                      # the start's solve included
+
+    def elastic(self, gap, field):
+        self.transforms += 2
+        return self.energy.elastic_traction(gap, field, self.work)
+
+    def evaluate(self, gap, pel, arrays):
+        """Π/A and its magnitude at ``gap`` with elastic traction ``pel``; the law evaluated into ``arrays``."""
+        energy_sum = _law_into(self.law, self.code, gap, *arrays)
+        return self.energy.value(*_work_terms(gap, self.energy.h_f, pel), energy_sum, self.n)
+
+    def run(self, tol, maxiter, callback, warn, heights, control, requested, start_kind, start):
+        energy, half, n = self.energy, self.half, self.n
+        pel = self.elastic(self.g, self.pel_field)
+        value, magnitude = self.evaluate(self.g, pel, self.law_now)
+        history, residuals = [value], []
+        iterations, converged, message, detached = 0, False, "", False
+        previous_rz, tau, since_exact = 0.0, 0.0, 0
+        while True:
+            g, d, r, free = self.g, self.d, self.r, self.free
+            _, traction, stiffness = self.law_now
+            load = energy.load
+            if energy.load is None:
+                imbalance, n_open = _open_mean_imbalance(g, pel, traction)
+                load = energy.external_load(float(g.mean(dtype=np.float64)), imbalance / max(n_open, 1))
+            n_free, sum_r, at_wall, largest_pull = _residual(g, pel, traction, load, r, free)
+            # preconditioned residual z = K r on F (+ the largest compliance for the mean mode); zero mean on F
+            # under the ⟨g⟩ constraint
+            z = half.displacement_into(r.reshape(self.z_field.shape), self.z_field).reshape(-1)
+            self.transforms += 2
+            sum_z = _mask_shift(z, free, (self.largest_compliance - energy.uniform) * sum_r / n)
+            if energy.constrained and n_free:
+                _centre_on_free(z, free, sum_z / n_free)
+            zz, rz, prz = _moments(z, r, self.r_prev)
+            residual = math.sqrt(zz / n) / self.gap_scale
+            residuals.append(residual)
+            if callback is not None and iterations:
+                try:
+                    callback(SolverState(iterations, residual, at_wall / n))
+                except StopIteration:
+                    message = f"halted by callback after {iterations} iterations (relative residual {residual:.3g})"
+                    break
+            if residual <= tol:
+                if since_exact:                             # accept only on an exactly recomputed p_el
+                    pel, since_exact = self.elastic(g, self.pel_field), 0
+                    residuals.pop()
+                    continue
+                converged, message = True, f"converged: relative residual {residual:.3g} <= tol {tol:g}"
                 break
-        if residual <= tol:
-            if since_exact:                                 # accept only on an exactly recomputed p_el
-                pel, since_exact = elastic(g, p_el), 0
-                transforms += 2
-                residuals.pop()
-                continue
-            converged, message = True, f"converged: relative residual {residual:.3g} <= tol {tol:g}"
-            break
-        if load is not None and load < 0 and not at_wall.any() and float(np.max(-p_int)) < -load:
-            detached = True
-            message = (f"no equilibrium: the tensile load {load:.6g} Pa exceeds the attraction at every point "
-                       f"(largest {float(np.max(-p_int)):.6g} Pa) with no contact left; the body separates "
-                       "(beyond pull-off)")
-            break
-        if iterations >= maxiter:
-            message = f"not converged after {iterations} iterations: relative residual {residual:.3g} (tol {tol:g})"
-            break
-        iterations += 1
-        # Polak–Ribière⁺ conjugate direction on F
-        rz = float(np.dot(r.astype(np.float64), zf))
-        beta = max(0.0, (rz - float(np.dot(r_prev.astype(np.float64), zf))) / previous_rz) if previous_rz > 0 else 0.0
-        d *= beta
-        d -= zf
-        d[~free] = 0.0
-        if energy.constrained and free.any():
-            d[free] -= float(d[free].mean(dtype=np.float64))
-        slope = float(np.dot(gradient.astype(np.float64), d.astype(np.float64)))
-        if slope >= 0:                                      # not a descent direction: steepest (preconditioned)
-            np.negative(zf, out=d)
-            slope = -rz
-        previous_rz, r_prev = rz, r
-        accepted, tau, transforms, since_exact, step = _line_search(
-            g, d, gradient, slope, pel, value, magnitude, energy, law, elastic, w, trial, p_trial, tau, transforms)
-        if not accepted and beta > 0:                       # retry along the preconditioned steepest descent
-            np.negative(zf, out=d)
-            d[~free] = 0.0
-            accepted, tau, transforms, since_exact, step = _line_search(
-                g, d, gradient, -rz, pel, value, magnitude, energy, law, elastic, w, trial, p_trial, tau, transforms)
-        if not accepted:
-            message = (f"stalled after {iterations} iterations: no decrease of the energy along the steepest "
-                       f"descent (relative residual {residual:.3g}, tol {tol:g})")
-            break
-        g, trial = trial, g
-        pel, p_trial = step, p_el
-        p_el = pel.reshape(field)
-        value, magnitude = energy.value(g, pel)
-        history.append(value)
-    if not converged and warn:
-        warnings.warn(message, ConvergenceWarning, stacklevel=3)
-    return _smooth_result(g, pel, h, heights, half, law, energy, control, requested, iterations, residuals,
-                          converged, message, start, transforms, start_kind, tol, maxiter, detached, history)
+            if energy.load is not None and energy.load < 0 and at_wall == 0 and largest_pull < -energy.load:
+                detached = True
+                message = (f"no equilibrium: the tensile load {energy.load:.6g} Pa exceeds the attraction at every "
+                           f"point (largest {largest_pull:.6g} Pa) with no contact left; the body separates "
+                           "(beyond pull-off)")
+                break
+            if iterations >= maxiter:
+                message = f"not converged after {iterations} iterations: relative residual {residual:.3g} (tol {tol:g})"
+                break
+            iterations += 1
+            beta = max(0.0, (rz - prz) / previous_rz) if previous_rz > 0 else 0.0     # Polak–Ribière⁺
+            accepted, step = False, None
+            for attempt_beta in ((beta, 0.0) if beta > 0 else (0.0,)):
+                if attempt_beta == 0.0 and beta > 0:        # retry along the preconditioned steepest descent
+                    d[:] = 0.0
+                sum_d = _direction(d, z, free, attempt_beta)
+                if energy.constrained and n_free:
+                    _centre_on_free(d, free, sum_d / n_free)
+                    sum_d = 0.0
+                slope = _dot(r, d)
+                if slope >= 0:                              # not a descent direction
+                    continue
+                accepted, tau, step, since_exact = self.line_search(slope, sum_d, pel, value, magnitude, tau,
+                                                                    since_exact)
+                if accepted:
+                    break
+            if not accepted:
+                message = (f"stalled after {iterations} iterations: no decrease of the energy along the steepest "
+                           f"descent (relative residual {residual:.3g}, tol {tol:g})")
+                break
+            self.g, self.trial = self.trial, self.g
+            self.pel_field, self.trial_field = self.trial_field, self.pel_field
+            self.law_now, self.law_trial = self.law_trial, self.law_now
+            self.r, self.r_prev = self.r_prev, self.r
+            previous_rz = rz
+            pel = step
+            value, magnitude = self.step_value
+            history.append(value)
+        if not converged and warn:
+            warnings.warn(message, ConvergenceWarning, stacklevel=4)
+        return self.result(pel, heights, control, requested, iterations, residuals, converged, message, start,
+                           start_kind, tol, maxiter, detached, history)
 
+    def line_search(self, slope, sum_d, pel, value, magnitude, tau, since_exact):
+        """Projected Armijo search along d from the minimiser of the quadratic model (capped so that no stable
+        point tunnels into contact). Returns (accepted, τ, the trial's p_el, steps since an exact p_el)."""
+        energy, half, n, g, d = self.energy, self.half, self.n, self.g, self.d
+        d_mean = sum_d / n
+        centred = self.work.reshape(-1)
+        _centred_into(d, d_mean, centred)
+        w = half.stiffness_into(self.work, self.w_field).reshape(-1)        # K⁻¹ d_f
+        self.transforms += 2
+        dw, kdd, cap = _curvature_and_cap(g, d, w, self.law_now[2], float(self.law.length), self.pixel_compliance,
+                                           APPROACH)
+        curvature = (dw - kdd) / n
+        if not energy.constrained and energy.load is None:
+            curvature += d_mean ** 2 / energy.uniform
+        if curvature > 0:
+            tau = -slope / n / curvature
+        else:                                               # concave along d: step out; the cap and Armijo bound it
+            tau = 2 * tau if tau > 0 else -slope / max(dw, 1e-300)
+        tau = min(tau, cap)
+        trial, r = self.trial, self.r
+        for _ in range(MAX_HALVINGS):
+            clipped, _, predicted = _trial_gap(g, d, tau, r, trial)
+            if clipped and energy.constrained:
+                _restore_mean(trial, energy.mean_target)
+                predicted = _dot(r, trial) - _dot(r, g)
+            exact = clipped or since_exact >= _REFRESH
+            if exact:
+                step = self.elastic(trial, self.trial_field)
+            else:
+                step = self.trial_field.reshape(-1)
+                _advance_traction(pel, w, tau, step)
+            trial_value, trial_magnitude = self.evaluate(trial, step, self.law_trial)
+            if trial_value <= value + ARMIJO * predicted / n + ENERGY_ROUND_OFF * magnitude:
+                self.step_value = (trial_value, trial_magnitude)
+                return True, tau, step, 0 if exact else since_exact + 1
+            tau *= 0.5
+        return False, tau, pel, since_exact
 
-def _line_search(g, d, gradient, slope, pel, value, magnitude, energy, law, elastic, w, trial, p_trial, tau, transforms):
-    """Projected Armijo search along d from the minimiser of the quadratic model; the trial gap in ``trial`` and
-    its elastic traction (returned). Returns (accepted, τ, transforms, since_exact flag, p_el of the trial)."""
-    half = energy.half
-    d_mean = float(d.mean(dtype=np.float64))
-    w_flat = half.stiffness_into((d - d_mean).reshape(w.shape), w).reshape(-1)     # K⁻¹ d_f
-    transforms += 2
-    d64 = d.astype(np.float64)
-    curvature = float(np.dot(d64, w_flat)) / d.size - float(np.mean(law.stiffness(g) * d64 * d64))
-    if not energy.constrained and energy.load is None:
-        curvature += d_mean ** 2 / energy.uniform
-    if curvature > 0:
-        tau = -slope / d.size / curvature
-    else:                                                   # concave along d: step out, the wall or Armijo bound it
-        tau = 2 * tau if tau > 0 else -slope / d.size / max(float(np.dot(d64, w_flat)) / d.size, 1e-300)
-    approaching = d < 0                                     # at most half of (g + ρ) closer per step: no tunnelling
-    if approaching.any():                                   # through an energy barrier into contact
-        tau = min(tau, APPROACH * float(np.min((g[approaching] + law.length) / -d[approaching])))
-    for _ in range(MAX_HALVINGS):
-        np.add(g, tau * d, out=trial)
-        clipped = bool((trial < 0).any())
-        if clipped:
-            np.maximum(trial, 0.0, out=trial)
-        if energy.constrained and clipped:
-            _restore_mean(trial, energy.mean_target)
-        if clipped:
-            step = elastic(trial, p_trial)
-            transforms += 2
+    def result(self, pel, heights, control, requested, iterations, residuals, converged, message, start,
+               start_kind, tol, maxiter, detached, history):
+        energy, half, law, g = self.energy, self.half, self.law, self.g
+        grid = half.grid
+        g_mean = float(g.mean(dtype=np.float64))
+        interaction_energy, traction, _ = self.law_now
+        if energy.load is None and energy.constrained:
+            imbalance, n_open = _open_mean_imbalance(g, pel, traction)
+            load = imbalance / max(n_open, 1)
         else:
-            step = p_trial.reshape(-1)
-            np.add(pel, tau * w_flat, out=step)
-        trial_value, _ = energy.value(trial, step)
-        predicted = ARMIJO * float(np.dot(gradient.astype(np.float64), (trial - g).astype(np.float64))) / g.size
-        if trial_value <= value + predicted + ENERGY_ROUND_OFF * magnitude:
-            return True, tau, transforms, int(not clipped), step
-        tau *= 0.5
-    return False, tau, transforms, 0, pel
-
-
-def _smooth_result(g, pel, h, heights, half, law, energy, control, requested, iterations, residuals, converged,
-                   message, start, transforms, start_kind, tol, maxiter, detached, history):
-    grid = half.grid
-    g_mean = float(g.mean(dtype=np.float64))
-    p_int = law.traction(g)
-    load = energy.external_load(g_mean, pel, p_int, g > 0)
-    pressure = (pel + load).astype(half.dtype)
-    contact = g <= 0
-    contact_pressure = np.where(contact, pressure - p_int, 0.0).astype(half.dtype)
-    mean_displacement = energy.uniform * load
-    displacement = (g - g_mean + energy.h_f + mean_displacement).astype(half.dtype)
-    flat_position = g_mean + energy.h_mean - mean_displacement
-    shape = grid.shape
-    arrays = [a.reshape(shape) for a in (pressure, displacement, g.astype(half.dtype), contact, contact_pressure,
-                                         p_int.astype(half.dtype))]
-    for array in arrays:
-        array.flags.writeable = False
-    pressure, displacement, gap, contact, contact_pressure, interaction_traction = arrays
-    params = {"E_star": half.E_star, "grid": grid, "tol": tol, "maxiter": int(maxiter), "method": METHOD,
-              "start": start_kind, "interaction": type(law).__name__, "kernel": half.description,
-              "version": __version__, "control": control, "requested": requested, "fft_pairs": transforms / 2,
-              "detached": detached, "energy_history": [float(v) * grid.area for v in history]}
-    return ContactResult(
-        pressure=pressure, displacement=displacement, gap=gap, contact=contact,
-        contact_fraction=float(np.count_nonzero(contact)) / contact.size, mean_pressure=float(load),
-        mean_gap=g_mean, penetration=float(heights.max()) - flat_position,
-        elastic_energy=half.elastic_energy(pressure, displacement), iterations=int(iterations),
-        residuals=np.asarray(residuals, dtype=np.float64), converged=bool(converged), message=message,
-        wall_time=time.perf_counter() - start, params=params, contact_pressure=contact_pressure,
-        interaction_traction=interaction_traction, flat_position=float(flat_position),
-        interaction_energy=float(np.sum(law.energy(g), dtype=np.float64)) * grid.pixel_area, interaction=law,
-        control=control, requested=float(requested))
+            load = energy.external_load(g_mean)
+        pressure = pel + load
+        contact = g <= 0
+        contact_pressure = np.where(contact, pressure - traction, 0.0).astype(half.dtype)
+        mean_displacement = energy.uniform * load
+        displacement = g - g_mean + energy.h_f + mean_displacement
+        flat_position = g_mean + energy.h_mean - mean_displacement
+        arrays = [a.reshape(grid.shape) for a in (pressure, displacement, g, contact, contact_pressure,
+                                                  traction.copy())]
+        for array in arrays:
+            array.flags.writeable = False
+        pressure, displacement, gap, contact, contact_pressure, interaction_traction = arrays
+        params = {"E_star": half.E_star, "grid": grid, "tol": tol, "maxiter": int(maxiter), "method": METHOD,
+                  "start": start_kind, "interaction": type(law).__name__, "kernel": half.description,
+                  "version": __version__, "control": control, "requested": requested,
+                  "fft_pairs": self.transforms / 2, "detached": detached,
+                  "energy_history": [float(v) * grid.area for v in history]}
+        return ContactResult(
+            pressure=pressure, displacement=displacement, gap=gap, contact=contact,
+            contact_fraction=float(np.count_nonzero(contact)) / contact.size, mean_pressure=float(load),
+            mean_gap=g_mean, penetration=float(heights.max()) - flat_position,
+            elastic_energy=half.elastic_energy(pressure, displacement), iterations=int(iterations),
+            residuals=np.asarray(residuals, dtype=np.float64), converged=bool(converged), message=message,
+            wall_time=time.perf_counter() - start, params=params, contact_pressure=contact_pressure,
+            interaction_traction=interaction_traction, flat_position=float(flat_position),
+            interaction_energy=float(np.sum(interaction_energy, dtype=np.float64)) * grid.pixel_area,
+            interaction=law, control=control, requested=float(requested))

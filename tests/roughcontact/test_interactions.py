@@ -150,6 +150,19 @@ def test_johnson_sinusoid_jump_to_full_contact(alpha, half_width):
     assert np.count_nonzero(res.contact) / n / 2 == pytest.approx(half_width, rel=0.015)
 
 
+def test_no_tunnelling_into_contact(monkeypatch):
+    # α = 0.5 at zero load from the flat touching the crest: the contact grows to a partial contact (the
+    # loading branch, below JKR's 0.2515 λ with this short range); without the step limit the first long steps
+    # carry the whole crest into contact
+    n = 2048
+    surface, half = sinusoid(n)
+    law = johnson_law(0.5, np.sqrt(1 / n))
+    res = solve_contact(surface, half, mean_pressure=0.0, interaction=law)
+    assert res.converged and 0.2 < np.count_nonzero(res.contact) / n / 2 < 0.2515    # measured 0.2397
+    monkeypatch.setattr("roughcontact.gap_solver.APPROACH", np.inf)
+    assert solve_contact(surface, half, mean_pressure=0.0, interaction=law).contact_fraction == 1.0
+
+
 def test_tensile_load_beyond_pull_off_is_reported():
     n = 512
     surface, half = sinusoid(n)
