@@ -1,4 +1,6 @@
 """The console command is a thin wrapper: it must run through the same library functions."""
+import contextlib
+import io
 import json
 import subprocess
 import sys
@@ -11,7 +13,11 @@ from PIL import Image
 
 from roughcontact import __version__, provenance
 from roughcontact.cli import DEFAULT_FIGURES_OUTPUT, info, main
+from roughcontact.paper import checkpoint_table
 from roughcontact.provenance import read_csv
+
+FIGURES = ["fig3_apparent_area", "fig4_ridge_area", "fig5_peeling", "fig9_area_reduction_gap",
+           "fig10_tangential_force", "fig11_friction_coefficient"]
 
 
 def test_version_flag(capsys):
@@ -45,16 +51,24 @@ def test_unknown_command_is_an_error(capsys):
 def figures_run(tmp_path_factory):
     """One run of ``roughcontact figures`` into a fresh directory: (directory, printed output)."""
     output = tmp_path_factory.mktemp("figures") / "out"                 # the last level is created
-    result = subprocess.run([sys.executable, "-m", "roughcontact.cli", "figures", "--output", str(output)],
-                            capture_output=True, text=True, check=True)
-    return output, result.stdout
+    printed = io.StringIO()
+    with contextlib.redirect_stdout(printed):
+        assert main(["figures", "--output", str(output)]) == 0
+    return output, printed.getvalue()
 
 
 def test_figures_command_runs_the_library_reproduction(figures_run):
     output, out = figures_run
-    assert "| quantity | quoted | computed |" in out          # the checkpoint table is printed
-    assert (output / "checkpoints.csv").exists()
-    assert len(list(output.glob("*.png"))) == 6
+    table = checkpoint_table()
+    assert str(table) in out                                  # the checkpoint table is printed
+    for name in FIGURES:
+        assert (output / f"{name}.png").stat().st_size > 1000
+        data = np.loadtxt(output / f"{name}.csv", delimiter=",", skiprows=2)     # provenance, header
+        assert data.ndim == 2 and data.shape[0] >= 20 and np.isfinite(data).all()
+    rows = read_csv(output / "checkpoints.csv")
+    assert [r["quantity"] for r in rows] == [r.quantity for r in table.rows]
+    assert float(rows[0]["computed"]) == table.rows[0].computed
+    assert len(list(output.glob("*.png"))) == len(FIGURES)
 
 
 def test_every_figures_output_carries_its_provenance(figures_run):
