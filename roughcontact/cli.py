@@ -15,6 +15,8 @@ from ._version import __version__
 
 #: Default output directory of "roughcontact figures" (ignored by git in this repository).
 DEFAULT_FIGURES_OUTPUT = "roughcontact-figures"
+#: Default results directory of "roughcontact run" (ignored by git in this repository).
+DEFAULT_RUN_OUTPUT = "roughcontact-results"
 #: Exit code of a user's mistake (as argparse's own).
 USAGE_ERROR = 2
 
@@ -67,6 +69,49 @@ def _cmd_figures(args, provenance) -> int:
     return 0
 
 
+def _cmd_scene(args, provenance) -> int:
+    from .scene import DEFAULT_SCENE_TOML, load_scene
+
+    try:
+        scene = load_scene(args.scene)
+    except ValueError as error:
+        print(f"roughcontact scene: error: {error}", file=sys.stderr)
+        return USAGE_ERROR
+    if args.show:
+        print(DEFAULT_SCENE_TOML if args.scene is None else scene.to_toml(), end="")
+    else:
+        print(f"{args.scene or 'the default scene'}: valid (preset {scene.study.preset}, "
+              f"{len(scene.loads.normal_forces)} loads x {len(scene.loads.voltages)} voltages)")
+    return 0
+
+
+def _cmd_run(args, provenance) -> int:
+    import time
+
+    from .provenance import output_directory
+    from .report import write_results
+    from .scene import load_scene
+    from .study import run_study
+
+    start = time.perf_counter()
+    try:
+        scene = load_scene(args.scene, preset=args.preset)
+        output = output_directory(args.out)
+        result = run_study(scene, output, progress=True)
+    except ValueError as error:               # a scene key, a scene parameter the preset cannot resolve, another scene
+        print(f"roughcontact run: error: {error}", file=sys.stderr)
+        return USAGE_ERROR
+    written = write_results(result, output, provenance, time.perf_counter() - start)
+    if not written["netcdf"]:
+        print("roughcontact run: results.nc not written: xarray and h5netcdf are not installed "
+              "(pip install 'roughcontact[io]'); the CSV tables hold the results", file=sys.stderr)
+    print(f"{result.computed} points computed ({result.solves} contact solves), "
+          f"{len(result.points) * len(result.points[0]) - result.computed} resumed; "
+          f"{time.perf_counter() - start:.0f} s")
+    print(f"report, figures and tables written to {output.resolve()}")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     formatter = argparse.ArgumentDefaultsHelpFormatter
     parser = _Parser(prog="roughcontact", description=__doc__.splitlines()[0], formatter_class=formatter)
@@ -82,6 +127,26 @@ def build_parser() -> argparse.ArgumentParser:
     figures.add_argument("--output", default=DEFAULT_FIGURES_OUTPUT,
                          help="output directory; created if missing, but its parent must exist")
     figures.set_defaults(run=_cmd_figures)
+    run = commands.add_parser("run", help="the multiscale fingerpad study of a scene: d_eq and A_R vs load and voltage",
+                              description="Solve ridge + micro-roughness patches with the electrostatic attraction "
+                                          "for every load and voltage of the scene, feed d_eq and A_R into the seed's "
+                                          "friction law beside its fitted model, and write results.nc, CSV tables, "
+                                          "PNG figures and report.md. Re-running into the same directory resumes.",
+                              formatter_class=formatter)
+    run.add_argument("scene", nargs="?", default=None,
+                     help="scene TOML file (default: the embedded scene, see 'roughcontact scene --show')")
+    run.add_argument("--preset", choices=("draft", "standard", "reference"), default=None,
+                     help="accuracy preset (default: the scene's study.preset)")
+    run.add_argument("--out", default=DEFAULT_RUN_OUTPUT,
+                     help="results directory; created if missing, but its parent must exist")
+    run.set_defaults(run=_cmd_run)
+    scene = commands.add_parser("scene", help="validate a scene file or print the default scene as TOML",
+                                description="Validate a scene TOML file (errors name the key and its line); "
+                                            "--show prints it, or the commented default scene, as TOML.",
+                                formatter_class=formatter)
+    scene.add_argument("scene", nargs="?", default=None, help="scene TOML file (default: the embedded scene)")
+    scene.add_argument("--show", action="store_true", help="print the scene as TOML")
+    scene.set_defaults(run=_cmd_scene)
     return parser
 
 

@@ -90,8 +90,10 @@ voltages = [0.0, 50.0, 100.0, 150.0, 200.0]     # V
 [ridge_area]
 # A_R: contact at the ridge scale = the real contact closed morphologically with a disc of this diameter
 # (micro-contacts closer than it merge); the sensitivity to it is reported at the factors given.
-coarse_graining = 6e-05        # m, the micro-roughness long cutoff
-sensitivity = [0.5, 2.0]
+# [estimate]: twice the roughness long cutoff and below the furrow width (0.18 mm), so that micro-contacts
+# on one ridge merge and neighbouring ridges never do.
+coarse_graining = 0.00012      # m
+sensitivity = [0.5, 0.75, 1.25]
 
 [study]
 preset = "standard"
@@ -108,7 +110,7 @@ rings = 2
 pixels_per_cutoff = 4.0
 
 [presets.standard]
-grid = 128
+grid = 256
 periods = 1
 realisations = 4
 tolerance = 1e-07
@@ -116,7 +118,7 @@ rings = 3
 pixels_per_cutoff = 4.0
 
 [presets.reference]
-grid = 256
+grid = 512
 periods = 1
 realisations = 8
 tolerance = 1e-08

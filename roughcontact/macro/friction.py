@@ -75,7 +75,9 @@ def _default_gap_model():
 class SlidingFrictionModel:
     """Pressure-controlled sliding friction with electroadhesion and tangential area reduction (Eqs. 40–45).
 
-    ``mu0`` μ0 [-], ``contact`` the ridge-area power law (Eq. 9), ``stack`` the dielectric stack (Eqs. 21–22),
+    ``mu0`` μ0 [-], ``contact`` the ridge-area law: a power law (Eq. 9) or any object with a method
+    ``area(normal_force, work_of_adhesion)`` [m²] (e.g. ``roughcontact.report.TabulatedArea``), ``stack`` the
+    dielectric stack (Eqs. 21–22),
     ``gap_model`` any callable (F_N [N], U [V]) -> d_eq [m], ``c2`` [m⁴/N²] of η = c₂/A_R0 (Eq. 44),
     ``tau0`` the intrinsic interfacial shear strength τ0 [Pa] of Eq. 40 (0: pressure-controlled, Eq. 41).
     """
@@ -91,8 +93,9 @@ class SlidingFrictionModel:
         object.__setattr__(self, "mu0", check_real("mu0", self.mu0, low=0.0, low_open=True))
         object.__setattr__(self, "c2", check_real("c2", self.c2, low=0.0))
         object.__setattr__(self, "tau0", check_real("tau0", self.tau0, low=0.0))
-        if not isinstance(self.contact, PowerLawContact):
-            raise TypeError(f"contact must be a PowerLawContact, got {type(self.contact).__name__}")
+        if not callable(getattr(self.contact, "area", None)):
+            raise TypeError("contact must have a method area(normal_force, work_of_adhesion), e.g. a PowerLawContact; "
+                            f"got {type(self.contact).__name__}")
         if not isinstance(self.stack, DielectricStack):
             raise TypeError(f"stack must be a DielectricStack, got {type(self.stack).__name__}")
         if not callable(self.gap_model):
