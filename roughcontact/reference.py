@@ -108,3 +108,53 @@ def bisinusoid_area_near_full_contact(load_fraction):
     """Near-full-contact asymptote A/λ² = 1 − (3/(2π)) (1 − p̄/p*) (penny-shaped gaps at the valleys)."""
     s = check_finite_array("load_fraction", load_fraction, nonnegative=True)
     return 1 - 3 / (2 * np.pi) * (1 - s)
+
+
+# -- adhesive contact -----------------------------------------------------------------------------------------
+def jkr_pull_off_force(work_of_adhesion, radius):
+    """JKR pull-off under load control, F = −(3/2) π w R [N] (Johnson, Kendall & Roberts 1971)."""
+    return -1.5 * np.pi * check_positive("work_of_adhesion", work_of_adhesion) * check_positive("radius", radius)
+
+
+def maugis_parameter(cohesive_stress, work_of_adhesion, radius, E_star):
+    """Maugis' λ = 2 σ0 (R / (π w K²))^(1/3), K = 4E*/3 (Maugis 1992; docs/references.md §4.4)."""
+    K = 4 * check_positive("E_star", E_star) / 3
+    return 2 * check_positive("cohesive_stress", cohesive_stress) * (
+        check_positive("radius", radius) / (np.pi * check_positive("work_of_adhesion", work_of_adhesion) * K ** 2)
+    ) ** (1 / 3)
+
+
+def maugis_dugdale_load(m, maugis_lambda):
+    """Normalised load P̄ = F/(π w R) and contact radius Ā = a (K/(π w R²))^(1/3) of the Maugis–Dugdale sphere at
+    the ratio m = c/a > 1 of the cohesive-zone and contact radii (Maugis 1992, Eqs. as in docs/references.md §4.4):
+    ½λĀ²[μ + (m² − 2) atan μ] + (4/3)λ²Ā[μ atan μ − m + 1] = 1 solved for Ā > 0, μ = √(m² − 1);
+    P̄ = Ā³ − λĀ²(μ + m² atan μ)."""
+    m = np.asarray(m, dtype=float)
+    lam = check_positive("maugis_lambda", maugis_lambda)
+    mu = np.sqrt(m * m - 1)
+    atan = np.arctan(mu)
+    quadratic = 0.5 * lam * (mu + (m * m - 2) * atan)
+    linear = (4 / 3) * lam ** 2 * (mu * atan - m + 1)
+    area = 2 / (linear + np.sqrt(linear ** 2 + 4 * quadratic))       # the positive root, cancellation-free
+    return area ** 3 - lam * area ** 2 * (mu + m * m * atan), area
+
+
+def maugis_dugdale_pull_off(maugis_lambda):
+    """Normalised pull-off load P̄ = F/(π w R) of the Maugis–Dugdale sphere under load control: the smallest load
+    along the equilibrium curve (−2 in the DMT limit λ → 0, −3/2 in the JKR limit λ → ∞)."""
+    from scipy.optimize import minimize_scalar
+
+    log_m = np.linspace(-12, 8, 4001)              # m − 1 = e^x spans both limits
+    loads = maugis_dugdale_load(1 + np.exp(log_m), maugis_lambda)[0]
+    best = int(np.argmin(loads))
+    low, high = log_m[max(best - 1, 0)], log_m[min(best + 1, log_m.size - 1)]
+    found = minimize_scalar(lambda x: float(maugis_dugdale_load(1 + np.exp(x), maugis_lambda)[0]),
+                            bounds=(low, high), method="bounded", options={"xatol": 1e-12})
+    return float(min(found.fun, loads[best]))
+
+
+def johnson_sinusoid_load(half_width, wavelength, alpha):
+    """p̄/p* of Johnson's (1995) adhesive sinusoid in the JKR limit at the contact half-width a [m]:
+    sin²(πa/λ) − α √tan(πa/λ), with p* = π E* h/λ and α = (√2/π)(λ/h)√(w/(E*λ)) (docs/references.md §4.5)."""
+    phase = np.pi * np.asarray(half_width, dtype=float) / check_positive("wavelength", wavelength)
+    return np.sin(phase) ** 2 - alpha * np.sqrt(np.tan(phase))

@@ -13,6 +13,7 @@ from surfaces import Grid, HeightField, self_affine
 from roughcontact import (ContactProblem, ContactResult, ElasticHalfSpace, ElectrostaticInteraction,
                           ExponentialAdhesion, HardWall, MaugisDugdale, solve_contact)
 from roughcontact.electrostatics import DielectricStack
+from roughcontact.reference import johnson_sinusoid_load
 
 STACK = DielectricStack()
 
@@ -112,9 +113,8 @@ def sinusoid(n):
 
 
 def johnson_load(half_width, alpha):
-    """p̄/p* = sin²(πa/λ) − α √tan(πa/λ) (Johnson 1995)."""
-    s = np.pi * half_width
-    return np.sin(s) ** 2 - alpha * np.sqrt(np.tan(s))
+    """p̄/p* of Johnson (1995) on the unit wavelength."""
+    return johnson_sinusoid_load(half_width, 1.0, alpha)
 
 
 def johnson_law(alpha, length):
@@ -247,3 +247,19 @@ def test_problem_object_and_saved_result(tmp_path):
     free = ElasticHalfSpace(Grid((64, 64), (1e-3, 1e-3), periodic=False), E_star=1e6)
     with pytest.raises(ValueError, match="periodic"):
         solve_contact(np.zeros((64, 64)), free, mean_pressure=1e3, interaction=law)
+
+
+def test_approach_retract_cycle_hysteresis_and_jumps():
+    # α = 0.2: the JKR branch ends at p̄ ≈ 0.55 p*, so the approach jumps to full contact at 0.6 p*; unloading
+    # stays in full contact at 0.3 p*, where the approach had a partial contact (hysteresis), and pulling
+    # hard enough detaches the profile
+    from roughcontact.paths import load_cycle
+
+    n = 1024
+    surface, half = sinusoid(n)
+    problem = ContactProblem(surface, half, johnson_law(0.2, np.sqrt(1 / n)))
+    path = load_cycle(problem, [0.1, 0.3, 0.5, 0.6, 0.3, 0.0, -2.0], warn=False)
+    assert path.converged[:6].all()
+    assert (3, "jump to full contact") in path.jumps
+    assert path.contact_fraction[1] < 0.6 and path.contact_fraction[4] == 1.0
+    assert path.jumps[-1] == (6, "detachment") and path.detached[-1] and not path.converged[-1]
