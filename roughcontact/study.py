@@ -132,13 +132,13 @@ def ridge_area_fraction(contact: np.ndarray, spacing: float, length: float) -> f
 def confidence_interval(samples) -> tuple:
     """``(mean, half-width)`` of the two-sided :data:`CONFIDENCE` Student-t interval over the last axis (half-width
     NaN for a single sample)."""
-    from scipy import stats
+    from scipy.special import stdtrit
     samples = np.asarray(samples, dtype=float)
     count = samples.shape[-1]
     mean = samples.mean(axis=-1)
     if count < 2:
         return mean, np.full_like(mean, np.nan)
-    half = stats.t.ppf(0.5 + CONFIDENCE / 2, count - 1) * samples.std(axis=-1, ddof=1) / np.sqrt(count)
+    half = stdtrit(count - 1, 0.5 + CONFIDENCE / 2) * samples.std(axis=-1, ddof=1) / np.sqrt(count)
     return mean, half
 
 

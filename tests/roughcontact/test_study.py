@@ -1,0 +1,173 @@
+"""The fingerpad study on tiny patches: the 0 V chain is the hard-wall chain, the trends with load and voltage,
+resume after an interruption, refusal of another scene, and `roughcontact run` end to end."""
+import numpy as np
+import pytest
+
+import roughcontact.contact
+from roughcontact.cli import main
+from roughcontact.provenance import read_csv
+from roughcontact.report import TabulatedArea, bottom_up_friction
+from roughcontact.scene import Fingerpad, load_scene
+from roughcontact.study import (PointStore, SceneMismatch, apparent_contact, confidence_interval, patch_body,
+                                patch_surface, ridge_area_fraction, run_study)
+
+TINY = """\
+[loads]
+normal_forces = [0.5, 2.0]
+voltages = [0.0, 150.0]
+[roughness]
+long_cutoff = 1.5e-4
+[ridge_area]
+coarse_graining = 6e-5
+sensitivity = [2.0]
+[presets.draft]
+grid = 32
+realisations = 2
+tolerance = 1e-6
+pixels_per_cutoff = 3.0
+"""
+
+
+@pytest.fixture(scope="module")
+def tiny():
+    return load_scene(text=TINY, preset="draft")
+
+
+@pytest.fixture(scope="module")
+def tiny_result(tiny):
+    return run_study(tiny)
+
+
+def test_zero_volt_study_is_the_hard_wall_chain():
+    scene = load_scene(text=TINY.replace("voltages = [0.0, 150.0]", "voltages = [0.0]"), preset="draft")
+    result = run_study(scene)
+    stack, body = scene.screen.stack(), patch_body(scene)
+    for r in range(2):
+        heights, previous = patch_surface(scene, r), None
+        for i, force in enumerate(scene.loads.normal_forces):
+            area, (pressure,) = apparent_contact(scene.fingerpad, force, 1)
+            previous = roughcontact.contact.solve_contact(heights, body, mean_pressure=pressure, tol=1e-6,
+                                                          x0=previous, warn=False)
+            assert result.points[i][0].equivalent_gap[r] == stack.equivalent_gap(previous.gap)
+            assert result.points[i][0].contact_fraction[r] == previous.contact_fraction
+            assert result.points[i][0].electrostatic_pressure[r] == 0.0
+
+
+def test_trends_with_load_and_voltage(tiny_result):
+    d_eq = tiny_result.summary("equivalent_gap")[0]
+    area = tiny_result.summary("ridge_area_fractions")[0][:, :, 0]
+    assert (np.diff(d_eq, axis=0) < 0).all()            # d_eq falls with load
+    assert (np.diff(area, axis=0) > 0).all()            # A_R grows with load
+    assert (np.diff(area, axis=1) > 0).all()            # and with voltage at a fixed load
+    assert (np.diff(d_eq, axis=1) < 0).all()            # the attraction closes the gap
+    assert tiny_result.array("converged").all()
+    assert tiny_result.solves == 2 * 2 * 2 and tiny_result.computed == 4
+    sigma = tiny_result.summary("electrostatic_pressure")[0]
+    assert (sigma[:, 0] == 0).all() and (sigma[:, 1] > 0).all()
+
+
+def test_identical_sub_problems_are_solved_once():
+    smooth = load_scene(text=TINY.replace("long_cutoff = 1.5e-4", "long_cutoff = 1.5e-4\nenabled = false"),
+                        preset="draft")
+    result = run_study(smooth)
+    assert result.solves == 4 and result.array("equivalent_gap").shape == (2, 2, 1)
+
+
+def test_apparent_contact_models():
+    power = Fingerpad(model="power_law", area_prefactor=91.9e-6, area_exponent=0.37, radius=1e-2, E_star=47.4e3)
+    area, pressures = apparent_contact(power, 1.0, 3)
+    assert area == pytest.approx(91.9e-6) and pressures == (pytest.approx(1.0 / 91.9e-6),)
+    tip = Fingerpad(model="fingertip", area_prefactor=91.9e-6, area_exponent=0.37, radius=1e-2, E_star=47.4e3)
+    area, pressures = apparent_contact(tip, 1.0, 4)
+    radius = (3 * 1e-2 / (4 * 47.4e3)) ** (1 / 3)
+    assert area == pytest.approx(np.pi * radius ** 2)
+    assert np.mean(pressures) * area == pytest.approx(1.0)          # equal-area rings carry the load
+    assert list(pressures) == sorted(pressures, reverse=True)
+
+
+def test_ridge_area_fraction_closes_gaps_shorter_than_the_length():
+    mask = np.zeros((40, 40), bool)
+    mask[:, 2:20] = mask[:, 22:38] = True                            # gaps of 2 px, one across the periodic edge
+    assert ridge_area_fraction(mask, 1.0, 0.5) == 34 / 40            # a disc under one pixel: the mask itself
+    assert ridge_area_fraction(mask, 1.0, 6.0) == 1.0                # both gaps closed, through the edge too
+    mask[:, 22:38] = False
+    assert ridge_area_fraction(mask, 1.0, 6.0) == 18 / 40            # a 20 px gap stays open
+
+
+def test_confidence_interval():
+    mean, half = confidence_interval([[1.0, 2.0, 3.0]])
+    assert mean[0] == 2.0 and half[0] == pytest.approx(4.302653 / np.sqrt(3), rel=1e-6)
+    assert np.isnan(confidence_interval([[1.0]])[1][0])
+
+
+def test_tabulated_area_and_bottom_up_friction(tiny_result):
+    table = TabulatedArea(np.array([1.0, 2.0]), np.array([[0.0, 1.0], [0.0, 2.0]]), np.array([[1.0, 3.0], [2.0, 4.0]]))
+    assert table.area(1.0, 0.5) == pytest.approx(2.0) and table.area(1.5, 0.0) == pytest.approx(1.5)
+    with pytest.raises(ValueError, match="valid range"):
+        table.area(3.0, 0.0)
+    model = bottom_up_friction(tiny_result)
+    stack = tiny_result.scene.screen.stack()
+    state = model.state(2.0, 150.0)
+    point = tiny_result.points[1][1]
+    # F_el = sigma_el(d_eq,R) A_R0 equals the solved mean attraction over A0
+    assert float(stack.pressure(state.gap, 150.0) * state.initial_area) == pytest.approx(
+        np.mean(point.electrostatic_pressure) * point.apparent_area, rel=0.05)
+    assert model.state(2.0, 0.0).friction_coefficient == pytest.approx(0.26)
+
+
+def test_resume_after_interruption_recomputes_nothing_done(tiny, tmp_path, monkeypatch):
+    solve = roughcontact.contact.solve_contact
+    calls = []
+
+    def interrupted(*args, **kwargs):
+        if len(calls) == 5:
+            raise KeyboardInterrupt
+        calls.append(1)
+        return solve(*args, **kwargs)
+
+    monkeypatch.setattr(roughcontact.contact, "solve_contact", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        run_study(tiny, tmp_path / "run")
+    done = sorted(path.name for path in (tmp_path / "run" / "points").glob("*.json"))
+    assert done == ["F000_U000.json", "F000_U001.json"]               # 2 points x 2 realisations = 4 solves
+    monkeypatch.setattr(roughcontact.contact, "solve_contact", solve)
+    resumed = run_study(tiny, tmp_path / "run")
+    assert resumed.computed == 2 and resumed.solves == 4
+    again = run_study(tiny, tmp_path / "run")
+    assert again.computed == 0 and again.solves == 0 and again.points == resumed.points
+
+
+def test_another_scene_is_refused(tiny, tmp_path):
+    PointStore(tmp_path, tiny)
+    other = load_scene(text=TINY.replace("grid = 32", "grid = 64"), preset="draft")
+    with pytest.raises(SceneMismatch, match=r"presets.draft.grid = 32 -> 64"):
+        PointStore(tmp_path, other)
+    PointStore(tmp_path, tiny)                                       # the same scene resumes
+
+
+def test_run_command_end_to_end(tmp_path, capsys):
+    scene = tmp_path / "tiny.toml"
+    scene.write_text(TINY)
+    out = tmp_path / "results"
+    assert main(["run", str(scene), "--preset", "draft", "--out", str(out)]) == 0
+    assert "4 points computed" in capsys.readouterr().out
+    for name in ("report.md", "points.csv", "realisations.csv", "ridge_area_sensitivity.csv", "friction.csv",
+                 "equivalent_gap.png", "voltage_dependence.png", "friction.png", "scene.toml"):
+        assert (out / name).is_file(), name
+    rows = read_csv(out / "points.csv")
+    assert len(rows) == 4 and float(rows[0]["equivalent_gap_um"]) > 0
+    report = (out / "report.md").read_text()
+    assert "Where the equivalent-gap assumption holds and where it fails" in report
+    xarray = pytest.importorskip("xarray")
+    pytest.importorskip("h5netcdf")
+    with xarray.open_dataset(out / "results.nc", engine="h5netcdf") as data:
+        assert data["equivalent_gap"].attrs["units"] == "m" and data.attrs["preset"] == "draft"
+        assert data.attrs["scene.presets.draft.grid"] == 32 and "roughcontact_version" in data.attrs
+        assert data["equivalent_gap"].shape == (2, 2, 2)
+    assert main(["run", str(scene), "--preset", "draft", "--out", str(out)]) == 0
+    assert "0 points computed" in capsys.readouterr().out
+    assert main(["run", str(scene), "--preset", "standard", "--out", str(out)]) == 2
+    assert "holds the results of another scene" in capsys.readouterr().err
+    scene.write_text("[ridges]\nperod = 1\n")
+    assert main(["run", str(scene), "--out", str(tmp_path / "other")]) == 2
+    assert "line 2: scene key ridges.perod" in capsys.readouterr().err
