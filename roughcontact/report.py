@@ -326,8 +326,8 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
             f"realisation(s) (seed {scene.study.seed}), solver tolerance {preset.tolerance:g}, micro-roughness "
             f"short cut-off in use {result.short_cutoff * MICRO:.3g} µm. Scene: `scene.toml` in this directory. "
             f"{converged.size - int(converged.sum())} of {converged.size} patch results did not converge."
-            + (f" Run time {seconds:.0f} s ({result.computed} points computed, {result.solves} solves; the rest "
-               "resumed)." if seconds is not None else ""), "",
+            + (f" Run time {seconds:.0f} s ({result.computed} points computed with {result.solves} solves, "
+               f"{result.array('seconds').size - result.computed} read back)." if seconds is not None else ""), "",
             "Figures: `equivalent_gap.png`, `voltage_dependence.png`, `friction.png`. Tables: `points.csv`, "
             "`realisations.csv`, `ridge_area_sensitivity.csv`, `friction.csv`"
             + (", all of it in `results.nc`." if nc_written else

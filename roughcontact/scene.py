@@ -112,7 +112,7 @@ pixels_per_cutoff = 4.0
 [presets.standard]
 grid = 256
 periods = 1
-realisations = 4
+realisations = 8
 tolerance = 1e-07
 rings = 3
 pixels_per_cutoff = 4.0
