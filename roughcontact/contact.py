@@ -32,7 +32,8 @@ import numpy as np
 from numba import njit
 
 from surfaces import HeightField
-from surfaces._checks import check_choice, check_finite_array, check_integer, check_positive, check_real
+from surfaces._checks import (check_bool, check_choice, check_finite_array, check_integer, check_positive,
+                              check_real)
 
 from ._version import __version__
 from .elastic import ElasticHalfSpace
@@ -45,6 +46,7 @@ COLD_STARTS = ("nested", "pk")
 NESTED_TOL = 1e-3      # tolerance of the nested start's coarse solves (their answer is only the fine guess)
 NESTED_MIN = 64        # the nested start coarsens while the coarse grid keeps this many pixels per axis
 STALL_STEPS = 20       # steps without a new smallest residual after which every entry restarts the CG
+STALL_LIMIT = 200      # steps without a new smallest residual, restarting on every entry, that end the solve
 
 
 # -- fused pointwise kernels (flat contiguous views; accumulators in float64) --------------------------------
@@ -394,6 +396,30 @@ def _restart(p, t, z_in, index, been_in_contact) -> int:
     return _contact_index(p, index, been_in_contact)
 
 
+def default_tolerance(dtype, interaction=None) -> float:
+    """The default relative tolerance of a solve in ``dtype``: 1e-8 in float64; in float32 1e-6 for the hard wall
+    (its round-off floor is near 1e-7) and 1e-5 with a smooth law (the energy's round-off stops the line search
+    near 4e-6)."""
+    if np.dtype(dtype) == np.float64:
+        return 1e-8
+    return 1e-5 if interaction is not None and interaction.smooth and not interaction.vanishes else 1e-6
+
+
+def _full_contact(h, half, mean_pressure, pressure, displacement):
+    """The exact full-contact state under load control on a periodic body into the flat arrays ``pressure`` and
+    ``displacement`` (from ``half.empty()``): p = p̄ + K⁻¹(h − ⟨h⟩), u = h − ⟨h⟩ + Φ(0) p̄ (one FFT pair). Returns
+    the flat position s = ⟨h⟩ − Φ(0) p̄, or None if some pressure would be negative (partial contact)."""
+    h_mean = float(h[0]) if float(h.min()) == float(h.max()) else float(h.mean(dtype=np.float64))   # flat: exact
+    np.subtract(h, h_mean, out=displacement)
+    shape = half.grid.shape
+    half.stiffness_into(displacement.reshape(shape), pressure.reshape(shape))
+    pressure += mean_pressure - float(pressure.mean(dtype=np.float64))        # the mean exactly p̄
+    if float(pressure.min()) <= 0.0:
+        return None
+    displacement += half.uniform_compliance * mean_pressure
+    return h_mean - half.uniform_compliance * mean_pressure
+
+
 def _checked_interaction(interaction) -> Interaction:
     """The law to solve with (HardWall() for None), checked."""
     if interaction is None:
@@ -409,7 +435,7 @@ def _checked_interaction(interaction) -> Interaction:
 
 
 def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, total_force=None,
-                  penetration=None, tol=1e-8, maxiter=10000, x0=None, cold_start="nested", callback=None,
+                  penetration=None, tol=None, maxiter=10000, x0=None, cold_start="nested", callback=None,
                   preconditioned=True, interaction: Interaction | None = None, warn=True) -> ContactResult:
     """Press ``height_field`` onto a rigid flat and solve for pressure, displacement and gap.
 
@@ -423,8 +449,9 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
         Exactly one: the external load <p> [Pa] or F = <p> Lx Ly [N] (> 0 for the hard wall; any sign with a
         smooth interaction, where a tensile load beyond pull-off is reported as no equilibrium), or the
         penetration δ = max(h) − s [m] (displacement control; any sign).
-    tol : float
-        Relative tolerance of the convergence criterion (module docstring), in (0, 1).
+    tol : float, optional
+        Relative tolerance of the convergence criterion (module docstring), in (0, 1); by default
+        :func:`default_tolerance` of the body's dtype (1e-8 in float64, 1e-6 in float32).
     maxiter : int
         Maximum number of CG steps.
     x0 : ContactResult or array, optional
@@ -432,15 +459,14 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
         zero everywhere carries no information and gets the cold start.
     cold_start : {"nested", "pk"}
         Initial guess without ``x0``. ``"nested"``: the pressure of the same problem on the grid coarsened
-        2 × 2, recursively (:func:`_nested_start`; 1.3–1.9× faster on rough surfaces, e.g. 1024²: 93 → 50 fine
-        steps); grids that do not halve down to 2 × ``NESTED_MIN`` pixels fall back to ``"pk"``: Polonsky and
+        2 × 2, recursively (:func:`_nested_start`; fewer fine steps on rough surfaces, ``docs/solver.md``);
+        grids that do not halve down to 2 × ``NESTED_MIN`` pixels fall back to ``"pk"``: Polonsky and
         Keer's uniform p̄ (load control) or the rigid overlap (displacement control).
     callback : callable, optional
         ``callback(SolverState)`` after every step; raising ``StopIteration`` halts (``converged=False``).
     preconditioned : bool
         Precondition the conjugate gradients with the inverse kernel K⁻¹: one more FFT pair per step, fewer
-        steps (rough 1024²: 159 → 93 steps; Hertz 512² free surface: 64 → 27 steps, 0.61 → 0.49 s;
-        ``docs/solver.md``).
+        steps (``docs/solver.md``).
     interaction : Interaction, optional
         Surface interaction law (:mod:`roughcontact.interactions`): :class:`~roughcontact.interactions.HardWall`
         (the default; Polonsky–Keer, this module) or a smooth law acting with the wall
@@ -453,6 +479,7 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     if not isinstance(half, ElasticHalfSpace):
         raise TypeError(f"half must be an ElasticHalfSpace, got {type(half).__name__}")
     interaction = _checked_interaction(interaction)
+    tol = default_tolerance(half.dtype, interaction) if tol is None else tol
     if interaction.smooth and not interaction.vanishes:    # (a law that vanishes, e.g. at 0 V, is the hard wall)
         from .gap_solver import solve_smooth
         return solve_smooth(height_field, half, interaction, mean_pressure=mean_pressure, total_force=total_force,
@@ -467,7 +494,7 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     if callback is not None and not callable(callback):
         raise TypeError(f"callback must be callable, got {type(callback).__name__}")
     grid = half.grid
-    preconditioned = bool(preconditioned)
+    preconditioned = check_bool("preconditioned", preconditioned)
     heights = _heights(height_field, half)
     warm = _warm_pressure(x0, heights.shape)
     if total_force is not None:
@@ -477,10 +504,16 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     load_control = mean_pressure is not None
     h_max = float(heights.max())
     flat_position = None if load_control else h_max - check_real("penetration", penetration)
+    if not load_control and half.periodic and half.uniform_compliance == 0.0:
+        limit = h_max - float(heights.mean(dtype=np.float64))
+        if penetration >= limit and penetration > 0:
+            raise ValueError(f"penetration = {float(penetration)!r} m has no solution on a periodic body with ⟨u⟩ = 0: "
+                             f"the mean gap s − ⟨h⟩ must stay > 0, i.e. penetration < max(h) − ⟨h⟩ = {limit!r} m (use "
+                             "load control for full contact)")
 
     params = {"E_star": half.E_star, "grid": grid, "tol": tol, "maxiter": int(maxiter), "method": METHOD,
               "preconditioned": preconditioned, "start": "x0" if warm is not None else "pk", "nested_iterations": [],
-              "restart_every_entry_from": None,
+              "restart_every_entry_from": None, "full_contact": False,
               "control": next(iter(given)), "requested": float(next(iter(given.values()))),
               "interaction": type(interaction).__name__, "law": interaction, "kernel": half.description,
               "version": __version__}
@@ -501,6 +534,12 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     # grid-sized work arrays (aligned: the periodic FFT uses them in place); t and z_in stay 0 outside I_c
     p, u, t, r = (half.empty().reshape(-1) for _ in range(4))
     z_in = half.empty().reshape(-1) if preconditioned else t
+    if load_control and half.periodic:                      # full contact is exact: no iteration
+        shift = _full_contact(h, half, mean_pressure, p, u)
+        if shift is not None:
+            return _result(p, u, h, shift, half, {**params, "full_contact": True}, 0, [0.0], True,
+                           "full contact: the pressure that flattens h, p̄ + K⁻¹(h − ⟨h⟩), is positive everywhere "
+                           "(exact)", start, 2)
     index = np.empty(n_points, np.int32 if n_points < 2 ** 31 else np.int64)   # the contact set I_c, sorted
     if warm is not None:
         p[:] = warm.reshape(-1)
@@ -577,6 +616,10 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
             # the contact set cycles through re-entries (seen once: rough 1024², 0.0065 E*, PK start, where the
             # residual hovered at 1e-2 for 10⁴ steps): fall back to PK's rule, restart on every entry
             restart_every_entry, params["restart_every_entry_from"] = True, iterations
+        elif restart_every_entry and iterations - smallest_at >= STALL_LIMIT:
+            message = (f"stalled: no smaller residual in {STALL_LIMIT} steps (smallest {smallest_residual:.3g} at step "
+                       f"{smallest_at}); tol {tol:g} is below what this problem reaches in {half.dtype.name}")
+            break
         if iterations >= maxiter:
             message = f"not converged after {iterations} iterations: relative rms gap error {residual:.3g} (tol {tol:g})"
             if residual <= tol:
@@ -738,7 +781,15 @@ def load_path(height_field, half: ElasticHalfSpace, mean_pressures, warm_start=T
     if start is not None and not warm_start:
         raise ValueError("start= warm-starts the first step; it contradicts warm_start=False")
     check_choice("predictor", predictor, PREDICTORS)
+    if isinstance(mean_pressures, (str, bytes)) or not np.iterable(mean_pressures):
+        raise TypeError(f"mean_pressures must be a sequence of mean pressures [Pa], got {mean_pressures!r:.60}")
     smooth = _checked_interaction(solver_options.get("interaction")).smooth   # (its warm start is the last gap)
+    return _load_steps(height_field, half, mean_pressures, warm_start, starts, progress, predictor, smooth,
+                       solver_options)
+
+
+def _load_steps(height_field, half, mean_pressures, warm_start, starts, progress, predictor, smooth, solver_options):
+    """The generator behind :func:`load_path` (its arguments checked before the first step)."""
     from tqdm.auto import tqdm
 
     previous = starts[-1] if starts else None

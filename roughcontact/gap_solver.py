@@ -321,7 +321,7 @@ def _start_gap(h, half, load, flat_position, x0, tol, maxiter):
     return np.array(start.gap, dtype=half.dtype), "hard wall", start.params["fft_pairs"]
 
 
-def solve_smooth(height_field, half, law, *, mean_pressure=None, total_force=None, penetration=None, tol=1e-8,
+def solve_smooth(height_field, half, law, *, mean_pressure=None, total_force=None, penetration=None, tol,
                  maxiter=10000, x0=None, callback=None, warn=True) -> ContactResult:
     """Solve the contact of ``height_field`` with the flat under the smooth ``law`` (module docstring).
 

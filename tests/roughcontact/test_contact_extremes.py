@@ -4,7 +4,7 @@ import warnings
 import numpy as np
 import pytest
 
-from roughcontact import ElasticHalfSpace, solve_contact
+from roughcontact import ElasticHalfSpace, load_path, solve_contact
 from roughcontact import reference as ref
 from roughcontact.interactions import HardWall, Interaction
 from roughcontact.results import ConvergenceWarning
@@ -227,3 +227,47 @@ def test_nested_cold_start_levels_and_fallbacks(periodic):
     assert result.converged and result.params["start"] == "pk"
     with pytest.raises(ValueError, match="cold_start"):
         solve_contact(field, half, penetration=2e-6, cold_start="uniform")
+
+
+# -- detect, don't iterate ---------------------------------------------------------------------------------------
+def bench_like(dtype=np.float64):
+    grid = Grid((64, 64), (1e-3, 1e-3), periodic=True)
+    surface = HeightField(grid, np.random.default_rng(3).normal(0, 1e-6, grid.shape))
+    return surface, ElasticHalfSpace(grid, E_star=E_STAR, dtype=dtype)
+
+
+def test_penetration_beyond_the_mean_plane_is_refused():
+    surface, half = bench_like()
+    limit = surface.heights.max() - surface.heights.mean()
+    with pytest.raises(ValueError, match="penetration .* max\\(h\\) − ⟨h⟩"):
+        solve_contact(surface, half, penetration=1.01 * limit)
+    assert solve_contact(surface, half, penetration=0.99 * limit).converged
+    flat = HeightField(surface.grid, np.zeros(surface.grid.shape))
+    with pytest.raises(ValueError, match="penetration"):
+        solve_contact(flat, half, penetration=1e-6)
+    assert solve_contact(flat, half, penetration=-1e-6).contact_fraction == 0.0
+
+
+def test_far_beyond_full_contact_is_exact_at_once():
+    surface, half = bench_like()
+    res = solve_contact(surface, half, mean_pressure=1e30)
+    assert res.converged and res.iterations == 0 and res.params["full_contact"] and res.contact_fraction == 1.0
+    check_contact_state(surface, res)
+
+
+def test_float32_default_tolerance_and_stall():
+    surface, half = bench_like(np.float32)
+    res = solve_contact(surface, half, mean_pressure=1e3)
+    assert res.converged and res.params["tol"] == 1e-6
+    with pytest.warns(UserWarning, match="stalled"):
+        stalled = solve_contact(surface, half, mean_pressure=1e3, tol=1e-12)
+    # float32 round-off: the residual stops falling; the solve ends STALL_LIMIT steps after its last minimum
+    assert not stalled.converged and stalled.iterations < 1000
+
+
+def test_flags_and_sweeps_are_checked_when_called():
+    surface, half = bench_like()
+    with pytest.raises(TypeError, match="preconditioned"):
+        solve_contact(surface, half, mean_pressure=1e3, preconditioned="no")
+    with pytest.raises(TypeError, match="mean_pressures"):
+        load_path(surface, half, 1e3)                       # not a generator's first next(): at once

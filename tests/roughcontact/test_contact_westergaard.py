@@ -90,16 +90,17 @@ def test_full_contact_reached_and_reported(sinusoid, s):
         np.testing.assert_allclose(result.pressure[:, 0], expected, rtol=0, atol=1e-9 * P_STAR)
 
 
-def test_secant_predictor_is_exact_in_full_contact(sinusoid):
-    """Beyond p*, p = p̄ + p* cos(2πx/λ) is affine in p̄: the secant prediction from two full-contact steps is
-    the next solution, so the third step converges without a CG step; the last field rescaled to the new
-    load (the "previous" predictor) scales the cosine too and needs steps."""
+def test_full_contact_is_exact_without_iterating(sinusoid):
+    """Beyond p*, p = p̄ + p* cos(2πx/λ) > 0: the solver recognises full contact from p̄ + K⁻¹(h − ⟨h⟩) and
+    returns it without a CG step, whatever the warm start (secant or previous field)."""
     field, half, x = sinusoid
     loads = P_STAR * np.array([1.2, 1.4, 1.7])
     secant = list(load_path(field, half, loads, tol=1e-10))
     previous = list(load_path(field, half, loads, tol=1e-10, predictor="previous"))
     assert all(r.converged and r.contact_fraction == 1.0 for r in secant + previous)
-    assert secant[2].iterations == 0 and previous[2].iterations > 0
+    assert all(r.iterations == 0 and r.params["full_contact"] for r in secant + previous)
+    just_below = solve_contact(field, half, mean_pressure=0.99 * P_STAR)
+    assert not just_below.params["full_contact"] and just_below.contact_fraction < 1.0
     expected = loads[2] + P_STAR * np.cos(2 * np.pi * x / LAMBDA)
     np.testing.assert_allclose(secant[2].pressure[:, 0], expected, rtol=0, atol=1e-9 * P_STAR)
     with pytest.raises(ValueError, match="predictor"):
