@@ -142,8 +142,7 @@ def main(argv=None):
     draw_detail(prints["whorl"], output / "fingerprint_detail.png", provenance)
     draw_roughness(rough, output / "roughness_hurst.png", provenance)
     rows = statistics_rows(prints, rough)
-    # no provenance line yet: tests/surfaces/test_gallery.py reads this file with a plain csv.DictReader
-    write_csv(output / "gallery_statistics.csv", rows, None, echo=True)
+    write_csv(output / "gallery_statistics.csv", rows, provenance, echo=True)
     print(f"written to {output}/")
     return rows
 

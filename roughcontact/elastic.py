@@ -3,7 +3,7 @@
 Fourier multipliers Φ(q) [m/Pa] with ũ(q) = Φ(q) p̃(q) (u positive into the body, p positive compressive;
 ``docs/conventions.md``):
 
-* periodic half-space: Φ = 2/(E* |q|) (Johnson 1985, Contact Mechanics, §2; references §4); the q = 0 mode
+* periodic half-space: Φ = 2/(E* |q|) (Johnson 1985, Contact Mechanics, §2; docs/references.md §4); the q = 0 mode
   is undetermined and set to 0, so <u> = 0;
 * free (non-periodic) surface: the grid is zero-padded to 2n per axis and convolved with the exact
   displacement of a uniform pressure on one rectangular pixel (Love 1929, Phil. Trans. A 228:377):

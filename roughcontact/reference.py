@@ -85,7 +85,7 @@ def westergaard_pressure(x, mean_pressure, amplitude, wavelength, E_star):
 
 
 def westergaard_elastic_energy_density(mean_pressure, amplitude, wavelength, E_star):
-    """Elastic energy per unit area U/A = h0 p* (¼ − ½ ln s) s² [J/m²], s = p̄/p* ≤ 1 (references §4.1)."""
+    """Elastic energy per unit area U/A = h0 p* (¼ − ½ ln s) s² [J/m²], s = p̄/p* ≤ 1 (docs/references.md §4.1)."""
     s = _load_fraction(mean_pressure, amplitude, wavelength, E_star)
     p_star = westergaard_full_contact_pressure(amplitude, wavelength, E_star)
     return amplitude * p_star * (0.25 - 0.5 * np.log(np.where(s > 0, s, 1.0))) * s ** 2

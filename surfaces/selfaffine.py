@@ -1,6 +1,6 @@
 """Self-affine Gaussian roughness by Fourier synthesis of an isotropic PSD.
 
-Spectrum (references.md §3.1, convention of ``docs/conventions.md``), with ``q = 2π/λ``:
+Spectrum (docs/references.md §3.1, convention of ``docs/conventions.md``), with ``q = 2π/λ``:
 
     C(q) = 0                               q < q_L  (long-wavelength cutoff λ_L)
     C(q) = C0                              q_L <= q < q_r  (roll-off λ_r: flat plateau)
@@ -289,7 +289,7 @@ def fourier_synthesis(grid: Grid, spectrum, rng=None, *, rms_height=None, rms_sl
 def self_affine(grid: Grid, hurst: float, *, rms_height=None, rms_slope=None, prefactor=None,
                 long_cutoff=None, rolloff=None, short_cutoff=None, normalise: bool = True,
                 rng=None) -> HeightField:
-    """Self-affine Gaussian roughness on ``grid`` [m] (spectrum: module docstring, references.md §3.1).
+    """Self-affine Gaussian roughness on ``grid`` [m] (spectrum: module docstring, docs/references.md §3.1).
 
     Parameters
     ----------

@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 from roughcontact import ContactResult, ElasticHalfSpace, load_path, solve_contact
+from roughcontact.benchmarks import rough_surface
 from roughcontact.contact import PERIMETER_CORRECTION, STALL_STEPS, boundary_edges
 from surfaces import Grid, rms_slope, self_affine
 
@@ -308,7 +309,7 @@ def test_reentries_do_not_restart_the_conjugate_gradients():
 
 
 @pytest.mark.slow
-def test_stalled_residual_restarts_on_every_entry(load_experiment):
+def test_stalled_residual_restarts_on_every_entry():
     """Keeping β through re-entries can make the contact set cycle. On the benchmark surface at 1024² and
     p̄ = 0.0065 E* from PK's uniform start it did: the residual made its last new minimum at step 19 and
     hovered between 6e-3 and 1e-2 for 10⁴ steps, A/A0 ≈ 0.146–0.162 against 0.138 (found by the benchmark's
@@ -316,7 +317,7 @@ def test_stalled_residual_restarts_on_every_entry(load_experiment):
     steps without a new smallest residual every entry restarts the CG (PK's rule), and it converges in 126
     steps; the bound 250 allows for that, and without the fallback ``converged`` fails. The answer must be the
     nested start's, which never needs the fallback (its 20 sweep loads at 1024² run 25–41 steps)."""
-    surface = load_experiment("bench_contact").rough_surface(1024)
+    surface = rough_surface(1024)
     half = ElasticHalfSpace(surface.grid, E_star=E_STAR)
     stalled = solve_contact(surface, half, mean_pressure=0.0065 * E_STAR, tol=1e-8, cold_start="pk", maxiter=250)
     assert stalled.converged

@@ -13,7 +13,7 @@ HUMID = DielectricStack(d_sc=30e-6, eps_sc=1500.0, d_i=2e-6, eps_i=5.0, eps_a=1.
 
 
 def test_offset_of_table1_stack():
-    # references.md §0.1: c = 250/3000 + 1/3.9 µm = 0.33974 µm (5 digits quoted)
+    # docs/references.md §0.1: c = 250/3000 + 1/3.9 µm = 0.33974 µm (5 digits quoted)
     assert TABLE1.dielectric_offset == pytest.approx(0.33974e-6, rel=2e-5)
 
 

@@ -1,10 +1,11 @@
 """The surface gallery script runs in its fast mode and writes small pictures and consistent statistics."""
-import csv
 import runpy
 import sys
 from pathlib import Path
 
 import pytest
+
+from roughcontact.provenance import read_csv
 
 SCRIPT = Path(__file__).parents[2] / "experiments" / "surface_gallery.py"
 
@@ -17,7 +18,8 @@ def test_gallery_fast(tmp_path, monkeypatch, capsys):
         size = (tmp_path / f"{name}.png").stat().st_size
         assert 10_000 < size < 200_000                          # a real picture, small enough for docs/img
     with open(tmp_path / "gallery_statistics.csv") as stream:
-        rows = list(csv.DictReader(stream))
+        assert stream.readline().startswith("# roughcontact ")        # provenance
+    rows = read_csv(tmp_path / "gallery_statistics.csv")
     prints = [row for row in rows if row["field"].startswith("fingerprint")]
     rough = [row for row in rows if row["field"].startswith("self_affine")]
     assert [row["field"].split()[1] for row in prints] == ["arch", "tented_arch", "left_loop", "right_loop",
