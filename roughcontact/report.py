@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from surfaces._checks import check_finite_array
+from surfaces._checks import check_broadcast, check_finite_array
 
 from .macro import LinearGap, PowerLawGap, SlidingFrictionModel, TabulatedGap
 from .provenance import save_figure, write_csv
@@ -55,13 +55,9 @@ class TabulatedArea:
             object.__setattr__(self, name, value)
 
     def area(self, normal_force, work_of_adhesion) -> np.ndarray:
-        force, w = np.broadcast_arrays(np.asarray(normal_force, float), np.asarray(work_of_adhesion, float))
-        if (force < self.normal_forces[0]).any() or (force > self.normal_forces[-1]).any():
-            raise ValueError(f"normal_force outside the table: values span [{force.min()!r}, {force.max()!r}] N, "
-                             f"valid range [{self.normal_forces[0]!r}, {self.normal_forces[-1]!r}] N")
+        force, w = check_broadcast(normal_force=normal_force, work_of_adhesion=work_of_adhesion)
+        index, u = TabulatedGap._locate("normal_force", self.normal_forces, force)     # same rule as the gap table
         rows = np.array([np.interp(w, self.works[i], self.areas[i]) for i in range(self.normal_forces.size)])
-        index = np.clip(np.searchsorted(self.normal_forces, force, side="right") - 1, 0, self.normal_forces.size - 2)
-        u = (force - self.normal_forces[index]) / (self.normal_forces[index + 1] - self.normal_forces[index])
         low = np.take_along_axis(rows, index[None], 0)[0]
         high = np.take_along_axis(rows, (index + 1)[None], 0)[0]
         return (1 - u) * low + u * high
