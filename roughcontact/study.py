@@ -76,35 +76,50 @@ def resolved_short_cutoff(scene: Scene) -> float:
     return cutoff
 
 
-def patch_surface(scene: Scene, realisation: int) -> np.ndarray:
-    """Heights [m] of the patch of ``realisation``: ridges plus micro-roughness (rng seed + realisation)."""
-    from surfaces import parallel_ridges, self_affine
+def ridge_heights(scene: Scene, grid=None) -> np.ndarray:
+    """Heights [m] of the parallel ridges on ``grid`` (default: the patch grid); zero when disabled."""
+    from surfaces import parallel_ridges
+    grid = patch_grid(scene) if grid is None else grid
+    if not scene.ridges.enabled:
+        return np.zeros(grid.shape)
+    return parallel_ridges(grid, period=scene.ridges.period, height=scene.ridges.height,
+                           ridge_width_ratio=scene.ridges.width_ratio).heights
+
+
+def roughness_heights(scene: Scene, realisation: int) -> np.ndarray:
+    """Heights [m] of the micro-roughness of ``realisation`` on the patch grid (rng seed + realisation); zero
+    when disabled."""
+    from surfaces import self_affine
     grid = patch_grid(scene)
-    heights = np.zeros(grid.shape)
-    if scene.ridges.enabled:
-        heights += parallel_ridges(grid, period=scene.ridges.period, height=scene.ridges.height,
-                                   ridge_width_ratio=scene.ridges.width_ratio).heights
-    if scene.roughness.enabled:
-        if scene.roughness.long_cutoff > grid.lengths[0]:
-            raise ValueError(f"roughness.long_cutoff = {scene.roughness.long_cutoff!r} m exceeds the patch side "
-                             f"{grid.lengths[0]:g} m (presets.{scene.study.preset}.periods x ridges.period); "
-                             "valid range (short_cutoff, patch side]")
-        heights += self_affine(grid, scene.roughness.hurst, rms_height=scene.roughness.rms_height,
-                               long_cutoff=scene.roughness.long_cutoff, short_cutoff=resolved_short_cutoff(scene),
-                               rng=scene.study.seed + realisation).heights
+    if not scene.roughness.enabled:
+        return np.zeros(grid.shape)
+    if scene.roughness.long_cutoff > grid.lengths[0]:
+        raise ValueError(f"roughness.long_cutoff = {scene.roughness.long_cutoff!r} m exceeds the patch side "
+                         f"{grid.lengths[0]:g} m (presets.{scene.study.preset}.periods x ridges.period); "
+                         "valid range (short_cutoff, patch side]")
+    return self_affine(grid, scene.roughness.hurst, rms_height=scene.roughness.rms_height,
+                       long_cutoff=scene.roughness.long_cutoff, short_cutoff=resolved_short_cutoff(scene),
+                       rng=scene.study.seed + realisation).heights
+
+
+def patch_surface(scene: Scene, realisation: int) -> np.ndarray:
+    """Heights [m] of the patch of ``realisation``: ridges plus micro-roughness."""
+    heights = ridge_heights(scene) + roughness_heights(scene, realisation)
     if not heights.any():
         raise ValueError("the patch is flat: enable ridges (ridges.enabled, ridges.height > 0) or roughness "
                          "(roughness.enabled)")
     return heights
 
 
-def patch_body(scene: Scene):
-    """The skin under the patch: a half-space of ``skin.E_star``, or the layer bonded on it."""
+def patch_body(scene: Scene, grid=None):
+    """The skin under the patch on ``grid`` (default: the patch grid): a half-space of ``skin.E_star``, or the
+    layer bonded on it."""
     from .elastic import ElasticHalfSpace
     skin = scene.skin
+    grid = patch_grid(scene) if grid is None else grid
     if skin.layer_thickness == 0:
-        return ElasticHalfSpace(patch_grid(scene), E_star=skin.E_star)
-    return ElasticHalfSpace(patch_grid(scene), E_star=skin.layer_E_star, thickness=skin.layer_thickness,
+        return ElasticHalfSpace(grid, E_star=skin.E_star)
+    return ElasticHalfSpace(grid, E_star=skin.layer_E_star, thickness=skin.layer_thickness,
                             poisson=skin.poisson, substrate_E_star=skin.E_star, substrate_poisson=skin.poisson)
 
 
