@@ -369,9 +369,9 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
              + ", ".join(f"{d * MICRO:.2f}" for d in seed_gap) + " µm and Guo et al.'s power law "
              + ", ".join(f"{d * MICRO:.2f}" for d in guo) + f" µm at F_N = {', '.join(f'{f:g}' for f in forces)} N; "
              f"Eq. 46 lies inside the confidence interval at {', '.join(inside) if inside else 'no load'}. "
-             f"d_eq falls with load at every voltage: {bool(np.all(np.diff(d_mean, axis=0) < 0))}; "
-             f"A_R grows with load: {bool(np.all(np.diff(a_mean[:, :, 0], axis=0) > 0))} and with voltage: "
-             f"{bool(np.all(np.diff(a_mean[:, :, 0], axis=1) > 0))}.", "",
+             f"d_eq falls with load at every voltage: {_yes(np.diff(d_mean, axis=0) < 0)}; A_R grows with load: "
+             f"{_yes(np.diff(a_mean[:, :, 0], axis=0) > 0)}; A_R grows with voltage: "
+             f"{_yes(np.diff(a_mean[:, :, 0], axis=1) > 0)} (realisation means).", "",
              f"* **Parallel-plate field per pixel**: the (c + g)⁻²-weighted rms gap slope is {np.min(slope):.2f} to "
              f"{np.max(slope):.2f}; the pixel-wise parallel-plate field (Eq. 21 per pixel) is accurate where this "
              "is well below 1 and errs by a fraction of the order of its square where it is not.", ""]
@@ -409,6 +409,10 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
                                                        f"{c['seed_ridge_area_mm2']:.1f}" for c in cells) + " |")
         text.append("")
     return "\n".join(text) + "\n"
+
+
+def _yes(condition) -> str:
+    return "yes" if np.all(condition) else "no"
 
 
 def _error_table(forces, voltages, values) -> list:

@@ -9,8 +9,8 @@ For each normal force F_N and voltage U:
    ridge periods with the ridges and the self-affine micro-roughness resolved in one grid, pressed at each
    nominal pressure with the electrostatic attraction acting (``roughcontact.solve_contact``; 0 V is the hard
    wall). Each solve starts from the result at the previous load and the same voltage, else from the previous
-   voltage at the same load (``x0=``); identical sub-problems (same realisation, pressure and voltage) are
-   solved once.
+   voltage at the same load (``x0=``); a scene without roughness is solved for one realisation only (the
+   others would be identical).
 3. **Averages over the apparent area** (rings of equal area weigh equally): d_eq by seed Eq. 25
    (``DielectricStack.equivalent_gap`` of all gaps), the arithmetic mean gap, the real contact fraction, the
    ridge contact fraction A_R/A0 (:func:`ridge_area_fraction`: the real contact closed morphologically with a
@@ -340,7 +340,8 @@ def run_study(scene: Scene, directory=None, progress: bool = False) -> StudyResu
         points = {(i, j): point for i, j in order if (point := store.load(i, j)) is not None}
     todo = [key for key in order if key not in points]
     heights, body = {}, None
-    last = {}         # (realisation, ring, voltage) -> result at the last load solved
+    along_load = {}       # (realisation, ring, voltage) -> the result at the previous load
+    along_voltage = {}    # (realisation, ring, load index) -> the result at the previous voltage of that load
     solves = 0
     bar = None
     if progress and todo:
@@ -353,30 +354,25 @@ def run_study(scene: Scene, directory=None, progress: bool = False) -> StudyResu
             start = time.perf_counter()
             if body is None:
                 body = patch_body(scene)
-            solved, cache = [], {}
+            law = ElectrostaticInteraction(stack, voltage=voltage) if voltage > 0 else None   # 0 V: the hard wall
+            solved = []
             for r in range(count):
                 if r not in heights:
                     heights[r] = patch_surface(scene, r)
                 results = []
                 for k, pressure in enumerate(pressures):
-                    key = (r, pressure, voltage)
-                    if key not in cache:
-                        x0 = last.get((r, k, voltage)) or last.get((r, k, "previous voltage"))
-                        law = ElectrostaticInteraction(stack, voltage=voltage) if voltage > 0 else None
-                        cache[key] = solve_contact(heights[r], body, mean_pressure=pressure, interaction=law,
-                                                   tol=scene.preset.tolerance, x0=x0, warn=False)
-                        solves += 1
-                    result = cache[key]
-                    last[(r, k, voltage)] = last[(r, k, "previous voltage")] = result
+                    x0 = along_load.get((r, k, voltage)) or along_voltage.get((r, k, i))
+                    result = solve_contact(heights[r], body, mean_pressure=pressure, interaction=law,
+                                           tol=scene.preset.tolerance, x0=x0, warn=False)
+                    solves += 1
+                    along_load[(r, k, voltage)] = along_voltage[(r, k, i)] = result
                     results.append(result)
                 solved.append(results)
             point = _point_result(scene, stack, force, voltage, area, pressures, solved, lengths, grid.spacing,
                                   time.perf_counter() - start)
             points[(i, j)] = point
-            if j == len(voltages) - 1:
-                for r in range(count):
-                    for k in range(len(pressures)):
-                        last.pop((r, k, "previous voltage"), None)
+            for key in [key for key in along_voltage if key[2] < i]:      # earlier loads are not revisited
+                del along_voltage[key]
             if store is not None:
                 store.save(i, j, point)
             if bar is not None:
