@@ -73,14 +73,14 @@ def _cmd_scene(args, provenance) -> int:
     from .scene import DEFAULT_SCENE_TOML, load_scene
 
     try:
-        scene = load_scene(args.scene)
+        scene = load_scene(getattr(args, "scene", None))
     except ValueError as error:
         print(f"roughcontact scene: error: {error}", file=sys.stderr)
         return USAGE_ERROR
     if args.show:
-        print(DEFAULT_SCENE_TOML if args.scene is None else scene.to_toml(), end="")
+        print(scene.to_toml() if hasattr(args, "scene") else DEFAULT_SCENE_TOML, end="")
     else:
-        print(f"{args.scene or 'the default scene'}: valid (preset {scene.study.preset}, "
+        print(f"{getattr(args, 'scene', 'the default scene')}: valid (preset {scene.study.preset}, "
               f"{len(scene.loads.normal_forces)} loads x {len(scene.loads.voltages)} voltages)")
     return 0
 
@@ -95,7 +95,7 @@ def _cmd_run(args, provenance) -> int:
 
     start = time.perf_counter()
     try:
-        scene = load_scene(args.scene, preset=args.preset)
+        scene = load_scene(getattr(args, "scene", None), preset=getattr(args, "preset", None))
         output = output_directory(args.out)
         result = run_study(scene, output, progress=True)
     except ValueError as error:               # a scene key, a scene parameter the preset cannot resolve, another scene
@@ -133,9 +133,9 @@ def build_parser() -> argparse.ArgumentParser:
                                           "friction law beside its fitted model, and write results.nc, CSV tables, "
                                           "PNG figures and report.md. Re-running into the same directory resumes.",
                               formatter_class=formatter)
-    run.add_argument("scene", nargs="?", default=None,
+    run.add_argument("scene", nargs="?", default=argparse.SUPPRESS,
                      help="scene TOML file (default: the embedded scene, see 'roughcontact scene --show')")
-    run.add_argument("--preset", choices=("draft", "standard", "reference"), default=None,
+    run.add_argument("--preset", choices=("draft", "standard", "reference"), default=argparse.SUPPRESS,
                      help="accuracy preset (default: the scene's study.preset)")
     run.add_argument("--out", default=DEFAULT_RUN_OUTPUT,
                      help="results directory; created if missing, but its parent must exist")
@@ -144,7 +144,8 @@ def build_parser() -> argparse.ArgumentParser:
                                 description="Validate a scene TOML file (errors name the key and its line); "
                                             "--show prints it, or the commented default scene, as TOML.",
                                 formatter_class=formatter)
-    scene.add_argument("scene", nargs="?", default=None, help="scene TOML file (default: the embedded scene)")
+    scene.add_argument("scene", nargs="?", default=argparse.SUPPRESS,
+                       help="scene TOML file (default: the embedded scene)")
     scene.add_argument("--show", action="store_true", help="print the scene as TOML")
     scene.set_defaults(run=_cmd_scene)
     return parser
