@@ -23,6 +23,8 @@ _LAZY = {
     "ElectrostaticInteraction": "interactions",
     "ExponentialAdhesion": "interactions",
     "MaugisDugdale": "interactions",
+    "load_scene": "scene",
+    "run_study": "study",
 }
 
 __getattr__, __dir__, __all__ = lazy_attributes(__name__, _LAZY, ["__version__"])
