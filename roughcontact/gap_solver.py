@@ -48,7 +48,7 @@ from .results import ConvergenceWarning
 METHOD = "projected-cg-gap"
 ARMIJO = 1e-4             # sufficient-decrease constant of the projected line search
 MAX_HALVINGS = 40         # line-search step halvings before the direction is given up
-APPROACH = 1.0            # a stable point closes by at most this times (gap + law length) in one step
+APPROACH = 2.0            # a stable point closes by at most this times (gap + law length) in one step
 ENERGY_ROUND_OFF = 1e-12  # relative round-off of the energy sums, below which a rise is not a rise
 _REFRESH = 50             # exact recomputation of p_el at least every _REFRESH incremental steps
 
