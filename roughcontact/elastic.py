@@ -114,7 +114,8 @@ class ElasticHalfSpace:
     substrate_E_star, substrate_poisson : float, optional
         Contact modulus [Pa] and Poisson ratio of the half-space under the layer.
     backend : {"pyfftw", "scipy"}
-        FFT backend (:mod:`roughcontact.fft`); ``threads`` FFT threads; ``planner_effort`` FFTW planner flag.
+        FFT backend (:mod:`roughcontact.fft`); ``threads`` FFT threads (default: the cores this process may run
+        on); ``planner_effort`` FFTW planner flag (default ``FFTW_MEASURE``, plans cached as wisdom on disk).
     dtype : float64 or float32
         Precision of the buffers, of the pressure and of the displacement in a solve.
 
@@ -122,8 +123,8 @@ class ElasticHalfSpace:
     """
 
     def __init__(self, grid, E_star, *, thickness=None, poisson=None, bottom="bonded", substrate_E_star=None,
-                 substrate_poisson=None, backend="pyfftw", threads=1, dtype=np.float64,
-                 planner_effort="FFTW_ESTIMATE"):
+                 substrate_poisson=None, backend="pyfftw", threads=None, dtype=np.float64,
+                 planner_effort=None):
         if not isinstance(grid, Grid):
             raise TypeError(f"grid must be a surfaces.Grid, got {type(grid).__name__}")
         self._parameters = dict(thickness=thickness, poisson=poisson, bottom=bottom,

@@ -9,13 +9,24 @@ used in place (no copy); other arrays of the right shape work too, through a cop
 
 * ``"pyfftw"`` (default): FFTW plans made once at construction on SIMD-aligned buffers and re-pointed at the
   caller's arrays (``update_arrays``) at every call; ``planner_effort`` is an FFTW flag
-  (``"FFTW_ESTIMATE"`` plans instantly, ``"FFTW_MEASURE"`` is faster for long runs), ``threads`` FFTW threads.
+  (``"FFTW_ESTIMATE"`` plans instantly, ``"FFTW_MEASURE"`` times candidate plans and runs faster),
+  ``threads`` FFTW threads. Measured plans are kept as FFTW wisdom in a cache file (:func:`wisdom_path`), so
+  each shape is measured once per machine, not once per process.
+
+Defaults (``threads=None``, ``planner_effort=None``): the cores this process may run on
+(``$ROUGHCONTACT_FFT_THREADS`` overrides; a pool worker sets 1) and ``FFTW_MEASURE``
+(``$ROUGHCONTACT_FFTW_PLANNER`` overrides; the test suite uses ``FFTW_ESTIMATE``).
 * ``"scipy"``: ``scipy.fft`` with ``workers=threads``; always available, agrees with pyFFTW to round-off
   (``scipy.fft`` cannot write into a given buffer, so each call allocates its result).
 
 A backend is not thread-safe (``spectrum`` is shared state); use one per worker process or thread.
 """
 from __future__ import annotations
+
+import os
+import pickle
+import tempfile
+from pathlib import Path
 
 import numpy as np
 import scipy.fft
@@ -25,6 +36,67 @@ from surfaces._checks import check_choice, check_integer
 BACKENDS = ("pyfftw", "scipy")
 PLANNER_EFFORTS = ("FFTW_ESTIMATE", "FFTW_MEASURE", "FFTW_PATIENT", "FFTW_EXHAUSTIVE")
 _COMPLEX = {np.dtype(np.float64): np.complex128, np.dtype(np.float32): np.complex64}
+THREADS_VARIABLE = "ROUGHCONTACT_FFT_THREADS"
+PLANNER_VARIABLE = "ROUGHCONTACT_FFTW_PLANNER"
+CACHE_VARIABLE = "ROUGHCONTACT_CACHE"
+DEFAULT_PLANNER = "FFTW_MEASURE"
+_wisdom_known = {}             # wisdom file -> the wisdom this process last read from it or wrote to it
+
+
+def default_threads() -> int:
+    """FFT threads when none are given: ``$ROUGHCONTACT_FFT_THREADS``, else the cores this process may run on."""
+    value = os.environ.get(THREADS_VARIABLE)
+    if value:
+        if not value.strip().isdigit() or int(value) < 1:
+            raise ValueError(f"{THREADS_VARIABLE} = {value!r} must be a whole number >= 1")
+        return int(value)
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:                 # (no affinity on this platform)
+        return os.cpu_count() or 1
+
+
+def default_planner() -> str:
+    """FFTW planner flag when none is given: ``$ROUGHCONTACT_FFTW_PLANNER``, else ``FFTW_MEASURE``."""
+    return check_choice(PLANNER_VARIABLE, os.environ.get(PLANNER_VARIABLE) or DEFAULT_PLANNER, PLANNER_EFFORTS)
+
+
+def wisdom_path() -> Path:
+    """The FFTW wisdom cache: ``$ROUGHCONTACT_CACHE`` (default ``~/.cache/roughcontact``), one file per pyFFTW
+    version."""
+    import pyfftw
+
+    root = Path(os.environ.get(CACHE_VARIABLE) or Path.home() / ".cache" / "roughcontact")
+    return root / f"fftw-wisdom-pyfftw-{pyfftw.__version__}.pickle"
+
+
+def _import_wisdom(pyfftw):
+    path = wisdom_path()
+    if path in _wisdom_known:
+        return
+    _wisdom_known[path] = None
+    try:
+        with open(path, "rb") as stream:
+            pyfftw.import_wisdom(pickle.load(stream))
+    except (OSError, pickle.UnpicklingError, ValueError, TypeError, EOFError):
+        pass                               # no cache yet, or an unreadable one: plans are measured afresh
+    _wisdom_known[path] = pyfftw.export_wisdom()
+
+
+def _save_wisdom(pyfftw):
+    """Write this process's FFTW wisdom to the cache file if planning added to it (atomically; an unwritable
+    cache is skipped)."""
+    path, wisdom = wisdom_path(), pyfftw.export_wisdom()
+    if wisdom == _wisdom_known.get(path):
+        return
+    _wisdom_known[path] = wisdom
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        with tempfile.NamedTemporaryFile("wb", dir=path.parent, delete=False) as stream:
+            pickle.dump(wisdom, stream)
+        os.replace(stream.name, path)
+    except OSError:
+        pass
 
 
 def _check_dtype(dtype) -> np.dtype:
@@ -48,10 +120,10 @@ class ScipyFFT:
 
     name = "scipy"
 
-    def __init__(self, shape, dtype=np.float64, threads=1):
+    def __init__(self, shape, dtype=np.float64, threads=None):
         self.shape = tuple(int(n) for n in shape)
         self.dtype = _check_dtype(dtype)
-        self.threads = _check_threads(threads)
+        self.threads = default_threads() if threads is None else _check_threads(threads)
         self.spectrum = np.zeros(spectrum_shape(self.shape), _COMPLEX[self.dtype])
         self._work = None
 
@@ -76,20 +148,26 @@ class PyFFTW:
 
     name = "pyfftw"
 
-    def __init__(self, shape, dtype=np.float64, threads=1, planner_effort="FFTW_ESTIMATE"):
+    def __init__(self, shape, dtype=np.float64, threads=None, planner_effort=None):
         import pyfftw
 
         self._pyfftw = pyfftw
         self.shape = tuple(int(n) for n in shape)
         self.dtype = _check_dtype(dtype)
-        self.threads = _check_threads(threads)
-        self.planner_effort = check_choice("planner_effort", planner_effort, PLANNER_EFFORTS)
+        self.threads = default_threads() if threads is None else _check_threads(threads)
+        self.planner_effort = (default_planner() if planner_effort is None
+                               else check_choice("planner_effort", planner_effort, PLANNER_EFFORTS))
+        measured = self.planner_effort != "FFTW_ESTIMATE"
+        if measured:
+            _import_wisdom(pyfftw)
         self._scratch = self.empty()              # planning buffer; later the copy target of foreign arrays
         self.spectrum = pyfftw.empty_aligned(spectrum_shape(self.shape), _COMPLEX[self.dtype])
         self._forward = pyfftw.FFTW(self._scratch, self.spectrum, axes=(0, 1), direction="FFTW_FORWARD",
                                     flags=(self.planner_effort,), threads=self.threads)
         self._backward = pyfftw.FFTW(self.spectrum, self._scratch, axes=(0, 1), direction="FFTW_BACKWARD",
                                      flags=(self.planner_effort, "FFTW_DESTROY_INPUT"), threads=self.threads)
+        if measured:
+            _save_wisdom(pyfftw)
 
     def empty(self) -> np.ndarray:
         """An uninitialised real array of ``shape`` that the plans use in place."""
@@ -119,10 +197,12 @@ class PyFFTW:
             np.copyto(out, target)
 
 
-def make_backend(name, shape, dtype=np.float64, threads=1, planner_effort="FFTW_ESTIMATE"):
-    """Backend ``name`` (``"pyfftw"`` or ``"scipy"``) for real transforms of ``shape``."""
+def make_backend(name, shape, dtype=np.float64, threads=None, planner_effort=None):
+    """Backend ``name`` (``"pyfftw"`` or ``"scipy"``) for real transforms of ``shape`` (defaults: module
+    docstring)."""
     check_choice("backend", name, BACKENDS)
     if name == "pyfftw":
         return PyFFTW(shape, dtype, threads, planner_effort)
-    check_choice("planner_effort", planner_effort, PLANNER_EFFORTS)
+    if planner_effort is not None:
+        check_choice("planner_effort", planner_effort, PLANNER_EFFORTS)
     return ScipyFFT(shape, dtype, threads)

@@ -6,6 +6,10 @@ from pathlib import Path
 import pytest
 
 os.environ.setdefault("MPLBACKEND", "Agg")
+# the suite is about answers, not speed: instant FFTW plans and one thread (tests/roughcontact/test_fft.py checks
+# the library's own defaults, measured plans on every core, with the wisdom cache)
+os.environ.setdefault("ROUGHCONTACT_FFTW_PLANNER", "FFTW_ESTIMATE")
+os.environ.setdefault("ROUGHCONTACT_FFT_THREADS", "1")
 
 EXPERIMENTS = Path(__file__).resolve().parents[1] / "experiments"
 

@@ -80,3 +80,23 @@ def test_bad_input_names_the_parameter(kwargs, word):
 def test_scipy_backend_type():
     backend = make_backend("scipy", (4, 6), np.float32, threads=2)
     assert isinstance(backend, ScipyFFT) and backend.spectrum.shape == (4, 4) and backend.threads == 2
+
+
+def test_defaults_use_every_core_and_measured_plans_cached_as_wisdom(monkeypatch, tmp_path):
+    import os
+
+    from roughcontact import fft
+
+    monkeypatch.delenv(fft.THREADS_VARIABLE, raising=False)
+    monkeypatch.delenv(fft.PLANNER_VARIABLE, raising=False)
+    monkeypatch.setenv(fft.CACHE_VARIABLE, str(tmp_path))
+    assert fft.default_threads() == len(os.sched_getaffinity(0))
+    backend = fft.PyFFTW((16, 12))
+    assert backend.threads == len(os.sched_getaffinity(0)) and backend.planner_effort == "FFTW_MEASURE"
+    assert fft.wisdom_path().parent == tmp_path and fft.wisdom_path().exists()      # measured once, kept
+    monkeypatch.setenv(fft.THREADS_VARIABLE, "3")
+    monkeypatch.setenv(fft.PLANNER_VARIABLE, "FFTW_ESTIMATE")
+    assert fft.PyFFTW((8, 8)).threads == 3 and fft.PyFFTW((8, 8)).planner_effort == "FFTW_ESTIMATE"
+    monkeypatch.setenv(fft.THREADS_VARIABLE, "many")
+    with pytest.raises(ValueError, match="ROUGHCONTACT_FFT_THREADS"):
+        fft.default_threads()
