@@ -321,7 +321,8 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
             f"= {preset.periods * scene.ridges.period * 1e3:g} mm on {preset.grid}² pixels, {realisations} "
             f"realisation(s) (seed {scene.study.seed}), solver tolerance {preset.tolerance:g}, micro-roughness "
             f"short cut-off in use {result.short_cutoff * MICRO:.3g} µm. Scene: `scene.toml` in this directory. "
-            f"{converged.size - int(converged.sum())} of {converged.size} patch results did not converge."
+            f"{converged.size - int(converged.sum())} of {converged.size} patch results did not converge (also "
+            "from the solver's own start) and are left out of the means."
             + (f" Run time {seconds:.0f} s ({result.computed} points computed with {result.solves} solves, "
                f"{result.array('seconds').size - result.computed} read back)." if seconds is not None else ""), "",
             "Figures: `equivalent_gap.png`, `voltage_dependence.png`, `friction.png`. Tables: `points.csv`, "

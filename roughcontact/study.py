@@ -18,7 +18,8 @@ For each normal force F_N and voltage U:
    ridge-area equivalent gap d_eq,R with σ_el(d_eq,R) A_R = σ̄_el A0 (the gap that the seed's friction law,
    which applies σ_el on A_R, needs).
 4. **Realisations**: ``realisations`` rough patches (rng seed + r); every reported number is a mean with a 95 %
-   Student-t confidence interval (:func:`confidence_interval`).
+   Student-t confidence interval (:func:`confidence_interval`) over the realisations whose solves converged (a
+   solve that fails from its warm start is repeated from the solver's own start first).
 
 Per-point results are stored as they finish in a :class:`PointStore` directory, so an interrupted run resumes
 without recomputing finished points; a different scene in the same directory is refused (:class:`SceneMismatch`).
@@ -150,15 +151,16 @@ def ridge_area_fraction(contact: np.ndarray, spacing: float, length: float) -> f
 
 
 def confidence_interval(samples) -> tuple:
-    """``(mean, half-width)`` of the two-sided :data:`CONFIDENCE` Student-t interval over the last axis (half-width
-    NaN for a single sample)."""
+    """``(mean, half-width)`` of the two-sided :data:`CONFIDENCE` Student-t interval over the last axis; NaN
+    samples are left out (half-width NaN where fewer than two remain, mean NaN where none)."""
     from scipy.special import stdtrit
     samples = np.asarray(samples, dtype=float)
-    count = samples.shape[-1]
-    mean = samples.mean(axis=-1)
-    if count < 2:
-        return mean, np.full_like(mean, np.nan)
-    half = stdtrit(count - 1, 0.5 + CONFIDENCE / 2) * samples.std(axis=-1, ddof=1) / np.sqrt(count)
+    count = np.sum(np.isfinite(samples), axis=-1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mean = np.nansum(samples, axis=-1) / count
+        spread = np.sqrt(np.nansum((samples - mean[..., None]) ** 2, axis=-1) / (count - 1))
+        half = np.where(count > 1, stdtrit(np.maximum(count - 1, 1), 0.5 + CONFIDENCE / 2) * spread
+                        / np.sqrt(count), np.nan)
     return mean, half
 
 
@@ -307,8 +309,11 @@ class StudyResult:
         return np.array([[getattr(point, name) for point in row] for row in self.points], dtype=float)
 
     def summary(self, name: str) -> tuple:
-        """``(mean, 95 % half-width)`` of field ``name`` over the realisations."""
-        return confidence_interval(self.array(name))
+        """``(mean, 95 % half-width)`` of field ``name`` over the realisations whose solves converged."""
+        values, converged = self.array(name), self.array("converged").astype(bool)
+        if converged.ndim < values.ndim:                       # ridge_area_fractions: (…, lengths, realisations)
+            converged = converged[:, :, None, :]
+        return confidence_interval(np.where(converged, values, np.nan))
 
     @property
     def ridge_area(self) -> np.ndarray:
@@ -365,6 +370,10 @@ def run_study(scene: Scene, directory=None, progress: bool = False) -> StudyResu
                     result = solve_contact(heights[r], body, mean_pressure=pressure, interaction=law,
                                            tol=scene.preset.tolerance, x0=x0, warn=False)
                     solves += 1
+                    if not result.converged and x0 is not None:    # a failed warm start: the solver's own start
+                        result = solve_contact(heights[r], body, mean_pressure=pressure, interaction=law,
+                                               tol=scene.preset.tolerance, warn=False)
+                        solves += 1
                     along_load[(r, k, voltage)] = along_voltage[(r, k, i)] = result
                     results.append(result)
                 solved.append(results)

@@ -94,10 +94,34 @@ def test_ridge_area_fraction_closes_gaps_shorter_than_the_length():
     assert ridge_area_fraction(mask, 1.0, 6.0) == 18 / 40            # a 20 px gap stays open
 
 
-def test_confidence_interval():
-    mean, half = confidence_interval([[1.0, 2.0, 3.0]])
-    assert mean[0] == 2.0 and half[0] == pytest.approx(4.302653 / np.sqrt(3), rel=1e-6)
-    assert np.isnan(confidence_interval([[1.0]])[1][0])
+def test_confidence_interval_leaves_out_nan():
+    mean, half = confidence_interval([[1.0, 2.0, 3.0], [1.0, np.nan, 3.0], [np.nan, np.nan, 2.0]])
+    assert mean.tolist() == [2.0, 2.0, 2.0]
+    assert half[0] == pytest.approx(4.302653 / np.sqrt(3), rel=1e-6)
+    assert half[1] == pytest.approx(12.706205, rel=1e-6) and np.isnan(half[2])     # t(1) sqrt(2)/sqrt(2)
+
+
+def test_failed_warm_start_is_retried_cold_and_failures_leave_the_means(tiny, monkeypatch):
+    import dataclasses
+    solve = roughcontact.contact.solve_contact
+
+    def warm_fails(*args, x0=None, **kwargs):
+        result = solve(*args, x0=x0, **kwargs)
+        return dataclasses.replace(result, converged=False) if x0 is not None else result
+
+    monkeypatch.setattr(roughcontact.contact, "solve_contact", warm_fails)
+    retried = run_study(tiny)
+    monkeypatch.setattr(roughcontact.contact, "solve_contact", lambda *args, **kwargs: dataclasses.replace(
+        solve(*args, **kwargs), converged=kwargs.get("interaction") is None))
+    failing = run_study(tiny)
+    monkeypatch.undo()
+    cold = [[solve(patch_surface(tiny, r), patch_body(tiny), tol=1e-6, warn=False, interaction=None,
+                   mean_pressure=apparent_contact(tiny.fingerpad, force, 1)[1][0]).contact_fraction
+             for r in range(2)] for force in tiny.loads.normal_forces]
+    assert retried.solves == 8 + 6 and retried.array("converged").all()        # 6 warm starts retried
+    assert retried.array("contact_fraction")[:, 0, :].tolist() == cold       # the 0 V points: cold solves
+    assert np.isnan(failing.summary("equivalent_gap")[0][:, 1]).all()        # every 150 V solve failed
+    assert np.isfinite(failing.summary("equivalent_gap")[0][:, 0]).all()
 
 
 def test_tabulated_area_and_bottom_up_friction(tiny_result):
