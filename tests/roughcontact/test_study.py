@@ -8,24 +8,11 @@ from roughcontact.cli import main
 from roughcontact.provenance import read_csv
 from roughcontact.report import TabulatedArea, bottom_up_friction
 from roughcontact.scene import Fingerpad, load_scene
+from study_scenes import TINY
+
 from roughcontact.study import (PointStore, SceneMismatch, apparent_contact, confidence_interval, patch_body,
                                 patch_surface, ridge_area_fraction, run_study)
 
-TINY = """\
-[loads]
-normal_forces = [0.5, 2.0]
-voltages = [0.0, 150.0]
-[roughness]
-long_cutoff = 1.5e-4
-[ridge_area]
-coarse_graining = 6e-5
-sensitivity = [2.0]
-[presets.draft]
-grid = 32
-realisations = 2
-tolerance = 1e-6
-pixels_per_cutoff = 3.0
-"""
 
 
 @pytest.fixture(scope="module")
