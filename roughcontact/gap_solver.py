@@ -50,6 +50,7 @@ ARMIJO = 1e-4             # sufficient-decrease constant of the projected line s
 MAX_HALVINGS = 40         # line-search step halvings before the direction is given up
 APPROACH = 2.0            # a stable point closes by at most this times (gap + law length) in one step
 ENERGY_ROUND_OFF = 1e-12  # relative round-off of the energy sums, below which a rise is not a rise
+START_TOL = 1e-6          # tolerance of the hard-wall solve that starts a cold solve (a guess, not the answer)
 _REFRESH = 50             # exact recomputation of p_el at least every _REFRESH incremental steps
 
 # built-in laws evaluated inside the kernels: (kind, a, b, c)
@@ -311,9 +312,9 @@ def _start_gap(h, half, load, flat_position, x0, tol, maxiter):
                         f"{type(x0).__name__}")
     h_max = float(h.max())
     if load is not None and load > 0:
-        start = solve_contact(h, half, mean_pressure=load, tol=max(tol, 1e-6), maxiter=maxiter, warn=False)
+        start = solve_contact(h, half, mean_pressure=load, tol=max(tol, START_TOL), maxiter=maxiter, warn=False)
     elif flat_position is not None and flat_position < h_max:
-        start = solve_contact(h, half, penetration=h_max - flat_position, tol=max(tol, 1e-6), maxiter=maxiter,
+        start = solve_contact(h, half, penetration=h_max - flat_position, tol=max(tol, START_TOL), maxiter=maxiter,
                               warn=False)
     else:
         position = h_max if flat_position is None else flat_position
