@@ -50,7 +50,7 @@ ARMIJO = 1e-4             # sufficient-decrease constant of the projected line s
 MAX_HALVINGS = 40         # line-search step halvings before the direction is given up
 APPROACH = 2.0            # a stable point closes by at most this times (gap + law length) in one step
 ENERGY_ROUND_OFF = 1e-12  # relative round-off of the energy sums, below which a rise is not a rise
-START_TOL = 1e-6          # tolerance of the hard-wall solve that starts a cold solve (a guess, not the answer)
+START_TOL = 1e-2          # tolerance of the hard-wall solve that starts a cold solve (a guess, not the answer)
 _REFRESH = 50             # exact recomputation of p_el at least every _REFRESH incremental steps
 
 # built-in laws evaluated inside the kernels: (kind, a, b, c)
