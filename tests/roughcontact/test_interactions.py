@@ -205,7 +205,10 @@ def test_equivalent_gap_falls_with_load():
     assert np.all(np.diff(gaps) < 0)
 
 
-@pytest.mark.parametrize("body", [{}, {"thickness": 2e-4, "poisson": 0.45}])
+@pytest.mark.parametrize("body", [{}, {"thickness": 2e-4, "poisson": 0.45},
+                                  {"thickness": 2e-4, "poisson": 0.45, "bottom": "frictionless"},
+                                  {"thickness": 2e-5, "poisson": 0.45, "substrate_E_star": 5e5,
+                                   "substrate_poisson": 0.49}])
 def test_load_and_position_control_agree(body):
     surface, half = rough_patch(**body)
     law = ElectrostaticInteraction(STACK, 30.0)
