@@ -16,7 +16,7 @@ from surfaces._checks import check_broadcast, check_finite_array
 
 from .macro import LinearGap, PowerLawGap, SlidingFrictionModel, TabulatedGap
 from .provenance import save_figure, write_csv
-from .study import CONFIDENCE, StudyResult, confidence_interval
+from .study import CONFIDENCE, StudyResult
 
 MICRO = 1e6          # m -> µm in tables and figures
 MM2 = 1e6            # m² -> mm²
@@ -354,7 +354,7 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
                  "  Force error of the voltage-independent gap, σ_el(d_eq(0 V), U)/σ̄_el(U) − 1 [%]:",
                  "", *_error_table(forces, voltages[on], 100 * constant[:, on]), ""]
         naive = errors["mean_gap"]
-        text += [f"* **Arithmetic mean gap instead of Eq. 25**: the mean gap is "
+        text += ["* **Arithmetic mean gap instead of Eq. 25**: the mean gap is "
                  + ", ".join(f"{m * MICRO:.1f} µm" for m in result.summary("mean_gap")[0][:, 0])
                  + " at 0 V against d_eq = " + ", ".join(f"{d * MICRO:.2f} µm" for d in d_mean[:, 0])
                  + f"; σ_el at the mean gap changes the electrostatic force by {100 * np.nanmin(naive):+.0f} % to "
@@ -363,9 +363,9 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
         text += ["* No voltage > 0 in the scene: only the 0 V chain was computed.", ""]
     seed_gap = LinearGap.paper_table1()(forces, 0.0)
     guo = PowerLawGap.guo2019()(forces, 0.0)
-    inside = [f"{f:g} N" for f, d, h in zip(forces, d_mean[:, 0], d_half[:, 0])
-              if abs(d - LinearGap.paper_table1()(f, 0.0)) <= (h if np.isfinite(h) else 0.0)]
-    text += [f"* **Against the seed's fit (Eq. 46)**: at 0 V d_eq = "
+    inside = [f"{f:g} N" for f, d, h, fit in zip(forces, d_mean[:, 0], d_half[:, 0], seed_gap)
+              if abs(d - fit) <= (h if np.isfinite(h) else 0.0)]
+    text += ["* **Against the seed's fit (Eq. 46)**: at 0 V d_eq = "
              + ", ".join(f"{d * MICRO:.2f} µm" for d in d_mean[:, 0]) + " against Eq. 46's "
              + ", ".join(f"{d * MICRO:.2f}" for d in seed_gap) + " µm and Guo et al.'s power law "
              + ", ".join(f"{d * MICRO:.2f}" for d in guo) + f" µm at F_N = {', '.join(f'{f:g}' for f in forces)} N; "

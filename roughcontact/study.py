@@ -207,7 +207,7 @@ def _gap_slope(gap, weights, spacing) -> float:
     return float(np.sqrt(np.sum(weights * (gx ** 2 + gy ** 2)) / np.sum(weights)))
 
 
-def _point_result(scene, stack, force, voltage, area, pressures, solved, lengths, spacing, seconds):
+def _point_result(stack, force, voltage, area, pressures, solved, lengths, spacing, seconds):
     """Average the solved patches (``solved[r][k]``: realisation r, ring k) over the apparent area."""
     columns = {name: [] for name in ("equivalent_gap", "ridge_equivalent_gap", "mean_gap", "contact_fraction",
                                      "electrostatic_pressure", "gap_slope", "converged", "iterations")}
@@ -377,7 +377,7 @@ def run_study(scene: Scene, directory=None, progress: bool = False) -> StudyResu
                     along_load[(r, k, voltage)] = along_voltage[(r, k, i)] = result
                     results.append(result)
                 solved.append(results)
-            point = _point_result(scene, stack, force, voltage, area, pressures, solved, lengths, grid.spacing,
+            point = _point_result(stack, force, voltage, area, pressures, solved, lengths, grid.spacing,
                                   time.perf_counter() - start)
             points[(i, j)] = point
             for key in [key for key in along_voltage if key[2] < i]:      # earlier loads are not revisited
