@@ -242,8 +242,14 @@ class SceneMismatch(ValueError):
     """A results directory that holds another scene's results."""
 
 
+class DirectoryInUse(ValueError):
+    """A results directory that another running study is writing into."""
+
+
 class PointStore:
-    """Per-point results in ``directory/points/`` beside ``directory/scene.toml``; refuses another scene."""
+    """Per-point results in ``directory/points/`` beside ``directory/scene.toml``; refuses another scene, and a
+    directory that a running process holds (``run.lock`` with its process id; a lock of a process that no
+    longer runs, e.g. one that was killed, is taken over). :meth:`release` frees the directory."""
 
     def __init__(self, directory, scene: Scene):
         from .scene import load_scene
@@ -261,6 +267,25 @@ class PointStore:
             self.directory.mkdir(exist_ok=True)
             _write_atomic(stored, scene.to_toml())
         self.points.mkdir(exist_ok=True)
+        self.lock = self.directory / "run.lock"
+        try:
+            descriptor = os.open(self.lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY)     # atomic: one run wins
+        except FileExistsError:
+            try:
+                holder = int(self.lock.read_text())
+            except (OSError, ValueError):
+                holder = None
+            if holder is not None and holder != os.getpid() and _running(holder):
+                raise DirectoryInUse(f"{self.directory} is being written by another roughcontact run (process "
+                                     f"{holder}); wait for it to finish or choose another --out directory") from None
+            _write_atomic(self.lock, str(os.getpid()))                                # a stale lock: taken over
+        else:
+            with os.fdopen(descriptor, "w") as stream:
+                stream.write(str(os.getpid()))
+
+    def release(self) -> None:
+        """Free the directory for other runs."""
+        self.lock.unlink(missing_ok=True)
 
     def _path(self, i: int, j: int) -> Path:
         return self.points / f"F{i:03d}_U{j:03d}.json"
@@ -271,6 +296,16 @@ class PointStore:
 
     def save(self, i: int, j: int, point: PointResult) -> None:
         _write_atomic(self._path(i, j), point.to_json())
+
+
+def _running(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:                     # it runs, under another user
+        return True
+    return True
 
 
 def _write_atomic(path: Path, text: str) -> None:
@@ -389,6 +424,8 @@ def run_study(scene: Scene, directory=None, progress: bool = False) -> StudyResu
     finally:
         if bar is not None:
             bar.close()
+        if store is not None:
+            store.release()
     table = tuple(tuple(points[(i, j)] for j in range(len(voltages))) for i in range(len(forces)))
     return StudyResult(scene=scene, points=table, coarse_graining=lengths, short_cutoff=cutoff,
                        computed=len(todo), solves=solves)

@@ -1,5 +1,7 @@
 """The fingerpad study on tiny patches: the 0 V chain is the hard-wall chain, the trends with load and voltage,
 resume after an interruption, refusal of another scene, and `roughcontact run` end to end."""
+import os
+
 import numpy as np
 import pytest
 
@@ -8,10 +10,9 @@ from roughcontact.cli import main
 from roughcontact.provenance import read_csv
 from roughcontact.report import TabulatedArea, bottom_up_friction
 from roughcontact.scene import Fingerpad, load_scene
+from roughcontact.study import (DirectoryInUse, PointStore, SceneMismatch, apparent_contact, confidence_interval,
+                                patch_body, patch_surface, ridge_area_fraction, run_study)
 from study_scenes import TINY
-
-from roughcontact.study import (PointStore, SceneMismatch, apparent_contact, confidence_interval, patch_body,
-                                patch_surface, ridge_area_fraction, run_study)
 
 
 
@@ -148,12 +149,19 @@ def test_resume_after_interruption_recomputes_nothing_done(tiny, tmp_path, monke
     assert again.computed == 0 and again.solves == 0 and again.points == resumed.points
 
 
-def test_another_scene_is_refused(tiny, tmp_path):
-    PointStore(tmp_path, tiny)
+def test_another_scene_and_a_running_study_are_refused(tiny, tmp_path):
+    PointStore(tmp_path, tiny).release()
     other = load_scene(text=TINY.replace("grid = 32", "grid = 64"), preset="draft")
     with pytest.raises(SceneMismatch, match=r"presets.draft.grid = 32 -> 64"):
         PointStore(tmp_path, other)
-    PointStore(tmp_path, tiny)                                       # the same scene resumes
+    (tmp_path / "run.lock").write_text(str(os.getppid()))             # a running process holds the directory
+    with pytest.raises(DirectoryInUse, match=f"another roughcontact run \\(process {os.getppid()}\\)"):
+        PointStore(tmp_path, tiny)
+    (tmp_path / "run.lock").write_text("999999999")                  # a killed run's lock is taken over
+    store = PointStore(tmp_path, tiny)                                # the same scene resumes
+    assert (tmp_path / "run.lock").read_text() == str(os.getpid())
+    store.release()
+    assert not (tmp_path / "run.lock").exists()
 
 
 def test_run_command_end_to_end(tmp_path, capsys):
