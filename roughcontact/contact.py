@@ -470,8 +470,8 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     interaction : Interaction, optional
         Surface interaction law (:mod:`roughcontact.interactions`): :class:`~roughcontact.interactions.HardWall`
         (the default; Polonsky–Keer, this module) or a smooth law acting with the wall
-        (:mod:`roughcontact.gap_solver`, periodic grids; ``x0`` then a previous result, ``cold_start`` and
-        ``preconditioned`` do not apply). A law that vanishes (0 V) is solved as the hard wall.
+        (:mod:`roughcontact.gap_solver`; ``x0`` then a previous result, ``cold_start`` and ``preconditioned`` do
+        not apply). A law that vanishes (0 V) is solved as the hard wall.
     warn : bool
         Emit a :class:`~roughcontact.results.ConvergenceWarning` when not converged.
     """

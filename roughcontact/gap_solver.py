@@ -1,6 +1,7 @@
 """Contact with a smooth interaction law and the impenetrable flat: the minimum of the total energy over the gap.
 
-Unknown: the gap g ≥ 0 [m] on a periodic grid (``docs/interactions.md``). With u = g + h − s, the body's
+Unknown: the gap g ≥ 0 [m] on a periodic grid (``docs/interactions.md``); a free surface is solved as the
+periodic body of its zero-padded grid, the law and the wall acting on the window only (:class:`_PaddedBody`). With u = g + h − s, the body's
 displacement fluctuation u_f = (g − ⟨g⟩) + (h − ⟨h⟩) fixes the elastic traction fluctuation p_el = K⁻¹ u_f
 (zero mean). The external load λ = ⟨p⟩ [Pa] is the mean traction. Total energy per unit area:
 
@@ -41,6 +42,7 @@ from surfaces._checks import check_integer, check_real
 
 from ._version import __version__
 from .contact import ContactResult, SolverState, _heights, solve_contact
+from .elastic import _apply_inverse_multiplier, _apply_multiplier
 from .electrostatics import EPSILON_0
 from .interactions import ElectrostaticInteraction, ExponentialAdhesion, MaugisDugdale
 from .results import ConvergenceWarning
@@ -84,20 +86,25 @@ def _law_at(kind, a, b, c, g):
 
 
 @njit(cache=True)
-def _evaluate_law(kind, a, b, c, g, energy, traction, stiffness):
-    """energy, traction, stiffness ← the law at every g; returns Σ V."""
+def _evaluate_law(kind, a, b, c, g, window, energy, traction, stiffness):
+    """energy, traction, stiffness ← the law at every g in the window (0 outside); returns Σ V."""
     total = 0.0
     for i in range(g.size):
-        energy[i], traction[i], stiffness[i] = _law_at(kind, a, b, c, g[i])
-        total += energy[i]
+        if window[i]:
+            energy[i], traction[i], stiffness[i] = _law_at(kind, a, b, c, g[i])
+            total += energy[i]
+        else:
+            energy[i], traction[i], stiffness[i] = 0.0, 0.0, 0.0
     return total
 
 
-def _law_into(law, code, g, energy, traction, stiffness) -> float:
-    """Evaluate the law at g into the three arrays (numba for a built-in law); Σ V."""
+def _law_into(law, code, g, window, energy, traction, stiffness) -> float:
+    """Evaluate the law at g in the window into the three arrays (0 outside; numba for a built-in law); Σ V."""
     if code[0] != _USER:
-        return _evaluate_law(*code, g, energy, traction, stiffness)
-    energy[:], traction[:], stiffness[:] = law.energy(g), law.traction(g), law.stiffness(g)
+        return _evaluate_law(*code, g, window, energy, traction, stiffness)
+    energy[:], traction[:], stiffness[:] = 0.0, 0.0, 0.0
+    inside = g[window]
+    energy[window], traction[window], stiffness[window] = law.energy(inside), law.traction(inside), law.stiffness(inside)
     return float(np.sum(energy, dtype=np.float64))
 
 
@@ -113,14 +120,14 @@ def _open_mean_imbalance(g, pel, traction):
 
 
 @njit(cache=True)
-def _residual(g, pel, traction, load, r, free):
-    """G = p_el + λ − p_int; the free set F = {g > 0} ∪ {g = 0, G < 0}; r ← G on F, 0 elsewhere. Returns |F|,
-    Σ r, the number of points at the wall and the largest attraction −p_int."""
+def _residual(g, pel, traction, load, window, r, free):
+    """G = p_el + λ − p_int; the free set F = {g > 0} ∪ {g = 0, G < 0} ∪ (outside the window, where there is no
+    wall); r ← G on F, 0 elsewhere. Returns |F|, Σ r, the number of points at the wall and the largest attraction."""
     n_free, sum_r, at_wall, largest_pull = 0, 0.0, 0, 0.0
     for i in range(g.size):
         gradient = pel[i] + load - traction[i]
         largest_pull = max(largest_pull, -traction[i])
-        if g[i] > 0 or gradient < 0:
+        if g[i] > 0 or gradient < 0 or not window[i]:
             free[i] = True
             r[i] = gradient
             n_free += 1
@@ -128,7 +135,7 @@ def _residual(g, pel, traction, load, r, free):
         else:
             free[i] = False
             r[i] = 0.0
-        if g[i] <= 0:
+        if g[i] <= 0 and window[i]:
             at_wall += 1
     return n_free, sum_r, at_wall, largest_pull
 
@@ -192,25 +199,26 @@ def _centred_into(d, mean, out):
 
 
 @njit(cache=True)
-def _curvature_and_cap(g, d, w, stiffness, length, pixel_compliance, approach):
-    """Σ d K⁻¹d, Σ k d², and the largest step τ by which no stable approaching point (k K_ii < 1) closes by
-    more than ``approach`` (g + ρ) (inf if none)."""
+def _curvature_and_cap(g, d, w, stiffness, window, length, pixel_compliance, approach):
+    """Σ d K⁻¹d, Σ k d², and the largest step τ by which no stable approaching point of the window (k K_ii < 1)
+    closes by more than ``approach`` (g + ρ) (inf if none)."""
     dw, kdd, cap = 0.0, 0.0, np.inf
     for i in range(d.size):
         dw += d[i] * w[i]
         kdd += stiffness[i] * d[i] * d[i]
-        if d[i] < 0 and stiffness[i] * pixel_compliance < 1.0:
+        if d[i] < 0 and window[i] and stiffness[i] * pixel_compliance < 1.0:
             cap = min(cap, approach * (g[i] + length) / -d[i])
     return dw, kdd, cap
 
 
 @njit(cache=True)
-def _trial_gap(g, d, tau, r, trial):
-    """trial ← max(g + τ d, 0); returns whether any point was clipped, Σ trial and Σ r (trial − g)."""
+def _trial_gap(g, d, tau, r, window, trial):
+    """trial ← g + τ d, clipped at 0 in the window; returns whether any point was clipped, Σ trial and
+    Σ r (trial − g)."""
     clipped, total, predicted = False, 0.0, 0.0
     for i in range(g.size):
         value = g[i] + tau * d[i]
-        if value < 0:
+        if value < 0 and window[i]:
             value = 0.0
             clipped = True
         trial[i] = value
@@ -263,11 +271,11 @@ def _restore_mean(g, target):
 class _Energy:
     """Π/A for one control (module docstring): the load term and the elastic traction of a gap field."""
 
-    def __init__(self, h, half, load, flat_position):
-        self.half, self.load, self.flat_position = half, load, flat_position
+    def __init__(self, h, body, load, flat_position):
+        self.body, self.load, self.flat_position = body, load, flat_position
         self.h_mean = float(h.mean(dtype=np.float64))
-        self.h_f = (h - self.h_mean).astype(half.dtype)
-        self.uniform = half.uniform_compliance                  # Φ(0) [m/Pa]
+        self.h_f = (h - self.h_mean).astype(body.dtype)
+        self.uniform = body.uniform_compliance                  # Φ(0) [m/Pa]
         self.constrained = load is None and self.uniform == 0.0
         self.mean_target = None if flat_position is None else flat_position - self.h_mean
 
@@ -276,7 +284,7 @@ class _Energy:
         flat = work.reshape(-1)
         _centred_into(g, float(g.mean(dtype=np.float64)), flat)
         flat += self.h_f
-        return self.half.stiffness_into(work, out).reshape(-1)
+        return self.body.stiffness_into(work, out).reshape(-1)
 
     def external_load(self, g_mean, imbalance=None):
         """λ [Pa]: P̄, the layer's ū/Φ(0), or (under the ⟨g⟩ constraint) the given mean imbalance."""
@@ -300,26 +308,54 @@ class _Energy:
         return elastic + interaction + external, abs(elastic) + abs(interaction) + abs(external)
 
 
-def _start_gap(h, half, load, flat_position, x0, tol, maxiter):
-    """The initial gap [m]: ``x0``'s gap, else the hard-wall solution at the same control where it exists, else the
-    undeformed gap with the flat at ``flat_position`` (or touching the highest point); its name and FFT pairs."""
+class _PaddedBody:
+    """The free surface on its zero-padded 2n × 2n transform grid, as a periodic body: the padded operator K_T is
+    a Fourier multiplier with an exact inverse and a positive uniform mode. With the law and the wall acting on
+    the window only and the padding's displacement left free, the minimum has zero traction on the padding, so
+    the window's displacement is the free surface's (``docs/interactions.md``)."""
+
+    def __init__(self, half):
+        self.dtype, self._fft, self._multiplier = half.dtype, half._fft, half._multiplier
+        self._size = float(half.transform_shape[0] * half.transform_shape[1])
+        self.uniform_compliance = float(self._multiplier[0, 0]) * self._size
+        self.largest_compliance = float(self._multiplier.max()) * self._size
+        self.pixel_compliance = half.pixel_compliance
+
+    def empty(self):
+        return self._fft.empty()
+
+    def displacement_into(self, pressure, out):
+        self._fft.forward(pressure)
+        _apply_multiplier(self._fft.spectrum, self._multiplier)
+        self._fft.backward(out)
+        return out
+
+    def stiffness_into(self, displacement, out):
+        self._fft.forward(displacement)
+        _apply_inverse_multiplier(self._fft.spectrum, self._multiplier, self._size ** 2, 0.0)
+        self._fft.backward(out)
+        return out
+
+
+def _start(heights, half, load, flat_position, x0, tol, maxiter):
+    """What the solve starts from: ``x0``, else the hard-wall solution at the same control where it exists (None
+    otherwise: the undeformed surface); its name and FFT pairs."""
     if isinstance(x0, ContactResult):
-        if x0.gap.shape != h.shape:
-            raise ValueError(f"x0 has shape {x0.gap.shape}, but the grid has shape {h.shape}")
-        return np.array(x0.gap, dtype=half.dtype), "x0", 0.0
+        if x0.gap.shape != heights.shape:
+            raise ValueError(f"x0 has shape {x0.gap.shape}, but the grid has shape {heights.shape}")
+        return x0, "x0", 0.0
     if x0 is not None:
         raise TypeError(f"x0 of a smooth interaction must be a ContactResult (its gap starts the solve), got "
                         f"{type(x0).__name__}")
-    h_max = float(h.max())
+    h_max = float(heights.max())
     if load is not None and load > 0:
-        start = solve_contact(h, half, mean_pressure=load, tol=max(tol, START_TOL), maxiter=maxiter, warn=False)
+        start = solve_contact(heights, half, mean_pressure=load, tol=max(tol, START_TOL), maxiter=maxiter, warn=False)
     elif flat_position is not None and flat_position < h_max:
-        start = solve_contact(h, half, penetration=h_max - flat_position, tol=max(tol, START_TOL), maxiter=maxiter,
-                              warn=False)
+        start = solve_contact(heights, half, penetration=h_max - flat_position, tol=max(tol, START_TOL),
+                              maxiter=maxiter, warn=False)
     else:
-        position = h_max if flat_position is None else flat_position
-        return (position - h).astype(half.dtype), "rigid", 0.0
-    return np.array(start.gap, dtype=half.dtype), "hard wall", start.params["fft_pairs"]
+        return None, "rigid", 0.0
+    return start, "hard wall", start.params["fft_pairs"]
 
 
 def solve_smooth(height_field, half, law, *, mean_pressure=None, total_force=None, penetration=None, tol,
@@ -332,10 +368,6 @@ def solve_smooth(height_field, half, law, *, mean_pressure=None, total_force=Non
     """
     start = time.perf_counter()
     grid = half.grid
-    if not half.periodic:
-        raise ValueError("a smooth interaction needs a periodic grid (the gap-based energy uses the exact inverse "
-                         "kernel K⁻¹, which the zero-padded free surface does not have); got grid.periodic = "
-                         f"{grid.periodic}")
     given = {name: value for name, value in (("mean_pressure", mean_pressure), ("total_force", total_force),
                                              ("penetration", penetration)) if value is not None}
     if len(given) != 1:
@@ -347,43 +379,77 @@ def solve_smooth(height_field, half, law, *, mean_pressure=None, total_force=Non
     if callback is not None and not callable(callback):
         raise TypeError(f"callback must be callable, got {type(callback).__name__}")
     heights = _heights(height_field, half)
-    h = heights.reshape(-1)
     load = requested / grid.area if control == "total_force" else requested if control == "mean_pressure" else None
-    flat_position = None if load is not None else float(h.max()) - requested
-    energy = _Energy(h, half, load, flat_position)
+    flat_position = None if load is not None else float(heights.max()) - requested
+    begin, start_kind, start_pairs = _start(heights, half, load, flat_position, x0, tol, maxiter)
+    nx, ny = grid.shape
+    if half.periodic:                                       # the grid itself
+        body, h = half, heights.reshape(-1)
+        window = np.ones(h.size, np.bool_)
+        largest_compliance = max(float(half.compliance(2 * math.pi / max(grid.lengths))), half.uniform_compliance)
+    else:                                                   # the window in the corner of the padded grid
+        body = _PaddedBody(half)
+        padded = np.zeros(half.transform_shape)
+        padded[:nx, :ny] = heights
+        h = padded.reshape(-1)
+        window = np.zeros(half.transform_shape, np.bool_)
+        window[:nx, :ny] = True
+        window = window.reshape(-1)
+        largest_compliance = body.largest_compliance
+    scale_to_body = h.size / heights.size                   # external load per body pixel = per window pixel / this
+    energy = _Energy(h, body, None if load is None else load / scale_to_body, flat_position)
     if energy.constrained and energy.mean_target <= 0:
         raise ValueError(f"penetration = {requested!r} m leaves no room for a gap on a periodic half-space: the mean "
                          f"gap ⟨g⟩ = s − ⟨h⟩ must be > 0, i.e. penetration < max(h) − ⟨h⟩ = "
                          f"{float(h.max()) - energy.h_mean!r} m")
-    g, start_kind, start_pairs = _start_gap(heights, half, load, flat_position, x0, tol, maxiter)
-    g = g.reshape(-1)
-    np.maximum(g, 0.0, out=g)
+    g, start_pairs = _start_gap(begin, h, body, window, heights, flat_position, start_pairs)
     if energy.constrained:
         _restore_mean(g, energy.mean_target)
-    gap_scale = float(np.sqrt(np.mean(np.square(energy.h_f, dtype=np.float64)))) or law.length or 1.0
-    state = _Solver(g, energy, law, gap_scale, start_pairs)
-    return state.run(tol, maxiter, callback, warn, heights, control, requested, start_kind, start)
+    deviation = heights - float(heights.mean(dtype=np.float64))
+    gap_scale = float(np.sqrt(np.mean(deviation * deviation, dtype=np.float64))) or law.length or 1.0
+    state = _Solver(g, energy, law, gap_scale, start_pairs, window, largest_compliance, scale_to_body)
+    return state.run(tol, maxiter, callback, warn, half, heights, control, requested, start_kind, start)
+
+
+def _start_gap(begin, h, body, window, heights, flat_position, start_pairs):
+    """The starting gap on the body's grid (flat) from the start's gap (periodic) or from its traction and flat
+    position (padded free surface: the padding's displacement is K_T of the window's traction); clipped at 0 in
+    the window. Returns it and the FFT pairs spent."""
+    if begin is not None and window.all():
+        g = np.array(begin.gap, dtype=body.dtype).reshape(-1)
+    else:
+        position = (float(heights.max()) if flat_position is None else flat_position) if begin is None \
+            else begin.flat_position
+        traction = body.empty()
+        traction[...] = 0.0
+        if begin is not None:
+            nx, ny = heights.shape
+            traction[:nx, :ny] = begin.pressure
+        displacement = body.displacement_into(traction, body.empty()) if begin is not None else traction
+        g = (displacement.reshape(-1) - h + position).astype(body.dtype)
+        start_pairs += 1.0 if begin is not None else 0.0
+    g[window] = np.maximum(g[window], 0.0)
+    return g, start_pairs
 
 
 class _Solver:
     """The work arrays and the iteration of :func:`solve_smooth` (fields, not closures, so that each step's
     buffers swap without allocation)."""
 
-    def __init__(self, g, energy, law, gap_scale, start_pairs):
-        half = energy.half
-        self.energy, self.law, self.half, self.gap_scale = energy, law, half, gap_scale
+    def __init__(self, g, energy, law, gap_scale, start_pairs, window, largest_compliance, scale_to_body):
+        body = energy.body
+        self.energy, self.law, self.body, self.gap_scale = energy, law, body, gap_scale
+        self.window, self.largest_compliance, self.scale_to_body = window, largest_compliance, scale_to_body
         self.code = _law_code(law)
-        n, dtype = g.size, half.dtype
+        n, dtype = g.size, body.dtype
         self.n = n
         self.g, self.trial = g, np.empty(n, dtype)
-        self.pel_field, self.trial_field, self.work, self.z_field, self.w_field = (half.empty() for _ in range(5))
+        self.pel_field, self.trial_field, self.work, self.z_field, self.w_field = (body.empty() for _ in range(5))
         self.d, self.r, self.r_prev = np.zeros(n, dtype), np.zeros(n, dtype), np.zeros(n, dtype)
         self.free = np.zeros(n, np.bool_)
         self.law_now = [np.empty(n, dtype) for _ in range(3)]     # V, p_int, k at g
         self.law_trial = [np.empty(n, dtype) for _ in range(3)]   # the same at the trial gap
-        grid = half.grid
-        self.largest_compliance = max(float(half.compliance(2 * math.pi / max(grid.lengths))), energy.uniform)
-        self.pixel_compliance = half.pixel_compliance
+        self.pixel_compliance = body.pixel_compliance
         self.transforms = 2 * start_pairs                      # the start's solve included
 
     def elastic(self, gap, field):
@@ -392,11 +458,11 @@ class _Solver:
 
     def evaluate(self, gap, pel, arrays):
         """Π/A and its magnitude at ``gap`` with elastic traction ``pel``; the law evaluated into ``arrays``."""
-        energy_sum = _law_into(self.law, self.code, gap, *arrays)
+        energy_sum = _law_into(self.law, self.code, gap, self.window, *arrays)
         return self.energy.value(*_work_terms(gap, self.energy.h_f, pel), energy_sum, self.n)
 
-    def run(self, tol, maxiter, callback, warn, heights, control, requested, start_kind, start):
-        energy, half, n = self.energy, self.half, self.n
+    def run(self, tol, maxiter, callback, warn, half, heights, control, requested, start_kind, start):
+        energy, body, n = self.energy, self.body, self.n
         pel = self.elastic(self.g, self.pel_field)
         value, magnitude = self.evaluate(self.g, pel, self.law_now)
         history, residuals = [value], []
@@ -409,10 +475,10 @@ class _Solver:
             if energy.load is None:
                 imbalance, n_open = _open_mean_imbalance(g, pel, traction)
                 load = energy.external_load(float(g.mean(dtype=np.float64)), imbalance / max(n_open, 1))
-            n_free, sum_r, at_wall, largest_pull = _residual(g, pel, traction, load, r, free)
+            n_free, sum_r, at_wall, largest_pull = _residual(g, pel, traction, load, self.window, r, free)
             # preconditioned residual z = K r on F (+ the largest compliance for the mean mode); zero mean on F
             # under the ⟨g⟩ constraint
-            z = half.displacement_into(r.reshape(self.z_field.shape), self.z_field).reshape(-1)
+            z = body.displacement_into(r.reshape(self.z_field.shape), self.z_field).reshape(-1)
             self.transforms += 2
             sum_z = _mask_shift(z, free, (self.largest_compliance - energy.uniform) * sum_r / n)
             if energy.constrained and n_free:
@@ -422,7 +488,7 @@ class _Solver:
             residuals.append(residual)
             if callback is not None and iterations:
                 try:
-                    callback(SolverState(iterations, residual, at_wall / n))
+                    callback(SolverState(iterations, residual, at_wall / heights.size))
                 except StopIteration:
                     message = f"halted by callback after {iterations} iterations (relative residual {residual:.3g})"
                     break
@@ -433,11 +499,12 @@ class _Solver:
                     continue
                 converged, message = True, f"converged: relative residual {residual:.3g} <= tol {tol:g}"
                 break
-            if energy.load is not None and energy.load < 0 and at_wall == 0 and largest_pull < -energy.load:
+            if energy.load is not None and energy.load < 0 and at_wall == 0 \
+                    and largest_pull < -energy.load * self.scale_to_body:
                 detached = True
-                message = (f"no equilibrium: the tensile load {energy.load:.6g} Pa exceeds the attraction at every "
-                           f"point (largest {largest_pull:.6g} Pa) with no contact left; the body separates "
-                           "(beyond pull-off)")
+                message = (f"no equilibrium: the tensile load {energy.load * self.scale_to_body:.6g} Pa exceeds the "
+                           f"attraction at every point (largest {largest_pull:.6g} Pa) with no contact left; the "
+                           "body separates (beyond pull-off)")
                 break
             if iterations >= maxiter:
                 message = f"not converged after {iterations} iterations: relative residual {residual:.3g} (tol {tol:g})"
@@ -473,19 +540,20 @@ class _Solver:
             history.append(value)
         if not converged and warn:
             warnings.warn(message, ConvergenceWarning, stacklevel=4)
-        return self.result(pel, heights, control, requested, iterations, residuals, converged, message, start,
+        return self.result(pel, half, heights, control, requested, iterations, residuals, converged, message, start,
                            start_kind, tol, maxiter, detached, history)
 
     def line_search(self, slope, sum_d, pel, value, magnitude, tau, since_exact):
         """Projected Armijo search along d from the minimiser of the quadratic model (capped so that no stable
         point tunnels into contact). Returns (accepted, τ, the trial's p_el, steps since an exact p_el)."""
-        energy, half, n, g, d = self.energy, self.half, self.n, self.g, self.d
+        energy, body, n, g, d = self.energy, self.body, self.n, self.g, self.d
         d_mean = sum_d / n
         centred = self.work.reshape(-1)
         _centred_into(d, d_mean, centred)
-        w = half.stiffness_into(self.work, self.w_field).reshape(-1)        # K⁻¹ d_f
+        w = body.stiffness_into(self.work, self.w_field).reshape(-1)        # K⁻¹ d_f
         self.transforms += 2
-        dw, kdd, cap = _curvature_and_cap(g, d, w, self.law_now[2], float(self.law.length), self.pixel_compliance,
+        dw, kdd, cap = _curvature_and_cap(g, d, w, self.law_now[2], self.window, float(self.law.length),
+                                          self.pixel_compliance,
                                            APPROACH)
         curvature = (dw - kdd) / n
         if not energy.constrained and energy.load is None:
@@ -497,7 +565,7 @@ class _Solver:
         tau = min(tau, cap)
         trial, r = self.trial, self.r
         for _ in range(MAX_HALVINGS):
-            clipped, _, predicted = _trial_gap(g, d, tau, r, trial)
+            clipped, _, predicted = _trial_gap(g, d, tau, r, self.window, trial)
             if clipped and energy.constrained:
                 _restore_mean(trial, energy.mean_target)
                 predicted = _dot(r, trial) - _dot(r, g)
@@ -514,9 +582,10 @@ class _Solver:
             tau *= 0.5
         return False, tau, pel, since_exact
 
-    def result(self, pel, heights, control, requested, iterations, residuals, converged, message, start,
+    def result(self, pel, half, heights, control, requested, iterations, residuals, converged, message, start,
                start_kind, tol, maxiter, detached, history):
-        energy, half, law, g = self.energy, self.half, self.law, self.g
+        """The ContactResult on the window (the whole grid when periodic)."""
+        energy, law, g = self.energy, self.law, self.g
         grid = half.grid
         g_mean = float(g.mean(dtype=np.float64))
         interaction_energy, traction, _ = self.law_now
@@ -525,29 +594,34 @@ class _Solver:
             load = imbalance / max(n_open, 1)
         else:
             load = energy.external_load(g_mean)
-        pressure = pel + load
-        contact = g <= 0
-        contact_pressure = np.where(contact, pressure - traction, 0.0).astype(half.dtype)
         mean_displacement = energy.uniform * load
-        displacement = g - g_mean + energy.h_f + mean_displacement
         flat_position = g_mean + energy.h_mean - mean_displacement
-        arrays = [a.reshape(grid.shape) for a in (pressure, displacement, g, contact, contact_pressure,
-                                                  traction.copy())]
-        for array in arrays:
+        nx, ny = grid.shape
+        body_shape = self.pel_field.shape
+
+        def window(values):
+            return np.array(values.reshape(body_shape)[:nx, :ny], dtype=half.dtype)
+
+        pressure = window(pel + load)
+        displacement = window(g - g_mean + energy.h_f + mean_displacement)
+        gap, traction = window(g), window(traction)
+        contact = gap <= 0
+        contact_pressure = np.where(contact, pressure - traction, 0.0).astype(half.dtype)
+        for array in (pressure, displacement, gap, contact, contact_pressure, traction):
             array.flags.writeable = False
-        pressure, displacement, gap, contact, contact_pressure, interaction_traction = arrays
         params = {"E_star": half.E_star, "grid": grid, "tol": tol, "maxiter": int(maxiter), "method": METHOD,
                   "start": start_kind, "interaction": type(law).__name__, "kernel": half.description,
                   "version": __version__, "control": control, "requested": requested,
                   "fft_pairs": self.transforms / 2, "detached": detached,
-                  "energy_history": [float(v) * grid.area for v in history]}
+                  "energy_history": [float(v) * grid.area * self.scale_to_body for v in history]}
         return ContactResult(
             pressure=pressure, displacement=displacement, gap=gap, contact=contact,
-            contact_fraction=float(np.count_nonzero(contact)) / contact.size, mean_pressure=float(load),
-            mean_gap=g_mean, penetration=float(heights.max()) - flat_position,
+            contact_fraction=float(np.count_nonzero(contact)) / contact.size,
+            mean_pressure=float(load) * self.scale_to_body, mean_gap=float(gap.mean(dtype=np.float64)),
+            penetration=float(heights.max()) - flat_position,
             elastic_energy=half.elastic_energy(pressure, displacement), iterations=int(iterations),
             residuals=np.asarray(residuals, dtype=np.float64), converged=bool(converged), message=message,
             wall_time=time.perf_counter() - start, params=params, contact_pressure=contact_pressure,
-            interaction_traction=interaction_traction, flat_position=float(flat_position),
+            interaction_traction=traction, flat_position=float(flat_position),
             interaction_energy=float(np.sum(interaction_energy, dtype=np.float64)) * grid.pixel_area,
             interaction=law, control=control, requested=float(requested))

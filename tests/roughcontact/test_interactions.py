@@ -247,9 +247,56 @@ def test_problem_object_and_saved_result(tmp_path):
     np.testing.assert_array_equal(loaded.interaction_traction, res.interaction_traction)
     with pytest.raises(TypeError, match="interaction"):
         ContactProblem(surface, half, "electrostatic")
-    free = ElasticHalfSpace(Grid((64, 64), (1e-3, 1e-3), periodic=False), E_star=1e6)
-    with pytest.raises(ValueError, match="periodic"):
-        solve_contact(np.zeros((64, 64)), free, mean_pressure=1e3, interaction=law)
+
+
+def free_cap(n=64, length=1e-3, radius=5e-3):
+    """A paraboloidal cap on a free-surface (non-periodic) n² window."""
+    grid = Grid((n, n), (length, length), periodic=False)
+    x = (np.arange(n) - n / 2 + 0.5) * length / n
+    return HeightField(grid, -(x[:, None] ** 2 + x[None, :] ** 2) / (2 * radius)), ElasticHalfSpace(grid, E_star=1e6)
+
+
+def test_free_surface_smooth_solve():
+    # the free surface is solved on its zero-padded grid with the padding free: at a vanishing law it gives the
+    # free-surface Polonsky–Keer answer, and load and position control meet
+    surface, half = free_cap()
+    hard = solve_contact(surface, half, total_force=1e-3, tol=1e-10)
+    faint = solve_contact(surface, half, total_force=1e-3, interaction=ElectrostaticInteraction(STACK, 1e-6),
+                          tol=1e-10)
+    assert faint.converged and faint.total_force == pytest.approx(1e-3, rel=1e-12)
+    np.testing.assert_array_equal(faint.contact, hard.contact)
+    # measured 2.6e-8 of max p and 3e-10 of the penetration (128²); bounds 100× the solvers' tolerance scale
+    assert np.max(np.abs(faint.pressure - hard.pressure)) <= 1e-6 * hard.pressure.max()
+    assert faint.penetration == pytest.approx(hard.penetration, rel=1e-7)
+    law = ElectrostaticInteraction(STACK, 30.0)
+    by_load = solve_contact(surface, half, total_force=1e-3, interaction=law, tol=1e-10)
+    by_position = solve_contact(surface, half, penetration=by_load.penetration, interaction=law, x0=by_load,
+                                tol=1e-10)
+    assert by_load.contact_fraction > hard.contact_fraction
+    assert by_position.total_force == pytest.approx(1e-3, rel=1e-5)                  # measured 1e-7
+    np.testing.assert_allclose(by_position.gap, by_load.gap, atol=1e-9 * np.ptp(surface.heights))
+    check_equilibrium_free = half.displacement(by_load.pressure)                     # u = K p on the window
+    np.testing.assert_allclose(by_load.displacement - by_load.displacement.mean(),
+                               check_equilibrium_free - check_equilibrium_free.mean(),
+                               atol=1e-6 * np.ptp(by_load.displacement))
+
+
+def test_free_surface_sphere_pull_off():
+    # an isolated Dugdale sphere (no periodic images), Maugis λ = 0.3: measured +1.3 % at 64², +0.52 % at 128²
+    from roughcontact.paths import pull_off
+    from roughcontact.reference import maugis_dugdale_pull_off
+
+    n, window, radius, E_star, work = 64, 0.8, 1.0, 1.0, 1e-3
+    grid = Grid((n, n), (window, window), periodic=False)
+    x = (np.arange(n) - n / 2 + 0.5) * window / n
+    surface = HeightField(grid, -(x[:, None] ** 2 + x[None, :] ** 2) / (2 * radius))
+    cohesive_stress = 0.3 / 2 * (np.pi * work * (4 * E_star / 3) ** 2 / radius) ** (1 / 3)
+    problem = ContactProblem(surface, ElasticHalfSpace(grid, E_star=E_star),
+                             MaugisDugdale(work, work / cohesive_stress))
+    found = pull_off(problem, problem.solve(mean_pressure=0.0), step=0.1 * np.pi * work * radius / window ** 2,
+                     rtol=1e-2)
+    error = found.force / (np.pi * work * radius) / maugis_dugdale_pull_off(0.3) - 1
+    assert 0 < error < 0.02
 
 
 def test_approach_retract_cycle_hysteresis_and_jumps():
