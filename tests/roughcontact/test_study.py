@@ -8,7 +8,7 @@ import pytest
 import roughcontact.contact
 from roughcontact.cli import main
 from roughcontact.provenance import read_csv
-from roughcontact.report import TabulatedArea, bottom_up_friction
+from roughcontact.report import TabulatedArea, bottom_up_friction, report_text
 from roughcontact.scene import Fingerpad, load_scene
 from roughcontact.study import (DirectoryInUse, PointStore, SceneMismatch, apparent_contact, confidence_interval,
                                 patch_body, patch_surface, ridge_area_fraction, run_study)
@@ -39,6 +39,7 @@ def test_zero_volt_study_is_the_hard_wall_chain():
             assert result.points[i][0].equivalent_gap[r] == stack.equivalent_gap(previous.gap)
             assert result.points[i][0].contact_fraction[r] == previous.contact_fraction
             assert result.points[i][0].electrostatic_pressure[r] == 0.0
+    assert "One voltage (0 V) in the scene: its dependence on the voltage is not tested" in report_text(result, False)
 
 
 def test_trends_with_load_and_voltage(tiny_result):
