@@ -22,6 +22,7 @@ the load constraint being satisfied exactly by construction. See ``docs/solver.m
 """
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 import time
@@ -497,6 +498,7 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     preconditioned = check_bool("preconditioned", preconditioned)
     heights = _heights(height_field, half)
     warm = _warm_pressure(x0, heights.shape)
+    warm_started = warm is not None
     if total_force is not None:
         mean_pressure = check_positive("total_force", total_force) / grid.area
     elif mean_pressure is not None:
@@ -574,7 +576,7 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     if gap_scale == 0.0:                                    # flat surface: scale by the elastic displacement
         gap_scale = alpha * float(np.sqrt(np.mean(np.square(u, dtype=np.float64)))) or 1.0
 
-    residuals, iterations, converged, message = [], 0, False, ""
+    residuals, iterations, converged, message, stalled = [], 0, False, "", False
     smallest_residual, smallest_at, restart_every_entry = math.inf, 0, False
     shift = float(h.mean(dtype=np.float64)) - alpha * float(u.mean(dtype=np.float64)) if load_control else flat_position
     beta_allowed, previous_squared, tau, reported, kept_t = False, 1.0, 0.0, 0, 0.0
@@ -617,8 +619,9 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
             # residual hovered at 1e-2 for 10⁴ steps): fall back to PK's rule, restart on every entry
             restart_every_entry, params["restart_every_entry_from"] = True, iterations
         elif restart_every_entry and iterations - smallest_at >= STALL_LIMIT:
+            stalled = True
             message = (f"stalled: no smaller residual in {STALL_LIMIT} steps (smallest {smallest_residual:.3g} at step "
-                       f"{smallest_at}); tol {tol:g} is below what this problem reaches in {half.dtype.name}")
+                       f"{smallest_at}, tol {tol:g}, {half.dtype.name})")
             break
         if iterations >= maxiter:
             message = f"not converged after {iterations} iterations: relative rms gap error {residual:.3g} (tol {tol:g})"
@@ -675,6 +678,13 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
             exact, since_exact = False, since_exact + 1
         else:                                               # contact set changed: recompute u exactly
             transforms, exact, since_exact = transforms + recompute_displacement(), True, 0
+    if stalled and warm_started:                           # a warm start can lead PK into a cycle that the cold
+        del p, u, t, r, z_in, index, been_in_contact        # start avoids: solve again from it
+        retry = solve_contact(height_field, half, mean_pressure=mean_pressure if total_force is None else None,
+                              total_force=total_force, penetration=penetration, tol=tol, maxiter=maxiter,
+                              cold_start=cold_start, callback=callback, preconditioned=preconditioned,
+                              interaction=interaction, warn=warn)
+        return dataclasses.replace(retry, params={**retry.params, "warm_start_stalled_at": iterations})
     if not exact:
         transforms += recompute_displacement()
     _scale(p, alpha)

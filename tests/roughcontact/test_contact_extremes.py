@@ -263,6 +263,11 @@ def test_float32_default_tolerance_and_stall():
         stalled = solve_contact(surface, half, mean_pressure=1e3, tol=1e-12)
     # float32 round-off: the residual stops falling; the solve ends STALL_LIMIT steps after its last minimum
     assert not stalled.converged and stalled.iterations < 1000
+    assert stalled.params["start"] != "x0" and "warm_start_stalled_at" not in stalled.params
+    # a warm-started solve that stalls is solved again from the cold start (which a warm start's cycle can miss)
+    with pytest.warns(UserWarning, match="stalled"):
+        retried = solve_contact(surface, half, mean_pressure=2e3, tol=1e-12, x0=res)
+    assert retried.params["warm_start_stalled_at"] > 0 and retried.params["start"] != "x0"
 
 
 def test_flags_and_sweeps_are_checked_when_called():
