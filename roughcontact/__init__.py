@@ -5,7 +5,7 @@ Submodules are imported lazily (PEP 562), so ``import roughcontact`` and the pur
 """
 from __future__ import annotations
 
-from surfaces._lazy import lazy_attributes
+from surfaces.lazy import lazy_attributes
 
 from ._version import __version__
 

@@ -33,7 +33,7 @@ import numpy as np
 from numba import njit
 
 from surfaces import HeightField
-from surfaces._checks import (check_bool, check_choice, check_finite_array, check_integer, check_positive,
+from surfaces.validation import (check_bool, check_choice, check_finite_array, check_integer, check_positive,
                               check_real)
 
 from ._version import __version__

@@ -26,7 +26,7 @@ import numpy as np
 from numba import njit
 
 from surfaces import Grid
-from surfaces._checks import check_choice, check_finite_array, check_positive, check_real
+from surfaces.validation import check_choice, check_finite_array, check_positive, check_real
 
 from .fft import make_backend
 
@@ -169,7 +169,7 @@ class ElasticHalfSpace:
         if thickness is None:
             if poisson is not None or on_substrate:
                 raise ValueError("poisson / substrate_E_star / substrate_poisson describe a layer and need "
-                                 f"thickness; got thickness = None")
+                                 "thickness; got thickness = None")
             return None
         layer = {"thickness": check_positive("thickness", thickness),
                  "poisson": check_real("poisson", poisson, low=-1.0, high=0.5, low_open=True)}

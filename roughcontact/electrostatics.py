@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from surfaces._checks import check_broadcast, check_finite_array, check_positive
+from surfaces.validation import check_broadcast, check_finite_array, check_positive
 
 #: Vacuum permittivity ε0 [F/m] (CODATA 2018).
 EPSILON_0 = 8.8541878128e-12

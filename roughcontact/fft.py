@@ -31,7 +31,7 @@ from pathlib import Path
 import numpy as np
 import scipy.fft
 
-from surfaces._checks import check_choice, check_integer
+from surfaces.validation import check_choice, check_integer
 
 BACKENDS = ("pyfftw", "scipy")
 PLANNER_EFFORTS = ("FFTW_ESTIMATE", "FFTW_MEASURE", "FFTW_PATIENT", "FFTW_EXHAUSTIVE")

@@ -38,7 +38,7 @@ import warnings
 import numpy as np
 from numba import njit
 
-from surfaces._checks import check_integer, check_real
+from surfaces.validation import check_integer, check_real
 
 from ._version import __version__
 from .contact import ContactResult, SolverState, _heights, solve_contact

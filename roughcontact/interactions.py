@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from surfaces._checks import check_finite_array, check_positive, check_real
+from surfaces.validation import check_finite_array, check_positive, check_real
 
 from .electrostatics import DielectricStack
 

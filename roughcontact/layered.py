@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from surfaces._checks import check_choice, check_finite_array, check_positive, check_real
+from surfaces.validation import check_choice, check_finite_array, check_positive, check_real
 
 __all__ = ["layer_on_rigid_base_compliance", "layer_on_half_space_compliance"]
 

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from surfaces._checks import check_positive, check_real
+from surfaces.validation import check_positive, check_real
 
 from .contact import ContactProblem, ContactResult
 from .results import SavableResult

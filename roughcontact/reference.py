@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from surfaces._checks import check_finite_array, check_positive
+from surfaces.validation import check_finite_array, check_positive
 
 
 # -- Hertz ----------------------------------------------------------------------------------------------------

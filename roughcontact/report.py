@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from surfaces._checks import check_broadcast, check_finite_array
+from surfaces.validation import check_broadcast, check_finite_array
 
 from .macro import LinearGap, PowerLawGap, SlidingFrictionModel, TabulatedGap
 from .provenance import save_figure, write_csv

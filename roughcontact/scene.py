@@ -23,7 +23,7 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from surfaces._checks import check_integer, check_real
+from surfaces.validation import check_integer, check_real
 
 if sys.version_info >= (3, 11):
     import tomllib

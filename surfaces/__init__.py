@@ -5,7 +5,7 @@ Grid, HeightField and the statistics are numpy-only and imported eagerly; the ge
 ``scipy.fft``/``scipy.ndimage``) load on first use (PEP 562), so ``import surfaces`` stays cheap for
 ``roughcontact.electrostatics`` and ``roughcontact.macro``.
 """
-from ._lazy import lazy_attributes
+from .lazy import lazy_attributes
 from .grid import Grid
 from .heightfield import HeightField
 from .statistics import psd, rms_curvature, rms_height, rms_slope

@@ -11,7 +11,7 @@ from functools import cached_property
 
 import numpy as np
 
-from ._checks import check_bool, check_integer, check_real
+from .validation import check_bool, check_integer, check_real
 
 # Valid window lengths [m]: wide enough for any physical surface (nm to km, with 40 orders to spare), narrow
 # enough that areas, squared wavevectors and the spectral moments of a grid stay inside float64.

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ._checks import check_finite_array, check_real
+from .validation import check_finite_array, check_real
 from .grid import Grid
 from .io import load_npz, save_npz
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._checks import check_choice, check_integer
+from .validation import check_choice, check_integer
 from .heightfield import HeightField
 from .statistics import psd
 

@@ -27,10 +27,9 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.fft
 
-from ._checks import check_choice, check_finite_array, check_positive, check_real
+from .validation import check_choice, check_finite_array, check_positive, check_real, check_rng
 from .grid import Grid
 from .heightfield import HeightField
-from .selfaffine import _generator
 
 PATTERNS = ("arch", "tented_arch", "left_loop", "right_loop", "whorl")
 _ALIASES = {"loop": "left_loop"}
@@ -525,7 +524,7 @@ def fingerprint(grid: Grid, pattern: str = "left_loop", ridge_period=RIDGE_PERIO
     pore_diameter = check_real("pore_diameter", pore_diameter, low=0.0, low_open=True,
                                high=ridge_fraction(ratio) * float(np.min(period)))
     pore_depth = check_real("pore_depth", pore_depth, low=0.0)
-    rng, seed = _generator(rng)
+    rng, seed = check_rng(rng)
 
     seam = _SEAM_PERIODS * float(np.max(period))
     domain, offsets = _generation_grid(grid, seam)

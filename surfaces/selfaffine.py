@@ -26,7 +26,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 import scipy.fft
 
-from ._checks import check_bool, check_positive, check_real
+from .validation import check_bool, check_positive, check_real, check_rng
 from .grid import Grid
 from .heightfield import HeightField
 
@@ -157,25 +157,6 @@ def _amplitude_target(rms_height, rms_slope) -> tuple:
     return (0 if name == "rms_height" else 1), check_positive(name, value)
 
 
-def _generator(rng) -> tuple:
-    """``(numpy Generator, int seed or None)`` from ``rng`` as ``numpy.random.default_rng`` takes it (None, an int
-    seed >= 0, a SeedSequence, a BitGenerator or a Generator); a fresh seed is drawn and returned for None. The
-    seed is the one that regenerates the stream: the int, or the entropy of an unspawned SeedSequence."""
-    if rng is None:
-        rng = np.random.SeedSequence().entropy
-    if isinstance(rng, (int, np.integer)) and not isinstance(rng, bool):
-        if rng < 0:
-            raise ValueError(f"rng = {int(rng)} is a negative seed; valid range: int seeds >= 0, or a "
-                             "numpy.random.Generator, SeedSequence or BitGenerator")
-        return np.random.default_rng(int(rng)), int(rng)
-    if isinstance(rng, (np.random.Generator, np.random.BitGenerator, np.random.SeedSequence)):
-        replayable = isinstance(rng, np.random.SeedSequence) and not rng.spawn_key \
-            and isinstance(rng.entropy, int) and rng.pool_size == np.random.SeedSequence().pool_size
-        return np.random.default_rng(rng), (rng.entropy if replayable else None)
-    raise TypeError(f"rng must be None, an int seed >= 0, or a numpy.random.Generator, SeedSequence or "
-                    f"BitGenerator; got {type(rng).__name__}")
-
-
 def _stream_index(kx: np.ndarray, ky: np.ndarray, profile: bool) -> np.ndarray:
     """Position of the canonical mode ``(|kx|, 0)`` or ``(kx, ky > 0)`` in the shell-ordered random stream.
 
@@ -259,7 +240,7 @@ def _synthesise(grid: Grid, spectrum, rng, rms_height, rms_slope) -> tuple:
                          "a profile grid (n, 1) needs a 1-D PSD and a surface grid a 2-D PSD")
     order, target = (None, None) if rms_height is None and rms_slope is None else \
         _amplitude_target(rms_height, rms_slope)
-    generator, seed = _generator(rng)
+    generator, seed = check_rng(rng)
     padding = tuple(1 if (periodic or n == 1) else 2 for n, periodic in zip(grid.shape, grid.periodic))
     parent = Grid(tuple(n * p for n, p in zip(grid.shape, padding)),
                   tuple(length * p for length, p in zip(grid.lengths, padding)), True)

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._checks import check_choice, check_positive, check_real
+from .validation import check_choice, check_positive, check_real
 from .grid import Grid
 from .heightfield import HeightField
 

@@ -13,17 +13,17 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._checks import check_choice, check_integer
+from .validation import check_choice, check_integer
 from .heightfield import HeightField
 
 
-def _as_field(field) -> HeightField:
+def as_height_field(field) -> HeightField:
     if not isinstance(field, HeightField):
         raise TypeError(f"field must be a surfaces.HeightField, got {type(field).__name__}")
     return field
 
 
-def _normalised(field: HeightField) -> tuple:
+def normalised_heights(field: HeightField) -> tuple:
     """``(h / s, s)`` with ``s = max |h|`` (1 for a flat zero field): the statistics work on heights of order
     one and scale back, so that squares neither overflow (|h| ≳ 1e150 m) nor underflow (|h| ≲ 1e-150 m)."""
     scale = float(np.max(np.abs(field.heights)))
@@ -50,11 +50,11 @@ def _default_method(field: HeightField, method):
 
 def rms_height(field: HeightField) -> float:
     """Root-mean-square height about the mean, ``sqrt(<(h - <h>)²>)`` [m]."""
-    h, scale = _normalised(_as_field(field))
+    h, scale = normalised_heights(as_height_field(field))
     return scale * float(np.sqrt(np.mean((h - h.mean()) ** 2)))
 
 
-def _gradients(h: np.ndarray, grid) -> list:
+def gradient_components(h: np.ndarray, grid) -> list:
     """Central-difference gradient components of ``h`` (second-order one-sided at non-periodic edges)."""
     grads = []
     for axis, (n, d, periodic) in enumerate(zip(grid.shape, grid.spacing, grid.periodic)):
@@ -73,17 +73,17 @@ def rms_slope(field: HeightField, method=None) -> float:
     ``method='spectral'`` (default for periodic grids) is exact for band-limited periodic fields;
     ``'finite-difference'`` uses central differences (default for non-periodic grids).
     """
-    field = _as_field(field)
-    h, scale = _normalised(field)
+    field = as_height_field(field)
+    h, scale = normalised_heights(field)
     if _default_method(field, method) == "spectral":
         return scale * float(np.sqrt(_spectral_moment(h, field.grid, 1)))
-    return scale * float(np.sqrt(sum(np.mean(g ** 2) for g in _gradients(h, field.grid))))
+    return scale * float(np.sqrt(sum(np.mean(g ** 2) for g in gradient_components(h, field.grid))))
 
 
 def rms_curvature(field: HeightField, method=None) -> float:
     """Root-mean-square Laplacian ``sqrt(<(∇²h)²>)`` [1/m] (``= sqrt(2π ∫ q⁵ C dq)``)."""
-    field = _as_field(field)
-    h, scale = _normalised(field)
+    field = as_height_field(field)
+    h, scale = normalised_heights(field)
     if _default_method(field, method) == "spectral":
         return scale * float(np.sqrt(_spectral_moment(h, field.grid, 2)))
     laplacian = 0.0
@@ -122,7 +122,7 @@ def psd(field: HeightField, bins=None, window=None) -> tuple:
     Profile: ``C₁`` averages the ``±q`` pair; the Nyquist mode (even ``n``) has no partner and is halved, so that
     ``2 Σ_q C₁(q) Δq = h_rms²`` exactly (Parseval, ``Δq = 2π/L``) for an unwindowed periodic profile.
     """
-    field = _as_field(field)
+    field = as_height_field(field)
     grid = field.grid
     if bins is not None:
         check_integer("bins", bins, low=1)

@@ -13,10 +13,10 @@ import scipy.ndimage
 import scipy.signal
 import scipy.spatial
 
-from ._checks import check_positive, check_real
+from .validation import check_positive, check_real
 from .ridges import PORE_DEPTH, PORE_DIAMETER
 from .heightfield import HeightField
-from .statistics import _as_field, _gradients, _normalised
+from .statistics import as_height_field, gradient_components, normalised_heights
 
 
 def dominant_wavelength(field: HeightField, band: float = np.sqrt(2.0)) -> float:
@@ -29,7 +29,7 @@ def dominant_wavelength(field: HeightField, band: float = np.sqrt(2.0)) -> float
     the centroid interpolates between modes, and it weights the window almost uniformly (a Hann window would
     weight its centre, where a fingerprint core often sits).
     """
-    field = _as_field(field)
+    field = as_height_field(field)
     band = check_real("band", band, low=1.0, low_open=True, high=2.0)
     grid = field.grid
     h = (field.heights - field.heights.mean()) * _tukey_window(grid)
@@ -86,12 +86,12 @@ def orientation_field(field: HeightField, window=None) -> OrientationField:
     (wrapped on periodic axes, mirrored on the others). The gradient
     points across the ridges, so ``θ = ½ atan2(2Jxy, Jxx − Jyy) + π/2`` (mod π).
     """
-    field = _as_field(field)
+    field = as_height_field(field)
     grid = field.grid
     if grid.is_profile:
         raise ValueError(f"orientation_field needs a 2-D field; got grid shape {grid.shape}")
     window = dominant_wavelength(field) if window is None else check_positive("window", window)
-    gx, gy = _gradients(_normalised(field)[0], grid)      # angle and coherence do not depend on the scale
+    gx, gy = gradient_components(normalised_heights(field)[0], grid)      # angle and coherence do not depend on the scale
     sigma = (window / grid.spacing[0], window / grid.spacing[1])
     jxx, jyy, jxy = (_gaussian_smooth(values, sigma, grid.periodic) for values in (gx * gx, gy * gy, gx * gy))
     anisotropy = np.hypot(jxx - jyy, 2 * jxy)
@@ -131,7 +131,7 @@ def detect_pores(field: HeightField, pore_diameter: float = PORE_DIAMETER, min_d
     (5 µm); on a rough field it must clear the roughness (about 4× its rms height, see
     ``docs/fingerprint.md``).
     """
-    field = _as_field(field)
+    field = as_height_field(field)
     grid = field.grid
     pore_diameter = check_positive("pore_diameter", pore_diameter)
     pixel = max(grid.spacing)

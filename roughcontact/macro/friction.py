@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from surfaces._checks import check_finite_array, check_real
+from surfaces.validation import check_finite_array, check_real
 
 from ..electrostatics import DielectricStack
 from ..results import SavableResult

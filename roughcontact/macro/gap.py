@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from surfaces._checks import check_broadcast, check_finite_array, check_positive, check_real, plain
+from surfaces.validation import check_broadcast, check_finite_array, check_positive, check_real, plain
 
 
 def _inputs(normal_force, voltage):

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from surfaces._checks import check_choice, check_finite_array, check_positive, check_real, plain
+from surfaces.validation import check_choice, check_finite_array, check_positive, check_real, plain
 
 from .power_law import PowerLawContact
 

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from surfaces._checks import check_broadcast, check_finite_array, check_integer, check_positive, check_real, plain
+from surfaces.validation import check_broadcast, check_finite_array, check_integer, check_positive, check_real, plain
 
 from ..results import SavableResult
 

@@ -98,3 +98,22 @@ def check_choice(name: str, value, choices):
     if value not in choices:
         raise ValueError(f"{name} = {plain(value)} is not valid; choose one of {sorted(choices)}")
     return value
+
+
+def check_rng(rng) -> tuple:
+    """``(numpy Generator, int seed or None)`` from ``rng`` as ``numpy.random.default_rng`` takes it (None, an int
+    seed >= 0, a SeedSequence, a BitGenerator or a Generator); a fresh seed is drawn and returned for None. The
+    seed is the one that regenerates the stream: the int, or the entropy of an unspawned SeedSequence."""
+    if rng is None:
+        rng = np.random.SeedSequence().entropy
+    if isinstance(rng, (int, np.integer)) and not isinstance(rng, bool):
+        if rng < 0:
+            raise ValueError(f"rng = {int(rng)} is a negative seed; valid range: int seeds >= 0, or a "
+                             "numpy.random.Generator, SeedSequence or BitGenerator")
+        return np.random.default_rng(int(rng)), int(rng)
+    if isinstance(rng, (np.random.Generator, np.random.BitGenerator, np.random.SeedSequence)):
+        replayable = isinstance(rng, np.random.SeedSequence) and not rng.spawn_key \
+            and isinstance(rng.entropy, int) and rng.pool_size == np.random.SeedSequence().pool_size
+        return np.random.default_rng(rng), (rng.entropy if replayable else None)
+    raise TypeError(f"rng must be None, an int seed >= 0, or a numpy.random.Generator, SeedSequence or "
+                    f"BitGenerator; got {type(rng).__name__}")
