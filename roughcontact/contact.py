@@ -558,7 +558,7 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
         return array.reshape(grid.shape)
 
     def recompute_displacement():                           # u = K p: one FFT pair (two transforms)
-        half.displacement_into(field(p), field(u))
+        half._displacement_into(field(p), field(u))
         return 2
 
     def conjugate_direction(beta):                          # (c) t ← (z − z̄ or g) + β (t − t̄); Σ g t

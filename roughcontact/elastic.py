@@ -87,6 +87,15 @@ def _apply_multiplier_quadratic(spectrum, multiplier, n_last):
 
 
 @njit(cache=True)
+def _all_finite(values):
+    """True if no entry is NaN or ±inf (one pass, no temporary)."""
+    for i in range(values.size):
+        if not np.isfinite(values[i]):
+            return False
+    return True
+
+
+@njit(cache=True)
 def _pressure_work(pressure, displacement):
     """Σ p u in float64 (no temporary; numpy's dot would go through a possibly multi-threaded BLAS)."""
     total = 0.0
@@ -307,11 +316,17 @@ class ElasticHalfSpace:
         """Write u = K p [m] for ``pressure`` [Pa] (``grid.shape``, this dtype) into ``out``; ``out`` is returned.
 
         No allocation; with arrays from :meth:`empty` (periodic grids) no copy either. Free surface: p is
-        placed in the corner of the zero-padded 2n buffer and u read back from the same corner. Shapes are
-        checked (``ValueError``); values are not (that is :meth:`displacement`'s job).
+        placed in the corner of the zero-padded 2n buffer and u read back from the same corner. Shapes and
+        finiteness are checked (``ValueError``; one pass over p, no allocation).
         """
         self._check_shape("pressure", pressure)
         self._check_shape("out", out)
+        if not _all_finite(pressure.reshape(-1)):
+            raise ValueError("pressure must be finite everywhere (found NaN or inf); valid range: finite reals [Pa]")
+        return self._displacement_into(pressure, out)
+
+    def _displacement_into(self, pressure, out):
+        """:meth:`displacement_into` without its checks: the solvers' inner loop, whose arrays are its own."""
         self._forward(pressure)
         _apply_multiplier(self._fft.spectrum, self._multiplier)
         return self._backward_into(out)

@@ -324,7 +324,7 @@ class _PaddedBody:
     def empty(self):
         return self._fft.empty()
 
-    def displacement_into(self, pressure, out):
+    def _displacement_into(self, pressure, out):
         self._fft.forward(pressure)
         _apply_multiplier(self._fft.spectrum, self._multiplier)
         self._fft.backward(out)
@@ -425,7 +425,7 @@ def _start_gap(begin, h, body, window, heights, flat_position, start_pairs):
         if begin is not None:
             nx, ny = heights.shape
             traction[:nx, :ny] = begin.pressure
-        displacement = body.displacement_into(traction, body.empty()) if begin is not None else traction
+        displacement = body._displacement_into(traction, body.empty()) if begin is not None else traction
         g = (displacement.reshape(-1) - h + position).astype(body.dtype)
         start_pairs += 1.0 if begin is not None else 0.0
     g[window] = np.maximum(g[window], 0.0)
@@ -478,7 +478,7 @@ class _Solver:
             n_free, sum_r, at_wall, largest_pull = _residual(g, pel, traction, load, self.window, r, free)
             # preconditioned residual z = K r on F (+ the largest compliance for the mean mode); zero mean on F
             # under the ⟨g⟩ constraint
-            z = body.displacement_into(r.reshape(self.z_field.shape), self.z_field).reshape(-1)
+            z = body._displacement_into(r.reshape(self.z_field.shape), self.z_field).reshape(-1)
             self.transforms += 2
             sum_z = _mask_shift(z, free, (self.largest_compliance - energy.uniform) * sum_r / n)
             if energy.constrained and n_free:

@@ -306,3 +306,12 @@ def test_quadratic_form_is_parseval_of_the_convolution(shape, periodic, layer, b
     half.displacement(pressure)                                           # another transform discards it
     with pytest.raises(RuntimeError, match="quadratic_form"):
         half.pending_displacement_into(np.empty(shape))
+
+
+def test_displacement_into_refuses_non_finite_pressure():
+    half = ElasticHalfSpace(Grid((8, 8), (1e-3, 1e-3), periodic=True), E_star=1e6)
+    pressure = half.empty()
+    pressure[...] = 1.0
+    pressure[2, 3] = np.nan
+    with pytest.raises(ValueError, match="pressure must be finite"):
+        half.displacement_into(pressure, half.empty())
