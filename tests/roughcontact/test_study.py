@@ -191,3 +191,26 @@ def test_run_command_end_to_end(tmp_path, capsys):
     scene.write_text("[ridges]\nperod = 1\n")
     assert main(["run", str(scene), "--out", str(tmp_path / "other")]) == 2
     assert "line 2: scene key ridges.perod" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("change", [
+    ("voltages = [0.0, 150.0]", "voltages = [0.0, 2000.0]"),         # far beyond the seed's range: full contact
+    ("voltages = [0.0, 150.0]", "voltages = [0.0]"),                 # no electrostatics at all
+    ("[roughness]", "[roughness]\nrms_height = 3e-5"),                # very rough skin
+    ("[roughness]", "[roughness]\nrms_height = 1e-9"),                # very smooth skin
+])
+def test_extreme_scenes_run_to_finite_results(change):
+    scene = load_scene(text=TINY.replace(*change), preset="draft")
+    result = run_study(scene)
+    for name in ("equivalent_gap", "contact_fraction"):
+        values = result.array(name)
+        assert np.isfinite(values).all() and (values >= 0).all()
+    fraction = result.array("contact_fraction")
+    assert (fraction <= 1).all()
+    if "2000.0" in change[1]:
+        assert np.all(fraction[:, -1] == 1.0)                     # 2 kV pulls the patches into full contact
+
+
+def test_zero_load_scene_is_refused_naming_the_key():
+    with pytest.raises(ValueError, match="loads.normal_forces"):
+        load_scene(text=TINY.replace("normal_forces = [0.5, 2.0]", "normal_forces = [0.0, 2.0]"), preset="draft")
