@@ -15,6 +15,7 @@ import numpy as np
 from surfaces.validation import check_broadcast, check_finite_array
 
 from .macro import LinearGap, PowerLawGap, SlidingFrictionModel, TabulatedGap
+from .macro.gap import locate, table_axis
 from .provenance import save_figure, write_csv
 from .study import CONFIDENCE, StudyResult
 
@@ -41,11 +42,9 @@ class TabulatedArea:
     areas: np.ndarray
 
     def __post_init__(self):
-        forces = check_finite_array("normal_forces", self.normal_forces)
+        forces = table_axis("normal_forces", self.normal_forces, 2)
         works = check_finite_array("works", self.works, nonnegative=True)
         areas = check_finite_array("areas", self.areas, nonnegative=True)
-        if forces.ndim != 1 or forces.size < 2 or (np.diff(forces) <= 0).any():
-            raise ValueError(f"normal_forces must be a strictly increasing 1-D array of >= 2 values, got {forces!r}")
         if works.shape != areas.shape or works.shape[0] != forces.size or works.ndim != 2:
             raise ValueError(f"works {works.shape} and areas {areas.shape} must both have shape "
                              f"(len(normal_forces), k) = ({forces.size}, k)")
@@ -56,7 +55,7 @@ class TabulatedArea:
 
     def area(self, normal_force, work_of_adhesion) -> np.ndarray:
         force, w = check_broadcast(normal_force=normal_force, work_of_adhesion=work_of_adhesion)
-        index, u = TabulatedGap._locate("normal_force", self.normal_forces, force)     # same rule as the gap table
+        index, u = locate("normal_force", self.normal_forces, force)     # the gap table's rule
         rows = np.array([np.interp(w, self.works[i], self.areas[i]) for i in range(self.normal_forces.size)])
         low = np.take_along_axis(rows, index[None], 0)[0]
         high = np.take_along_axis(rows, (index + 1)[None], 0)[0]

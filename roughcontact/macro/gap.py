@@ -102,6 +102,26 @@ class PowerLawGap:
         return np.minimum(gap, self.max_gap)
 
 
+def table_axis(name, values, minimum, nonnegative=False) -> np.ndarray:
+    """``values`` checked as a table axis: finite, 1-D, strictly increasing, at least ``minimum`` entries."""
+    axis = check_finite_array(name, values, nonnegative=nonnegative)
+    if axis.ndim != 1 or axis.size < minimum or (np.diff(axis) <= 0).any():
+        raise ValueError(f"{name} must be a strictly increasing 1-D array of >= {minimum} values, got {axis!r}")
+    return axis
+
+
+def locate(name, axis, values):
+    """Interval index and fraction of ``values`` on the table ``axis`` (index 0 and fraction 0 for a single-entry
+    axis); ``ValueError`` outside it (no extrapolation)."""
+    if axis.size == 1:       # e.g. a single voltage: the gap does not depend on it
+        return np.zeros(values.shape, dtype=int), np.zeros(values.shape)
+    if (values < axis[0]).any() or (values > axis[-1]).any():
+        raise ValueError(f"{name} outside the table: values span [{plain(values.min())}, {plain(values.max())}], "
+                         f"valid range [{plain(axis[0])}, {plain(axis[-1])}]")
+    index = np.clip(np.searchsorted(axis, values, side="right") - 1, 0, axis.size - 2)
+    return index, (values - axis[index]) / (axis[index + 1] - axis[index])
+
+
 @dataclass(frozen=True)
 class TabulatedGap:
     """d_eq(F_N, |U|) [m] bilinearly interpolated in a table, e.g. from a bottom-up contact simulation.
@@ -116,13 +136,9 @@ class TabulatedGap:
     gaps: np.ndarray
 
     def __post_init__(self):
-        forces = check_finite_array("normal_forces", self.normal_forces)
-        voltages = check_finite_array("voltages", self.voltages, nonnegative=True)
+        forces = table_axis("normal_forces", self.normal_forces, 2)
+        voltages = table_axis("voltages", self.voltages, 1, nonnegative=True)
         gaps = check_finite_array("gaps", self.gaps, nonnegative=True)
-        for name, axis, minimum in (("normal_forces", forces, 2), ("voltages", voltages, 1)):
-            if axis.ndim != 1 or axis.size < minimum or (np.diff(axis) <= 0).any():
-                raise ValueError(f"{name} must be a strictly increasing 1-D array of >= {minimum} values, "
-                                 f"got {axis!r}")
         if gaps.shape != (forces.size, voltages.size):
             raise ValueError(f"gaps has shape {gaps.shape}; it must be (len(normal_forces), len(voltages)) = "
                              f"{(forces.size, voltages.size)}")
@@ -136,20 +152,10 @@ class TabulatedGap:
 
     __hash__ = None
 
-    @staticmethod
-    def _locate(name, axis, values):
-        if axis.size == 1:       # a single voltage: the gap does not depend on it
-            return np.zeros(values.shape, dtype=int), np.zeros(values.shape)
-        if (values < axis[0]).any() or (values > axis[-1]).any():
-            raise ValueError(f"{name} outside the table: values span [{plain(values.min())}, {plain(values.max())}], "
-                             f"valid range [{plain(axis[0])}, {plain(axis[-1])}]")
-        index = np.clip(np.searchsorted(axis, values, side="right") - 1, 0, axis.size - 2)
-        return index, (values - axis[index]) / (axis[index + 1] - axis[index])
-
     def __call__(self, normal_force, voltage) -> np.ndarray:
         force, voltage = _inputs(normal_force, voltage)
-        i, u = self._locate("normal_force", self.normal_forces, force)
-        j, v = self._locate("|voltage|", self.voltages, np.abs(voltage))
+        i, u = locate("normal_force", self.normal_forces, force)
+        j, v = locate("|voltage|", self.voltages, np.abs(voltage))
         if self.voltages.size == 1:
             return (1 - u) * self.gaps[i, 0] + u * self.gaps[i + 1, 0]
         return ((1 - u) * (1 - v) * self.gaps[i, j] + u * (1 - v) * self.gaps[i + 1, j]
