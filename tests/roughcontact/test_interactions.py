@@ -128,7 +128,7 @@ def test_johnson_sinusoid_load_versus_contact_width(load):
     res = solve_contact(surface, half, mean_pressure=load, interaction=johnson_law(0.2, np.sqrt(1 / n)))
     assert res.converged
     half_width = np.count_nonzero(res.contact) / n / 2
-    # measured 0.0049 and 0.0044 p* (range √Δx: finite-range and pixel errors); the bar is 1 %
+    # measured 0.0044 and 0.0049 p* (range √Δx: finite-range and pixel errors); the bar is 1 %
     assert abs(johnson_load(half_width, 0.2) - load) <= 0.01
     unconverged = solve_contact(surface, half, mean_pressure=load, interaction=johnson_law(0.2, np.sqrt(1 / n)),
                                 maxiter=2, warn=False)
@@ -146,7 +146,7 @@ def test_johnson_sinusoid_jump_to_full_contact(alpha, half_width):
     start = solve_contact(surface, half, mean_pressure=np.sin(np.pi * 0.27) ** 2)
     res = solve_contact(surface, half, mean_pressure=0.0, interaction=johnson_law(alpha, 0.05), x0=start)
     assert res.converged
-    # measured 0.2480, 0.2896, 0.5 (full contact): within 1.5 % of the JKR roots 0.2515, 0.2924
+    # measured 0.2480, 0.2915, 0.5 (full contact): within 1.5 % of the JKR roots 0.2515, 0.2924
     assert np.count_nonzero(res.contact) / n / 2 == pytest.approx(half_width, rel=0.015)
 
 
@@ -158,7 +158,7 @@ def test_no_tunnelling_into_contact(monkeypatch):
     surface, half = sinusoid(n)
     law = johnson_law(0.5, np.sqrt(1 / n))
     res = solve_contact(surface, half, mean_pressure=0.0, interaction=law)
-    assert res.converged and 0.2 < np.count_nonzero(res.contact) / n / 2 < 0.2515    # measured 0.2397
+    assert res.converged and 0.2 < np.count_nonzero(res.contact) / n / 2 < 0.2515    # measured 0.2363
     monkeypatch.setattr("roughcontact.gap_solver.APPROACH", np.inf)
     assert solve_contact(surface, half, mean_pressure=0.0, interaction=law).contact_fraction == 1.0
 
