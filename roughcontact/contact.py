@@ -517,14 +517,13 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
               "preconditioned": preconditioned, "start": "x0" if warm is not None else "pk", "nested_iterations": [],
               "restart_every_entry_from": None, "full_contact": False,
               "control": next(iter(given)), "requested": float(next(iter(given.values()))),
-              "interaction": type(interaction).__name__, "law": interaction, "kernel": half.description,
-              "version": __version__}
+              "interaction": type(interaction).__name__, "kernel": half.description, "version": __version__}
 
     n_points = heights.size
     h = heights.reshape(-1)
     if not load_control and flat_position >= h_max:          # the flat does not reach the surface
         zeros = np.zeros(n_points, half.dtype)
-        return _result(zeros, zeros.copy(), h, flat_position, half, params, 0, [0.0], True,
+        return _result(zeros, zeros.copy(), h, flat_position, half, interaction, params, 0, [0.0], True,
                        "no contact: penetration <= 0", start, 0)
     coarse_pressure = None
     if warm is None and cold_start == "nested":             # solved first, before the fine work arrays exist
@@ -539,7 +538,7 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     if load_control and half.periodic:                      # full contact is exact: no iteration
         shift = _full_contact(h, half, mean_pressure, p, u)
         if shift is not None:
-            return _result(p, u, h, shift, half, {**params, "full_contact": True}, 0, [0.0], True,
+            return _result(p, u, h, shift, half, interaction, {**params, "full_contact": True}, 0, [0.0], True,
                            "full contact: the pressure that flattens h, p̄ + K⁻¹(h − ⟨h⟩), is positive everywhere "
                            "(exact)", start, 2)
     index = np.empty(n_points, np.int32 if n_points < 2 ** 31 else np.int64)   # the contact set I_c, sorted
@@ -691,10 +690,11 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     _scale(u, alpha)
     if not converged and warn:
         warnings.warn(message, ConvergenceWarning, stacklevel=2)
-    return _result(p, u, h, shift, half, params, iterations, residuals, converged, message, start, transforms)
+    return _result(p, u, h, shift, half, interaction, params, iterations, residuals, converged, message, start,
+                   transforms)
 
 
-def _result(p, u, h, shift, half, params, iterations, residuals, converged, message, start, transforms):
+def _result(p, u, h, shift, half, interaction, params, iterations, residuals, converged, message, start, transforms):
     grid = half.grid
     gap = np.empty(p.size, half.dtype)
     contact = np.empty(p.size, np.bool_)
@@ -704,7 +704,6 @@ def _result(p, u, h, shift, half, params, iterations, residuals, converged, mess
     for array in (pressure, displacement, gap, contact):
         array.flags.writeable = False
     params = {**params, "fft_pairs": transforms / 2}
-    law = params.pop("law")
     return ContactResult(
         pressure=pressure, displacement=displacement, gap=gap, contact=contact,
         contact_fraction=float(np.count_nonzero(contact)) / contact.size,
@@ -713,7 +712,7 @@ def _result(p, u, h, shift, half, params, iterations, residuals, converged, mess
         iterations=int(iterations), residuals=np.asarray(residuals, dtype=np.float64), converged=bool(converged),
         message=message, wall_time=time.perf_counter() - start, params=params,
         contact_pressure=pressure, interaction_traction=np.broadcast_to(np.zeros((), half.dtype), grid.shape),
-        flat_position=float(shift), interaction=law, control=params["control"], requested=params["requested"])
+        flat_position=float(shift), interaction=interaction, control=params["control"], requested=params["requested"])
 
 
 @dataclass(frozen=True)

@@ -74,7 +74,6 @@ def _import_wisdom(pyfftw):
     path = wisdom_path()
     if path in _wisdom_known:
         return
-    _wisdom_known[path] = None
     try:
         with open(path, "rb") as stream:
             pyfftw.import_wisdom(pickle.load(stream))

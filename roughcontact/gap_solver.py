@@ -213,18 +213,16 @@ def _curvature_and_cap(g, d, w, stiffness, window, length, pixel_compliance, app
 
 @njit(cache=True)
 def _trial_gap(g, d, tau, r, window, trial):
-    """trial ← g + τ d, clipped at 0 in the window; returns whether any point was clipped, Σ trial and
-    Σ r (trial − g)."""
-    clipped, total, predicted = False, 0.0, 0.0
+    """trial ← g + τ d, clipped at 0 in the window; returns whether any point was clipped and Σ r (trial − g)."""
+    clipped, predicted = False, 0.0
     for i in range(g.size):
         value = g[i] + tau * d[i]
         if value < 0 and window[i]:
             value = 0.0
             clipped = True
         trial[i] = value
-        total += value
         predicted += r[i] * (value - g[i])
-    return clipped, total, predicted
+    return clipped, predicted
 
 
 @njit(cache=True)
@@ -286,13 +284,15 @@ class _Energy:
         flat += self.h_f
         return self.body.stiffness_into(work, out).reshape(-1)
 
-    def external_load(self, g_mean, imbalance=None):
-        """λ [Pa]: P̄, the layer's ū/Φ(0), or (under the ⟨g⟩ constraint) the given mean imbalance."""
+    def external_load(self, g, pel, traction):
+        """λ [Pa] at the gap g: P̄, the layer's ū/Φ(0), or (under the ⟨g⟩ constraint) the multiplier that
+        balances the open points' mean traction."""
         if self.load is not None:
             return self.load
         if not self.constrained:
-            return (g_mean + self.h_mean - self.flat_position) / self.uniform
-        return imbalance
+            return (float(g.mean(dtype=np.float64)) + self.h_mean - self.flat_position) / self.uniform
+        imbalance, n_open = _open_mean_imbalance(g, pel, traction)
+        return imbalance / max(n_open, 1)
 
     def value(self, g_sum, work, pel_sum, energy_sum, n):
         """Π/A [J/m²] from the pass sums, and the magnitude of its parts (for the round-off allowance)."""
@@ -415,19 +415,19 @@ def _start_gap(begin, h, body, window, heights, flat_position, start_pairs):
     """The starting gap on the body's grid (flat) from the start's gap (periodic) or from its traction and flat
     position (padded free surface: the padding's displacement is K_T of the window's traction); clipped at 0 in
     the window. Returns it and the FFT pairs spent."""
-    if begin is not None and window.all():
+    if begin is None:                                       # the undeformed surface under the flat
+        position = float(heights.max()) if flat_position is None else flat_position
+        g = (position - h).astype(body.dtype)
+    elif window.all():
         g = np.array(begin.gap, dtype=body.dtype).reshape(-1)
     else:
-        position = (float(heights.max()) if flat_position is None else flat_position) if begin is None \
-            else begin.flat_position
         traction = body.empty()
         traction[...] = 0.0
-        if begin is not None:
-            nx, ny = heights.shape
-            traction[:nx, :ny] = begin.pressure
-        displacement = body._displacement_into(traction, body.empty()) if begin is not None else traction
-        g = (displacement.reshape(-1) - h + position).astype(body.dtype)
-        start_pairs += 1.0 if begin is not None else 0.0
+        nx, ny = heights.shape
+        traction[:nx, :ny] = begin.pressure
+        displacement = body._displacement_into(traction, body.empty())
+        g = (displacement.reshape(-1) - h + begin.flat_position).astype(body.dtype)
+        start_pairs += 1.0
     g[window] = np.maximum(g[window], 0.0)
     return g, start_pairs
 
@@ -470,11 +470,8 @@ class _Solver:
         previous_rz, tau, since_exact = 0.0, 0.0, 0
         while True:
             g, d, r, free = self.g, self.d, self.r, self.free
-            _, traction, stiffness = self.law_now
-            load = energy.load
-            if energy.load is None:
-                imbalance, n_open = _open_mean_imbalance(g, pel, traction)
-                load = energy.external_load(float(g.mean(dtype=np.float64)), imbalance / max(n_open, 1))
+            traction = self.law_now[1]
+            load = energy.external_load(g, pel, traction)
             n_free, sum_r, at_wall, largest_pull = _residual(g, pel, traction, load, self.window, r, free)
             # preconditioned residual z = K r on F (+ the largest compliance for the mean mode); zero mean on F
             # under the ⟨g⟩ constraint
@@ -522,8 +519,8 @@ class _Solver:
                 slope = _dot(r, d)
                 if slope >= 0:                              # not a descent direction
                     continue
-                accepted, tau, step, since_exact = self.line_search(slope, sum_d, pel, value, magnitude, tau,
-                                                                    since_exact)
+                accepted, tau, step, since_exact, step_value = self.line_search(slope, sum_d, pel, value, magnitude,
+                                                                                tau, since_exact)
                 if accepted:
                     break
             if not accepted:
@@ -536,7 +533,7 @@ class _Solver:
             self.r, self.r_prev = self.r_prev, self.r
             previous_rz = rz
             pel = step
-            value, magnitude = self.step_value
+            value, magnitude = step_value
             history.append(value)
         if not converged and warn:
             warnings.warn(message, ConvergenceWarning, stacklevel=4)
@@ -545,7 +542,8 @@ class _Solver:
 
     def line_search(self, slope, sum_d, pel, value, magnitude, tau, since_exact):
         """Projected Armijo search along d from the minimiser of the quadratic model (capped so that no stable
-        point tunnels into contact). Returns (accepted, τ, the trial's p_el, steps since an exact p_el)."""
+        point tunnels into contact). Returns (accepted, τ, the trial's p_el, steps since an exact p_el, the trial's
+        energy and its magnitude)."""
         energy, body, n, g, d = self.energy, self.body, self.n, self.g, self.d
         d_mean = sum_d / n
         centred = self.work.reshape(-1)
@@ -553,8 +551,7 @@ class _Solver:
         w = body.stiffness_into(self.work, self.w_field).reshape(-1)        # K⁻¹ d_f
         self.transforms += 2
         dw, kdd, cap = _curvature_and_cap(g, d, w, self.law_now[2], self.window, float(self.law.length),
-                                          self.pixel_compliance,
-                                           APPROACH)
+                                          self.pixel_compliance, APPROACH)
         curvature = (dw - kdd) / n
         if not energy.constrained and energy.load is None:
             curvature += d_mean ** 2 / energy.uniform
@@ -565,7 +562,7 @@ class _Solver:
         tau = min(tau, cap)
         trial, r = self.trial, self.r
         for _ in range(MAX_HALVINGS):
-            clipped, _, predicted = _trial_gap(g, d, tau, r, self.window, trial)
+            clipped, predicted = _trial_gap(g, d, tau, r, self.window, trial)
             if clipped and energy.constrained:
                 _restore_mean(trial, energy.mean_target)
                 predicted = _dot(r, trial) - _dot(r, g)
@@ -577,10 +574,9 @@ class _Solver:
                 _advance_traction(pel, w, tau, step)
             trial_value, trial_magnitude = self.evaluate(trial, step, self.law_trial)
             if trial_value <= value + ARMIJO * predicted / n + ENERGY_ROUND_OFF * magnitude:
-                self.step_value = (trial_value, trial_magnitude)
-                return True, tau, step, 0 if exact else since_exact + 1
+                return True, tau, step, 0 if exact else since_exact + 1, (trial_value, trial_magnitude)
             tau *= 0.5
-        return False, tau, pel, since_exact
+        return False, tau, pel, since_exact, (value, magnitude)
 
     def result(self, pel, half, heights, control, requested, iterations, residuals, converged, message, start,
                start_kind, tol, maxiter, detached, history):
@@ -589,11 +585,7 @@ class _Solver:
         grid = half.grid
         g_mean = float(g.mean(dtype=np.float64))
         interaction_energy, traction, _ = self.law_now
-        if energy.load is None and energy.constrained:
-            imbalance, n_open = _open_mean_imbalance(g, pel, traction)
-            load = imbalance / max(n_open, 1)
-        else:
-            load = energy.external_load(g_mean)
+        load = energy.external_load(g, pel, traction)
         mean_displacement = energy.uniform * load
         flat_position = g_mean + energy.h_mean - mean_displacement
         nx, ny = grid.shape
