@@ -21,7 +21,7 @@ from surfaces import Grid, HeightField
 from roughcontact import ContactProblem, ElasticHalfSpace, MaugisDugdale
 from roughcontact.paths import pull_off
 from roughcontact.provenance import output_directory, parse_arguments, write_csv
-from roughcontact.reference import maugis_dugdale_pull_off
+from roughcontact.reference import maugis_cohesive_stress, maugis_dugdale_pull_off
 
 RADIUS, E_STAR, WORK = 1.0, 1.0, 1e-3          # R [m], E* [Pa], w [J/m²]
 COLUMNS = ("maugis_lambda", "n", "cell", "pixel", "pull_off", "pull_off_maugis", "relative_error",
@@ -33,8 +33,7 @@ def sphere_problem(n, cell, maugis_lambda):
     grid = Grid((n, n), (cell, cell), periodic=True)
     x = (np.arange(n) - n / 2) * cell / n
     surface = HeightField(grid, -(x[:, None] ** 2 + x[None, :] ** 2) / (2 * RADIUS))
-    K = 4 * E_STAR / 3
-    cohesive_stress = maugis_lambda / 2 * (np.pi * WORK * K ** 2 / RADIUS) ** (1 / 3)
+    cohesive_stress = maugis_cohesive_stress(maugis_lambda, WORK, RADIUS, E_STAR)
     return ContactProblem(surface, ElasticHalfSpace(grid, E_star=E_STAR),
                           MaugisDugdale(WORK, WORK / cohesive_stress))
 

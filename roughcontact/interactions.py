@@ -169,10 +169,4 @@ class MaugisDugdale(Interaction):
 LAWS = {law.__name__: law for law in (HardWall, ElectrostaticInteraction, ExponentialAdhesion, MaugisDugdale)}
 
 
-def tabor_parameter(radius, work_of_adhesion, E_star, length) -> float:
-    """Tabor's μ_T = (R w² / (E*² z0³))^{1/3} of a sphere of radius R [m] with a law of range z0 [m]."""
-    return (radius * work_of_adhesion ** 2 / (E_star ** 2 * length ** 3)) ** (1.0 / 3.0)
-
-
-__all__ = ["Interaction", "HardWall", "ElectrostaticInteraction", "ExponentialAdhesion", "MaugisDugdale",
-           "tabor_parameter"]
+__all__ = ["Interaction", "HardWall", "ElectrostaticInteraction", "ExponentialAdhesion", "MaugisDugdale"]

@@ -111,16 +111,12 @@ def bisinusoid_area_near_full_contact(load_fraction):
 
 
 # -- adhesive contact -----------------------------------------------------------------------------------------
-def jkr_pull_off_force(work_of_adhesion, radius):
-    """JKR pull-off under load control, F = −(3/2) π w R [N] (Johnson, Kendall & Roberts 1971)."""
-    return -1.5 * np.pi * check_positive("work_of_adhesion", work_of_adhesion) * check_positive("radius", radius)
-
-
-def maugis_parameter(cohesive_stress, work_of_adhesion, radius, E_star):
-    """Maugis' λ = 2 σ0 (R / (π w K²))^(1/3), K = 4E*/3 (Maugis 1992; docs/references.md §4.4)."""
+def maugis_cohesive_stress(maugis_lambda, work_of_adhesion, radius, E_star):
+    """The Dugdale stress σ0 [Pa] of Maugis' λ = 2 σ0 (R / (π w K²))^(1/3), K = 4E*/3 (Maugis 1992;
+    docs/references.md §4.4), for a sphere of radius R [m], work of adhesion w [J/m²] and contact modulus E* [Pa]."""
     K = 4 * check_positive("E_star", E_star) / 3
-    return 2 * check_positive("cohesive_stress", cohesive_stress) * (
-        check_positive("radius", radius) / (np.pi * check_positive("work_of_adhesion", work_of_adhesion) * K ** 2)
+    return check_positive("maugis_lambda", maugis_lambda) / 2 * (
+        np.pi * check_positive("work_of_adhesion", work_of_adhesion) * K ** 2 / check_positive("radius", radius)
     ) ** (1 / 3)
 
 

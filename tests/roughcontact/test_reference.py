@@ -82,3 +82,35 @@ def test_bisinusoid_low_load_is_independent_hertz_peaks():
 def test_bad_input(call, word):
     with pytest.raises(ValueError, match=word):
         call()
+
+
+def test_maugis_dugdale_limits_are_dmt_and_jkr():
+    # λ → 0: DMT, pull-off −2 π w R; λ → ∞: JKR, −3/2 π w R, and the load curve P̄ = Ā³ − √(6 Ā³) of JKR
+    # (F = K a³/R − √(6π w K a³) in Maugis' units); measured −1.9983 at λ = 0.01 and −1.500016 at λ = 100
+    assert ref.maugis_dugdale_pull_off(0.01) == pytest.approx(-2.0, abs=2e-3)
+    assert ref.maugis_dugdale_pull_off(100.0) == pytest.approx(-1.5, abs=1e-4)
+    lambdas = [0.1, 0.3, 1.0, 3.0, 10.0]
+    assert np.all(np.diff([ref.maugis_dugdale_pull_off(lam) for lam in lambdas]) > 0)
+    load, area = ref.maugis_dugdale_load(1 + np.geomspace(3e-10, 3e-8, 5), 1e4)      # Ā from 24 to 0.24
+    # measured relative difference 3.1e-8 at λ = 1e4 (the cohesive zone's width, m − 1 ~ 1e-8)
+    np.testing.assert_allclose(load, area ** 3 - np.sqrt(6 * area ** 3), rtol=1e-6)
+
+
+def test_johnson_sinusoid_limits():
+    # α = 0 is Westergaard's p̄/p* = sin²(πa/λ); at α_c = (3/4)^(3/4) (1/2)^(1/2) ≈ 0.570 the curve touches
+    # p̄ = 0 at πa/λ = π/3 (the spontaneous jump to full contact at zero load begins there)
+    half_widths = np.linspace(1e-4, 0.4999, 20001)
+    np.testing.assert_allclose(ref.johnson_sinusoid_load(half_widths, 1.0, 0.0), np.sin(np.pi * half_widths) ** 2)
+    critical = 0.75 ** 0.75 * 0.5 ** 0.5
+    loads = ref.johnson_sinusoid_load(half_widths, 1.0, critical)
+    assert loads.max() == pytest.approx(0.0, abs=1e-8)
+    assert half_widths[np.argmax(loads)] == pytest.approx(1 / 3, abs=1e-3)
+    assert ref.johnson_sinusoid_load(half_widths, 1.0, 0.99 * critical).max() > 0
+
+
+def test_maugis_cohesive_stress_inverts_the_parameter():
+    # Maugis' λ = 2 σ0 (R / (π w K²))^(1/3) with K = 4E*/3: doubling λ doubles σ0, and σ0 ∝ E*^(2/3) w^(1/3) R^(-1/3)
+    base = ref.maugis_cohesive_stress(1.0, 0.05, 1e-3, 1e6)
+    assert ref.maugis_cohesive_stress(2.0, 0.05, 1e-3, 1e6) == pytest.approx(2 * base, rel=1e-14)
+    assert ref.maugis_cohesive_stress(1.0, 0.4, 8e-3, 8e6) == pytest.approx(base * 4 * 2 / 2, rel=1e-14)
+    assert base == pytest.approx(0.5 * (np.pi * 0.05 * (4e6 / 3) ** 2 / 1e-3) ** (1 / 3), rel=1e-14)
