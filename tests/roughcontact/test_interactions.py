@@ -34,6 +34,23 @@ def test_law_traction_and_stiffness_are_derivatives(law, gaps):
     assert np.all(law.traction(gaps) <= 0) and abs(law.energy(1.0)) <= 1e-6 * abs(law.energy(0.0))   # V(∞) = 0
 
 
+@pytest.mark.parametrize("law", [ElectrostaticInteraction(STACK, 200.0),
+                                 ElectrostaticInteraction(DielectricStack(eps_a=2.0), -150.0),
+                                 ExponentialAdhesion(0.05, 2e-7), MaugisDugdale(0.05, 2e-7)])
+def test_solver_kernel_evaluates_the_laws_as_their_methods(law):
+    # the solver evaluates the built-in laws in a numba kernel (gap_solver._law_at), a second writing of the
+    # formulas of roughcontact.interactions: the two must agree to round-off
+    from roughcontact.gap_solver import _law_code, _law_into
+
+    gaps = np.concatenate([[0.0, 1.999e-7, 2.001e-7], np.random.default_rng(0).uniform(0, 5e-6, 50)])
+    energy, traction, stiffness = (np.empty_like(gaps) for _ in range(3))
+    total = _law_into(law, _law_code(law), gaps, np.ones(gaps.size, np.bool_), energy, traction, stiffness)
+    np.testing.assert_allclose(energy, law.energy(gaps), rtol=1e-13, atol=0)
+    np.testing.assert_allclose(traction, law.traction(gaps), rtol=1e-13, atol=0)
+    np.testing.assert_allclose(stiffness, law.stiffness(gaps), rtol=1e-13, atol=0)
+    assert total == pytest.approx(float(np.sum(law.energy(gaps))), rel=1e-13)
+
+
 def test_laws_reject_bad_parameters():
     with pytest.raises(ValueError, match="work_of_adhesion"):
         ExponentialAdhesion(-1.0, 1e-6)
@@ -284,13 +301,13 @@ def test_free_surface_smooth_solve():
 def test_free_surface_sphere_pull_off():
     # an isolated Dugdale sphere (no periodic images), Maugis λ = 0.3: measured +1.3 % at 64², +0.52 % at 128²
     from roughcontact.paths import pull_off
-    from roughcontact.reference import maugis_dugdale_pull_off
+    from roughcontact.reference import maugis_cohesive_stress, maugis_dugdale_pull_off
 
     n, window, radius, E_star, work = 64, 0.8, 1.0, 1.0, 1e-3
     grid = Grid((n, n), (window, window), periodic=False)
     x = (np.arange(n) - n / 2 + 0.5) * window / n
     surface = HeightField(grid, -(x[:, None] ** 2 + x[None, :] ** 2) / (2 * radius))
-    cohesive_stress = 0.3 / 2 * (np.pi * work * (4 * E_star / 3) ** 2 / radius) ** (1 / 3)
+    cohesive_stress = maugis_cohesive_stress(0.3, work, radius, E_star)
     problem = ContactProblem(surface, ElasticHalfSpace(grid, E_star=E_star),
                              MaugisDugdale(work, work / cohesive_stress))
     found = pull_off(problem, problem.solve(mean_pressure=0.0), step=0.1 * np.pi * work * radius / window ** 2,
@@ -327,3 +344,23 @@ def test_float32_electrostatic_solve():
     # measured: mean gaps 1.4e-6 apart (relative), the same contact set
     assert res.mean_gap == pytest.approx(reference.mean_gap, rel=1e-5)
     np.testing.assert_array_equal(res.contact, reference.contact)
+
+
+def test_paths_save_and_load_with_their_results(tmp_path):
+    # a LoadPath keeps its ContactResults and a PullOff its last attached equilibrium: both round-trip whole
+    from roughcontact.paths import LoadPath, PullOff, load_cycle, pull_off
+
+    n = 256
+    surface, half = sinusoid(n)
+    problem = ContactProblem(surface, half, johnson_law(0.2, 0.05))
+    path = load_cycle(problem, [0.1, 0.3], keep_results=True)
+    loaded = LoadPath.load(path.save(tmp_path / "path.npz"))
+    assert loaded.jumps == path.jumps and isinstance(loaded.results[1], ContactResult)
+    np.testing.assert_array_equal(loaded.results[1].gap, path.results[1].gap)
+    np.testing.assert_array_equal(loaded.contact_fraction, path.contact_fraction)
+    found = pull_off(problem, path.results[0], step=0.05, rtol=0.1)
+    again = PullOff.load(found.save(tmp_path / "pull_off.npz"))
+    assert again.mean_pressure == found.mean_pressure and again.bracket == found.bracket
+    assert again.last_attached.interaction == found.last_attached.interaction
+    np.testing.assert_array_equal(again.last_attached.pressure, found.last_attached.pressure)
+    assert not again.last_attached.pressure.flags.writeable
