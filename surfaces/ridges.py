@@ -228,12 +228,15 @@ def _check_period(name, period, grid):
 
 def parallel_ridges(grid: Grid, period: float = RIDGE_PERIOD, height: float = RIDGE_HEIGHT,
                     ridge_width_ratio: float = RIDGE_WIDTH_RATIO, orientation: float = 0.0,
-                    offset: float = 0.0) -> HeightField:
+                    offset: float = 0.0, pore_density: float = 0.0, pore_diameter: float = PORE_DIAMETER,
+                    pore_depth: float = PORE_DEPTH, rng=None) -> HeightField:
     """Straight ridges with the fingerprint cross-section (:func:`ridge_profile`), zero mean [m].
 
     ``period`` [m], crest-to-furrow ``height`` [m], ``orientation`` [rad] = ridge direction from the x axis,
     ``offset`` [m] = position of a crest along the ridge normal from the origin. On a periodic axis the ridge
     wavevector ``2π/period (−sin θ, cos θ)`` must be a grid mode (else ``ValueError`` with the nearest period).
+    ``pore_density`` [1/m²] sweat pores (default none) of ``pore_diameter`` and ``pore_depth`` [m] are carved on
+    the crests as in :func:`fingerprint` (crest pixels drawn with ``rng``; their centres in the metadata).
     """
     if not isinstance(grid, Grid):
         raise TypeError(f"grid must be a surfaces.Grid, got {type(grid).__name__}")
@@ -253,11 +256,17 @@ def parallel_ridges(grid: Grid, period: float = RIDGE_PERIOD, height: float = RI
                     f"period = {period!r} m with orientation = {orientation!r} rad is not periodic on axis {axis} "
                     f"(length {grid.lengths[axis]!r} m holds {modes:.6g} periods); valid: an integer number of "
                     f"periods, e.g. period = {nearest:.9g} m")
+    pore_density, pore_diameter, pore_depth = _check_pores(pore_density, pore_diameter, pore_depth, ratio, period)
+    rng, seed = check_rng(rng)
     x, y = grid.meshgrid()
-    h = ridge_profile(np.cos(q[0] * x + q[1] * y - 2 * np.pi * offset / period), height, ratio)
+    cos_phase = np.cos(q[0] * x + q[1] * y - 2 * np.pi * offset / period)
+    h, pores = _carve_pores(ridge_profile(cos_phase, height, ratio), grid, _crest(cos_phase, ratio), pore_density,
+                            pore_diameter, pore_depth, rng)
     return HeightField(grid, h - h.mean(), {
         "generator": "surfaces.parallel_ridges", "period": period, "height": height,
-        "ridge_width_ratio": ratio, "orientation": orientation, "offset": offset})
+        "ridge_width_ratio": ratio, "orientation": orientation, "offset": offset, "pore_density": pore_density,
+        "pore_diameter": pore_diameter, "pore_depth": pore_depth, "seed": seed if pores.size else None,
+        "pore_centres": pores.tolist()})
 
 
 # ---------------------------------------------------------------------------------------------------------
@@ -375,6 +384,18 @@ def _analytic_ridges(grown, coarse_grid, steering, full_grid, workers):
 # ---------------------------------------------------------------------------------------------------------
 # Pores
 # ---------------------------------------------------------------------------------------------------------
+def _check_pores(density, diameter, depth, ratio, period):
+    """Checked pore density [1/m²], diameter (at most the ridge width at ``period``) and depth [m]."""
+    return (check_real("pore_density", density, low=0.0),
+            check_real("pore_diameter", diameter, low=0.0, low_open=True, high=ridge_fraction(ratio) * period),
+            check_real("pore_depth", depth, low=0.0))
+
+
+def _crest(cos_phase, ratio) -> np.ndarray:
+    """The crest band where pores sit: the middle half of each ridge's width."""
+    return cos_phase > np.cos(0.25 * np.pi * ridge_fraction(ratio))
+
+
 def _distance2(dx, dy, grid):
     """Squared distance of a separation (dx, dy) [m], minimum image on periodic axes."""
     if grid.periodic[0]:
@@ -520,10 +541,8 @@ def fingerprint(grid: Grid, pattern: str = "left_loop", ridge_period=RIDGE_PERIO
     period = _period_map(ridge_period, grid)
     ridge_height = check_real("ridge_height", ridge_height, low=0.0)
     ratio = _check_ratio(ridge_width_ratio)
-    pore_density = check_real("pore_density", pore_density, low=0.0)
-    pore_diameter = check_real("pore_diameter", pore_diameter, low=0.0, low_open=True,
-                               high=ridge_fraction(ratio) * float(np.min(period)))
-    pore_depth = check_real("pore_depth", pore_depth, low=0.0)
+    pore_density, pore_diameter, pore_depth = _check_pores(pore_density, pore_diameter, pore_depth, ratio,
+                                                           float(np.min(period)))
     rng, seed = check_rng(rng)
 
     seam = _SEAM_PERIODS * float(np.max(period))
@@ -543,7 +562,7 @@ def fingerprint(grid: Grid, pattern: str = "left_loop", ridge_period=RIDGE_PERIO
     h = ridge_profile(cos_phase, ridge_height, ratio)
     h = 0.5 * ridge_height + taper * (h - 0.5 * ridge_height)
 
-    crest = (cos_phase > np.cos(0.25 * np.pi * ridge_fraction(ratio))) & (taper >= 1.0)
+    crest = _crest(cos_phase, ratio) & (taper >= 1.0)
     h, pores = _carve_pores(h, grid, crest, pore_density, pore_diameter, pore_depth, rng)
     return HeightField(grid, h - h.mean(), {
         "generator": "surfaces.fingerprint", "pattern": model.pattern,

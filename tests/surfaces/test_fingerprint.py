@@ -212,3 +212,27 @@ def test_bad_input_parallel_ridges_and_grid():
         surfaces.fingerprint(surfaces.Grid((256, 1), (L, L / 256)))
     with pytest.raises(TypeError, match="Grid"):
         surfaces.fingerprint((256, 256))
+
+
+def test_parallel_ridges_with_pores():
+    # 2 mm periodic window, 4 ridges of 0.5 mm: 500 cm⁻² gives round(5e6 · 4e-6) = 20 pores, each a dimple of the
+    # requested depth centred on a crest (the middle half of a ridge), and the plain field is unchanged by the
+    # pore arguments' defaults
+    g = surfaces.Grid((200, 200), (2e-3, 2e-3), True)
+    plain = surfaces.parallel_ridges(g, 0.5e-3, HEIGHT)
+    pored = surfaces.parallel_ridges(g, 0.5e-3, HEIGHT, pore_density=PORE_DENSITY, pore_depth=15e-6, rng=4)
+    centres = pored.metadata["pore_centres"]
+    assert len(centres) == 20 and plain.metadata["pore_centres"] == [] and plain.metadata["seed"] is None
+    drop = plain.heights - pored.heights
+    drop -= np.median(drop)                       # undo the mean shift by the pores' volume
+    for x, y in centres:
+        i, j = round(x / g.spacing[0]), round(y / g.spacing[1])
+        assert plain.heights[i, j] > plain.heights.max() - 0.2 * HEIGHT          # on a crest
+        assert drop[i, j] == pytest.approx(15e-6, rel=1e-9)                       # the dimple's depth
+    offsets = np.arange(-6, 7) * g.spacing[0]                # a 120 µm dimple covers the disc r < 60 µm ...
+    disc = np.count_nonzero(offsets[:, None] ** 2 + offsets[None, :] ** 2 < (60e-6) ** 2)
+    assert np.count_nonzero(drop > 1e-12) == 20 * disc        # ... and nothing else moved
+    again = surfaces.parallel_ridges(g, 0.5e-3, HEIGHT, pore_density=PORE_DENSITY, pore_depth=15e-6, rng=4)
+    assert np.array_equal(again.heights, pored.heights)
+    with pytest.raises(ValueError, match="pore_diameter"):
+        surfaces.parallel_ridges(g, 0.5e-3, HEIGHT, pore_density=PORE_DENSITY, pore_diameter=0.4e-3)
