@@ -97,9 +97,10 @@ def _cmd_run(args, provenance) -> int:
     try:
         scene = load_scene(getattr(args, "scene", None), preset=getattr(args, "preset", None))
         output = output_directory(args.out)
-        result = run_study(scene, output, progress=True)
-    except ValueError as error:               # a scene key, a scene parameter the preset cannot resolve, another scene
-        print(f"roughcontact run: error: {error}", file=sys.stderr)
+        result = run_study(scene, output, progress=True, workers=getattr(args, "workers", None),
+                           dask=getattr(args, "dask", None))
+    except (ValueError, ImportError) as error:   # a scene key or parameter the preset cannot resolve, another
+        print(f"roughcontact run: error: {error}", file=sys.stderr)        # scene, dask not installed
         return USAGE_ERROR
     written = write_results(result, output, provenance, time.perf_counter() - start)
     if not written["netcdf"]:
@@ -139,6 +140,13 @@ def build_parser() -> argparse.ArgumentParser:
                      help="accuracy preset (default: the scene's study.preset)")
     run.add_argument("--out", default=DEFAULT_RUN_OUTPUT,
                      help="results directory; created if missing, but its parent must exist")
+    executors = run.add_mutually_exclusive_group()
+    executors.add_argument("--workers", type=int, default=argparse.SUPPRESS,
+                           help="processes of the local pool, each with cores/N FFT threads; 1 runs in this "
+                                "process (default: one per core)")
+    executors.add_argument("--dask", metavar="ADDRESS", default=argparse.SUPPRESS,
+                           help="run the tasks on the dask.distributed scheduler at ADDRESS (tcp://host:port); "
+                                "needs roughcontact[parallel]")
     run.set_defaults(run=_cmd_run)
     scene = commands.add_parser("scene", help="validate a scene file or print the default scene as TOML",
                                 description="Validate a scene TOML file (errors name the key and its line); "

@@ -8,9 +8,7 @@ For each normal force F_N and voltage U:
 2. **Ridge and roughness scales** (:func:`patch_surface`, :func:`patch_body`): a periodic patch of ``periods``
    ridge periods with the ridges and the self-affine micro-roughness resolved in one grid, pressed at each
    nominal pressure with the electrostatic attraction acting (``roughcontact.solve_contact``; 0 V is the hard
-   wall). Each solve starts from the result at the previous load and the same voltage, else from the previous
-   voltage at the same load (``x0=``); a scene without roughness is solved for one realisation only (the
-   others would be identical).
+   wall). A scene without roughness is solved for one realisation only (the others would be identical).
 3. **Averages over the apparent area** (rings of equal area weigh equally): d_eq by seed Eq. 25
    (``DielectricStack.equivalent_gap`` of all gaps), the arithmetic mean gap, the real contact fraction, the
    ridge contact fraction A_R/A0 (:func:`ridge_area_fraction`: the real contact closed morphologically with a
@@ -21,8 +19,16 @@ For each normal force F_N and voltage U:
    Student-t confidence interval (:func:`confidence_interval`) over the realisations whose solves converged (a
    solve that fails from its warm start is repeated from the solver's own start first).
 
-Per-point results are stored as they finish in a :class:`PointStore` directory, so an interrupted run resumes
-without recomputing finished points; a different scene in the same directory is refused (:class:`SceneMismatch`).
+**Tasks.** The sweep is split into independent, deterministic tasks, one per (realisation r, voltage index j)
+(:func:`solve_chain`): every load in order, each solve warm-started from the previous load's result (``x0=``;
+cold solves with the preset's ``warm_start`` false). A task takes the scene, r, j and its FFT thread count and
+returns one :class:`PatchRecord` per load; nothing passes between tasks, so a point's numbers do not depend on
+where its tasks ran or in which order they finished. :func:`run_study` runs them in this process, in a local
+process pool or on a dask.distributed cluster through one loop (submit, consume as completed, store), and
+assembles the :class:`PointResult` of each (F_N, U) from the records of its realisations.
+
+Finished tasks are stored as they arrive in a :class:`TaskStore` directory, so an interrupted run resumes
+without recomputing finished tasks; a different scene in the same directory is refused (:class:`SceneMismatch`).
 """
 from __future__ import annotations
 
@@ -112,16 +118,17 @@ def patch_surface(scene: Scene, realisation: int) -> np.ndarray:
     return heights
 
 
-def patch_body(scene: Scene, grid=None):
+def patch_body(scene: Scene, grid=None, threads=None):
     """The skin under the patch on ``grid`` (default: the patch grid): a half-space of ``skin.E_star``, or the
-    layer bonded on it."""
+    layer bonded on it; in the preset's dtype, with ``threads`` FFT threads (default: ``roughcontact.fft``'s)."""
     from .elastic import ElasticHalfSpace
     skin = scene.skin
     grid = patch_grid(scene) if grid is None else grid
+    numbers = {"threads": threads, "dtype": getattr(scene.preset, "dtype", "float64")}
     if skin.layer_thickness == 0:
-        return ElasticHalfSpace(grid, E_star=skin.E_star)
-    return ElasticHalfSpace(grid, E_star=skin.layer_E_star, thickness=skin.layer_thickness,
-                            poisson=skin.poisson, substrate_E_star=skin.E_star, substrate_poisson=skin.poisson)
+        return ElasticHalfSpace(grid, E_star=skin.E_star, **numbers)
+    return ElasticHalfSpace(grid, E_star=skin.layer_E_star, thickness=skin.layer_thickness, poisson=skin.poisson,
+                            substrate_E_star=skin.E_star, substrate_poisson=skin.poisson, **numbers)
 
 
 def realisation_count(scene: Scene) -> int:
@@ -165,12 +172,105 @@ def confidence_interval(samples) -> tuple:
 
 
 # ---------------------------------------------------------------------------------------------------------
+# One task: a realisation at one voltage, every load
+# ---------------------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class PatchRecord:
+    """One realisation's patch at one (F_N, U), averaged over the rings: ``equivalent_gap`` d_eq,
+    ``ridge_equivalent_gap`` d_eq,R, ``mean_gap`` [m]; ``contact_fraction``; ``ridge_area_fractions`` A_R/A0
+    per coarse-graining length; ``electrostatic_pressure`` σ̄_el [Pa]; ``gap_slope`` (rms |∇g|, weighted by
+    (ε_a c + g)⁻²); ``converged`` (every ring); ``iterations`` and ``solves`` (summed over the rings, a cold
+    retry included); ``seconds`` of solving."""
+
+    equivalent_gap: float
+    ridge_equivalent_gap: float
+    mean_gap: float
+    contact_fraction: float
+    ridge_area_fractions: tuple
+    electrostatic_pressure: float
+    gap_slope: float
+    converged: bool
+    iterations: int
+    solves: int
+    seconds: float
+
+
+def _gap_slope(gap, weights, spacing) -> float:
+    """rms gap slope |∇g| weighted by ``weights`` (periodic central differences)."""
+    gx = (np.roll(gap, -1, 0) - np.roll(gap, 1, 0)) / (2 * spacing[0])
+    gy = (np.roll(gap, -1, 1) - np.roll(gap, 1, 1)) / (2 * spacing[1])
+    return float(np.sqrt(np.sum(weights * (gx ** 2 + gy ** 2)) / np.sum(weights)))
+
+
+def _patch_record(stack, voltage, results, lengths, spacing, solves, seconds) -> PatchRecord:
+    """Average the solved rings ``results`` of one patch over the apparent area (gaps in float64)."""
+    gaps = np.stack([np.asarray(res.gap, dtype=np.float64) for res in results])
+    d_eq = stack.equivalent_gap(gaps)
+    fractions = tuple(float(np.mean([ridge_area_fraction(np.asarray(res.contact), spacing[0], length)
+                                     for res in results])) for length in lengths)
+    # σ_el(d_eq,R) A_R = σ_el(d_eq) A0: (c + d_R/ε_a)² = (A_R/A0) (c + d_eq/ε_a)²
+    d_ridge = stack.eps_a * (np.sqrt(fractions[0]) * stack.electrical_thickness(d_eq) - stack.dielectric_offset)
+    offset = stack.eps_a * stack.dielectric_offset
+    return PatchRecord(
+        equivalent_gap=float(d_eq), ridge_equivalent_gap=max(float(d_ridge), 0.0), mean_gap=float(gaps.mean()),
+        contact_fraction=float(np.mean([res.contact_fraction for res in results])), ridge_area_fractions=fractions,
+        electrostatic_pressure=float(np.mean(stack.pressure(gaps, voltage))),
+        gap_slope=float(np.mean([_gap_slope(g, (offset + g) ** -2.0, spacing) for g in gaps])),
+        converged=all(bool(res.converged) for res in results), iterations=int(sum(res.iterations for res in results)),
+        solves=solves, seconds=seconds)
+
+
+def _rings(scene: Scene) -> int:
+    return scene.preset.rings if scene.fingerpad.model == "fingertip" else 1
+
+
+def _lengths(scene: Scene) -> tuple:
+    length = scene.ridge_area.coarse_graining
+    return (length, *(factor * length for factor in scene.ridge_area.sensitivity))
+
+
+def solve_chain(scene: Scene, realisation: int, voltage_index: int, threads: int | None = None) -> tuple:
+    """One task of the study: the patch of ``realisation`` at voltage ``loads.voltages[voltage_index]`` under
+    every load of the scene in order, each ring's solve warm-started from its result at the previous load (cold
+    with the preset's ``warm_start`` false; a warm start that fails is repeated cold). ``threads`` FFT threads
+    (default: ``roughcontact.fft.default_threads``). Returns one :class:`PatchRecord` per load; deterministic,
+    so the records do not depend on where the task runs."""
+    from .contact import solve_contact
+    from .interactions import ElectrostaticInteraction
+
+    stack = scene.screen.stack()
+    voltage = scene.loads.voltages[voltage_index]
+    law = ElectrostaticInteraction(stack, voltage=voltage) if voltage > 0 else None       # 0 V: the hard wall
+    heights, body = patch_surface(scene, realisation), patch_body(scene, threads=threads)
+    lengths, spacing = _lengths(scene), patch_grid(scene).spacing
+    warm_start = getattr(scene.preset, "warm_start", True)
+    latest = [None] * _rings(scene)                         # each ring's last result: the next load's x0
+    records = []
+    for force in scene.loads.normal_forces:
+        start, solves = time.perf_counter(), 0
+        for k, pressure in enumerate(apparent_contact(scene.fingerpad, force, len(latest))[1]):
+            x0 = latest[k] if warm_start else None
+            result = solve_contact(heights, body, mean_pressure=pressure, interaction=law,
+                                   tol=scene.preset.tolerance, x0=x0, warn=False)
+            solves += 1
+            if not result.converged and x0 is not None:          # a failed warm start: the solver's own start
+                result = solve_contact(heights, body, mean_pressure=pressure, interaction=law,
+                                       tol=scene.preset.tolerance, warn=False)
+                solves += 1
+            latest[k] = result
+        records.append(_patch_record(stack, voltage, latest, lengths, spacing, solves,
+                                     time.perf_counter() - start))
+    return tuple(records)
+
+
+# ---------------------------------------------------------------------------------------------------------
 # One (F_N, U) point
 # ---------------------------------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class PointResult:
     """The study at one (F_N [N], U [V]); tuples run over the realisations (``ridge_area_fractions`` over the
-    coarse-graining lengths first). SI units: areas m², gaps m, pressures Pa; ``seconds`` of solving."""
+    coarse-graining lengths first). SI units: areas m², gaps m, pressures Pa; ``seconds`` of solving, summed
+    over the realisations."""
 
     normal_force: float
     voltage: float
@@ -187,52 +287,18 @@ class PointResult:
     iterations: tuple
     seconds: float
 
-    def to_json(self) -> str:
-        return json.dumps(dataclasses.asdict(self))
 
-    @classmethod
-    def from_json(cls, text: str) -> PointResult:
-        data = json.loads(text)
-        return cls(**{key: _tuples(value) for key, value in data.items()})
+_PER_REALISATION = ("equivalent_gap", "ridge_equivalent_gap", "mean_gap", "contact_fraction",
+                    "electrostatic_pressure", "gap_slope", "converged", "iterations")
 
 
-def _tuples(value):
-    return tuple(_tuples(v) for v in value) if isinstance(value, list) else value
-
-
-def _gap_slope(gap, weights, spacing) -> float:
-    """rms gap slope |∇g| weighted by ``weights`` (periodic central differences)."""
-    gx = (np.roll(gap, -1, 0) - np.roll(gap, 1, 0)) / (2 * spacing[0])
-    gy = (np.roll(gap, -1, 1) - np.roll(gap, 1, 1)) / (2 * spacing[1])
-    return float(np.sqrt(np.sum(weights * (gx ** 2 + gy ** 2)) / np.sum(weights)))
-
-
-def _point_result(stack, force, voltage, area, pressures, solved, lengths, spacing, seconds):
-    """Average the solved patches (``solved[r][k]``: realisation r, ring k) over the apparent area."""
-    columns = {name: [] for name in ("equivalent_gap", "ridge_equivalent_gap", "mean_gap", "contact_fraction",
-                                     "electrostatic_pressure", "gap_slope", "converged", "iterations")}
-    ridge = [[] for _ in lengths]
-    offset = stack.eps_a * stack.dielectric_offset
-    for results in solved:
-        gaps = np.stack([np.asarray(res.gap) for res in results])
-        d_eq = stack.equivalent_gap(gaps)
-        fractions = [float(np.mean([ridge_area_fraction(np.asarray(res.contact), spacing[0], length)
-                                    for res in results])) for length in lengths]
-        for column, fraction in zip(ridge, fractions):
-            column.append(fraction)
-        # σ_el(d_eq,R) A_R = σ_el(d_eq) A0: (c + d_R/ε_a)² = (A_R/A0) (c + d_eq/ε_a)²
-        d_ridge = stack.eps_a * (np.sqrt(fractions[0]) * stack.electrical_thickness(d_eq) - stack.dielectric_offset)
-        columns["equivalent_gap"].append(d_eq)
-        columns["ridge_equivalent_gap"].append(max(float(d_ridge), 0.0))
-        columns["mean_gap"].append(float(gaps.mean()))
-        columns["contact_fraction"].append(float(np.mean([res.contact_fraction for res in results])))
-        columns["electrostatic_pressure"].append(float(np.mean(stack.pressure(gaps, voltage))))
-        columns["gap_slope"].append(float(np.mean([_gap_slope(g, (offset + g) ** -2.0, spacing) for g in gaps])))
-        columns["converged"].append(all(bool(res.converged) for res in results))
-        columns["iterations"].append(int(sum(res.iterations for res in results)))
+def _point_result(force, voltage, area, pressures, records) -> PointResult:
+    """The point from the :class:`PatchRecord` of each realisation (in realisation order)."""
     return PointResult(normal_force=force, voltage=voltage, apparent_area=float(area),
-                       nominal_pressures=tuple(pressures), ridge_area_fractions=tuple(map(tuple, ridge)),
-                       seconds=seconds, **{name: tuple(values) for name, values in columns.items()})
+                       nominal_pressures=tuple(pressures),
+                       ridge_area_fractions=tuple(zip(*(record.ridge_area_fractions for record in records))),
+                       seconds=sum(record.seconds for record in records),
+                       **{name: tuple(getattr(record, name) for record in records) for name in _PER_REALISATION})
 
 
 # ---------------------------------------------------------------------------------------------------------
@@ -246,15 +312,16 @@ class DirectoryInUse(ValueError):
     """A results directory that another running study is writing into."""
 
 
-class PointStore:
-    """Per-point results in ``directory/points/`` beside ``directory/scene.toml``; refuses another scene, and a
-    directory that a running process holds (``run.lock`` with its process id; a lock of a process that no
-    longer runs, e.g. one that was killed, is taken over). :meth:`release` frees the directory."""
+class TaskStore:
+    """The records of finished tasks in ``directory/tasks/`` (``R{r}_U{j}.json``, written atomically) beside
+    ``directory/scene.toml``; refuses another scene, and a directory that a running process holds (``run.lock``
+    with its process id; a lock of a process that no longer runs, e.g. one that was killed, is taken over).
+    :meth:`release` frees the directory."""
 
     def __init__(self, directory, scene: Scene):
         from .scene import load_scene
         self.directory = Path(directory)
-        self.points = self.directory / "points"
+        self.tasks = self.directory / "tasks"
         stored = self.directory / "scene.toml"
         if stored.exists():
             old = load_scene(stored)
@@ -266,7 +333,7 @@ class PointStore:
         else:
             self.directory.mkdir(exist_ok=True)
             _write_atomic(stored, scene.to_toml())
-        self.points.mkdir(exist_ok=True)
+        self.tasks.mkdir(exist_ok=True)
         self.lock = self.directory / "run.lock"
         try:
             descriptor = os.open(self.lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY)     # atomic: one run wins
@@ -287,15 +354,19 @@ class PointStore:
         """Free the directory for other runs."""
         self.lock.unlink(missing_ok=True)
 
-    def _path(self, i: int, j: int) -> Path:
-        return self.points / f"F{i:03d}_U{j:03d}.json"
+    def _path(self, realisation: int, voltage_index: int) -> Path:
+        return self.tasks / f"R{realisation:03d}_U{voltage_index:03d}.json"
 
-    def load(self, i: int, j: int) -> PointResult | None:
-        path = self._path(i, j)
-        return PointResult.from_json(path.read_text()) if path.exists() else None
+    def load(self, realisation: int, voltage_index: int) -> tuple | None:
+        """The records of task (r, j), or None if it has not finished."""
+        path = self._path(realisation, voltage_index)
+        if not path.exists():
+            return None
+        return tuple(PatchRecord(**{key: tuple(value) if isinstance(value, list) else value
+                                    for key, value in record.items()}) for record in json.loads(path.read_text()))
 
-    def save(self, i: int, j: int, point: PointResult) -> None:
-        _write_atomic(self._path(i, j), point.to_json())
+    def save(self, realisation: int, voltage_index: int, records: tuple) -> None:
+        _write_atomic(self._path(realisation, voltage_index), json.dumps([dataclasses.asdict(r) for r in records]))
 
 
 def _running(pid: int) -> bool:
@@ -315,13 +386,149 @@ def _write_atomic(path: Path, text: str) -> None:
 
 
 # ---------------------------------------------------------------------------------------------------------
+# Executors: in this process, a local process pool, a dask.distributed cluster
+# ---------------------------------------------------------------------------------------------------------
+class _Deferred:
+    """A task of :class:`_InProcess`: run when its result is asked for."""
+
+    def __init__(self, function, arguments):
+        self.function, self.arguments = function, arguments
+
+    def result(self):
+        return self.function(*self.arguments)
+
+
+class _InProcess:
+    """Tasks run one after the other in this process, as their results are consumed; FFT threads by
+    ``roughcontact.fft``'s default."""
+    threads = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exception):
+        return False
+
+    def submit(self, function, *arguments):
+        return _Deferred(function, arguments)
+
+    def as_completed(self, futures):
+        return iter(futures)
+
+
+def _start_worker(threads: int):
+    """Pool worker start: ``threads`` FFT threads unless ``$ROUGHCONTACT_FFT_THREADS`` says otherwise; Ctrl-C is
+    the client's to handle (it cancels the tasks and stops the workers)."""
+    import signal
+    from .fft import THREADS_VARIABLE
+    os.environ.setdefault(THREADS_VARIABLE, str(threads))
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+class _Pool:
+    """A local pool of ``workers`` spawned processes with ``fft_threads`` FFT threads each (the numba kernels
+    are serial); interrupted, it cancels the waiting tasks and terminates the workers."""
+    threads = None                                  # the worker's default, set by _start_worker
+
+    def __init__(self, workers: int, fft_threads: int):
+        self.workers, self.fft_threads = workers, fft_threads
+
+    def __enter__(self):
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor
+        if "forkserver" in multiprocessing.get_all_start_methods():      # workers forked from a loaded server
+            context = multiprocessing.get_context("forkserver")
+            context.set_forkserver_preload(["roughcontact.study", "roughcontact.contact"])
+        else:
+            context = multiprocessing.get_context("spawn")
+        self.executor = ProcessPoolExecutor(self.workers, mp_context=context,
+                                            initializer=_start_worker, initargs=(self.fft_threads,))
+        return self
+
+    def __exit__(self, kind, error, traceback):
+        if kind is None:
+            self.executor.shutdown()
+            return False
+        processes = list(self.executor._processes.values())     # (no public way to stop running tasks before 3.14)
+        self.executor.shutdown(wait=False, cancel_futures=True)
+        for process in processes:
+            process.terminate()
+        for process in processes:
+            process.join()
+        return False
+
+    def submit(self, function, *arguments):
+        return self.executor.submit(function, *arguments)
+
+    def as_completed(self, futures):
+        from concurrent.futures import as_completed
+        return as_completed(futures)
+
+
+class _Dask:
+    """The dask.distributed scheduler at ``address``: one FFT thread per task (a worker runs one task per
+    thread). The scheduler reruns the tasks of a worker that is lost (up to its ``allowed-failures``);
+    interrupted, the client cancels the tasks it submitted."""
+    threads = 1
+
+    def __init__(self, address: str):
+        try:
+            import distributed
+        except ImportError:
+            raise ImportError("running on a dask cluster needs dask.distributed: pip install 'roughcontact[parallel]'"
+                              ) from None
+        self.distributed, self.address, self.futures = distributed, address, []
+
+    def __enter__(self):
+        self.client = self.distributed.Client(self.address)
+        return self
+
+    def __exit__(self, kind, error, traceback):
+        if kind is not None:
+            self.client.cancel(self.futures)
+        self.client.close()
+        return False
+
+    def submit(self, function, *arguments):
+        future = self.client.submit(function, *arguments)        # pure: a rerun gives the same records
+        self.futures.append(future)
+        return future
+
+    def as_completed(self, futures):
+        return self.distributed.as_completed(futures)
+
+
+def _check_executor(workers, dask) -> None:
+    """Refuse a bad ``workers`` or both executors (see :func:`run_study`), and ``dask`` without the extra."""
+    from surfaces.validation import check_integer
+    if workers is not None:
+        check_integer("workers", workers, low=1)
+    if dask is not None:
+        if workers is not None:
+            raise ValueError(f"workers = {workers!r} with dask = {dask!r}: the cluster has its own workers; give "
+                             "one of the two")
+        _Dask(dask)
+
+
+def _executor(workers, dask, tasks: int):
+    """The executor of ``tasks`` tasks (see :func:`run_study`)."""
+    if dask is not None:
+        return _Dask(dask)
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+    workers = min(cores, tasks) if workers is None else workers
+    if workers == 1 or tasks <= 1:
+        return _InProcess()
+    return _Pool(workers, max(1, cores // workers))
+
+
+# ---------------------------------------------------------------------------------------------------------
 # The sweep
 # ---------------------------------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class StudyResult:
     """All points of a study; ``points[i][j]`` at ``normal_forces[i]``, ``voltages[j]``; ``coarse_graining``
-    the A_R closing diameters [m] (the scene's first); ``computed`` points solved in this run and ``solves``
-    the contact solves they took; ``short_cutoff`` the micro-roughness cut-off in use [m]."""
+    the A_R closing diameters [m] (the scene's first); ``computed`` points with a task solved in this run and
+    ``solves`` the contact solves of this run; ``short_cutoff`` the micro-roughness cut-off in use [m]."""
 
     scene: Scene
     points: tuple
@@ -356,76 +563,52 @@ class StudyResult:
         return self.array("ridge_area_fractions")[:, :, 0, :]
 
 
-def _lengths(scene: Scene) -> tuple:
-    length = scene.ridge_area.coarse_graining
-    return (length, *(factor * length for factor in scene.ridge_area.sensitivity))
+def run_study(scene: Scene, directory=None, progress: bool = False, workers: int | None = None,
+              dask: str | None = None) -> StudyResult:
+    """Run (or resume, with a ``directory``) the study of ``scene``; ``progress`` shows a tqdm bar of points.
 
-
-def run_study(scene: Scene, directory=None, progress: bool = False) -> StudyResult:
-    """Run (or resume, with a ``directory``) the study of ``scene``; ``progress`` shows a tqdm bar."""
-    from .contact import solve_contact
-    from .interactions import ElectrostaticInteraction
-
-    store = None if directory is None else PointStore(directory, scene)
-    stack = scene.screen.stack()
-    grid = patch_grid(scene)
-    lengths = _lengths(scene)
-    cutoff = resolved_short_cutoff(scene) if scene.roughness.enabled else float("nan")
+    The tasks (:func:`solve_chain`, one per realisation and voltage) run in a local pool of ``workers``
+    processes (default: the cores this process may run on, at most one per task), each task with cores //
+    workers FFT threads; ``workers=1`` runs them in this process. ``dask``, the address of a dask.distributed
+    scheduler (``"tcp://host:8786"``), runs them on that cluster instead (one FFT thread per task; needs
+    ``roughcontact[parallel]``). Every executor gives the same records for the same FFT plans and threads.
+    Interrupted (Ctrl-C), the waiting and running tasks are cancelled; finished ones stay in ``directory``.
+    """
+    _check_executor(workers, dask)
+    store = None if directory is None else TaskStore(directory, scene)
     forces, voltages = scene.loads.normal_forces, scene.loads.voltages
-    rings = scene.preset.rings if scene.fingerpad.model == "fingertip" else 1
     count = realisation_count(scene)
-    order = [(i, j) for i in range(len(forces)) for j in range(len(voltages))]
-    points = {}
+    cutoff = resolved_short_cutoff(scene) if scene.roughness.enabled else float("nan")
+    order = [(r, j) for j in range(len(voltages)) for r in range(count)]
+    records = {}
     if store is not None:
-        points = {(i, j): point for i, j in order if (point := store.load(i, j)) is not None}
-    todo = [key for key in order if key not in points]
-    heights, body = {}, None
-    along_load = {}       # (realisation, ring, voltage) -> the result at the previous load
-    along_voltage = {}    # (realisation, ring, load index) -> the result at the previous voltage of that load
-    solves = 0
+        records = {key: done for key in order if (done := store.load(*key)) is not None}
+    todo = [key for key in order if key not in records]
+    executor = _executor(workers, dask, len(todo)) if todo else _InProcess()
     bar = None
     if progress and todo:
         from tqdm import tqdm
-        bar = tqdm(total=len(todo), desc="roughcontact run", unit="point")
+        bar = tqdm(total=len(todo) * len(forces) / count, desc="roughcontact run", unit="point",
+                   bar_format="{l_bar}{bar}| {n:.4g}/{total:.4g} [{elapsed}<{remaining}]")
     try:
-        for i, j in todo:
-            force, voltage = forces[i], voltages[j]
-            area, pressures = apparent_contact(scene.fingerpad, force, rings)
-            start = time.perf_counter()
-            if body is None:
-                body = patch_body(scene)
-            law = ElectrostaticInteraction(stack, voltage=voltage) if voltage > 0 else None   # 0 V: the hard wall
-            solved = []
-            for r in range(count):
-                if r not in heights:
-                    heights[r] = patch_surface(scene, r)
-                results = []
-                for k, pressure in enumerate(pressures):
-                    x0 = along_load.get((r, k, voltage)) or along_voltage.get((r, k, i))
-                    result = solve_contact(heights[r], body, mean_pressure=pressure, interaction=law,
-                                           tol=scene.preset.tolerance, x0=x0, warn=False)
-                    solves += 1
-                    if not result.converged and x0 is not None:    # a failed warm start: the solver's own start
-                        result = solve_contact(heights[r], body, mean_pressure=pressure, interaction=law,
-                                               tol=scene.preset.tolerance, warn=False)
-                        solves += 1
-                    along_load[(r, k, voltage)] = along_voltage[(r, k, i)] = result
-                    results.append(result)
-                solved.append(results)
-            point = _point_result(stack, force, voltage, area, pressures, solved, lengths, grid.spacing,
-                                  time.perf_counter() - start)
-            points[(i, j)] = point
-            for key in [key for key in along_voltage if key[2] < i]:      # earlier loads are not revisited
-                del along_voltage[key]
-            if store is not None:
-                store.save(i, j, point)
-            if bar is not None:
-                bar.update()
+        with executor:
+            futures = {executor.submit(solve_chain, scene, r, j, executor.threads): (r, j) for r, j in todo}
+            for future in executor.as_completed(list(futures)):
+                key = futures[future]
+                records[key] = future.result()
+                if store is not None:
+                    store.save(*key, records[key])
+                if bar is not None:
+                    bar.update(len(forces) / count)
     finally:
         if bar is not None:
             bar.close()
         if store is not None:
             store.release()
-    table = tuple(tuple(points[(i, j)] for j in range(len(voltages))) for i in range(len(forces)))
-    return StudyResult(scene=scene, points=table, coarse_graining=lengths, short_cutoff=cutoff,
-                       computed=len(todo), solves=solves)
+    rings = _rings(scene)
+    table = tuple(tuple(_point_result(force, voltage, *apparent_contact(scene.fingerpad, force, rings),
+                                      [records[(r, j)][i] for r in range(count)])
+                        for j, voltage in enumerate(voltages)) for i, force in enumerate(forces))
+    return StudyResult(scene=scene, points=table, coarse_graining=_lengths(scene), short_cutoff=cutoff,
+                       computed=len({j for _, j in todo}) * len(forces),
+                       solves=sum(record.solves for key in todo for record in records[key]))

@@ -1,0 +1,123 @@
+"""The study's tasks run in this process, in a local process pool and on a dask.distributed cluster with the same
+records, bit for bit (one FFT thread and FFTW_ESTIMATE plans everywhere, tests/conftest.py); an interrupted run
+resumes with the missing tasks only, and a run that loses a worker completes with the same numbers."""
+import dataclasses
+import multiprocessing
+import os
+import signal
+import sys
+import threading
+import time
+
+import pytest
+
+from roughcontact.scene import load_scene
+from roughcontact.study import TaskStore, run_study, solve_chain
+from study_scenes import TINY
+
+
+def numbers(result):
+    """Every number of a study but the solve times."""
+    return [[dataclasses.replace(point, seconds=0.0) for point in row] for row in result.points]
+
+
+def untimed(records):
+    return [dataclasses.replace(record, seconds=0.0) for record in records]
+
+
+@pytest.fixture(scope="module")
+def tiny():
+    return load_scene(text=TINY, preset="draft")
+
+
+@pytest.fixture(scope="module")
+def serial(tiny):
+    return run_study(tiny, workers=1)
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as local:
+        yield local
+
+
+def test_local_pool_stores_the_in_process_records(tiny, serial, tmp_path):
+    pooled = run_study(tiny, tmp_path, workers=2)
+    assert numbers(pooled) == numbers(serial)
+    assert pooled.solves == serial.solves == 8 and pooled.computed == 4
+    store = TaskStore(tmp_path, tiny)
+    for r in range(2):
+        for j in range(2):                                  # the JSON round trip is exact
+            assert untimed(store.load(r, j)) == untimed(solve_chain(tiny, r, j))
+    store.release()
+
+
+def test_interrupted_pool_keeps_finished_tasks_and_resume_solves_the_rest(tiny, serial, tmp_path, monkeypatch):
+    save = TaskStore.save
+
+    def interrupted(self, *args):
+        save(self, *args)
+        raise KeyboardInterrupt                             # Ctrl-C once the first task is stored
+
+    monkeypatch.setattr(TaskStore, "save", interrupted)
+    running = set(multiprocessing.active_children())
+    with pytest.raises(KeyboardInterrupt):
+        run_study(tiny, tmp_path, workers=2)
+    assert set(multiprocessing.active_children()) <= running          # the workers were stopped
+    assert not (tmp_path / "run.lock").exists()
+    (done,) = [path.stem for path in (tmp_path / "tasks").glob("*.json")]
+    monkeypatch.undo()
+    store = TaskStore(tmp_path, tiny)
+    first = store.load(int(done[1:4]), int(done[6:9]))
+    store.release()
+    resumed = run_study(tiny, tmp_path, workers=2)
+    assert resumed.solves == 8 - sum(record.solves for record in first)      # 3 tasks of 2 solves
+    assert resumed.computed == 4                            # the other realisation of each point was missing
+    assert numbers(resumed) == numbers(serial)
+
+
+def test_local_cluster_gives_the_in_process_records(tiny, serial, cluster):
+    on_cluster = run_study(tiny, dask=cluster.scheduler_address)
+    assert numbers(on_cluster) == numbers(serial) and on_cluster.solves == 8
+
+
+def test_a_worker_lost_mid_run_costs_only_its_tasks(cluster, tmp_path):
+    import distributed
+    scene = load_scene(text=TINY.replace("realisations = 2", "realisations = 6"), preset="draft")
+    expected = run_study(scene, workers=1)
+    killed = []
+
+    def kill_a_busy_worker():
+        with distributed.Client(cluster.scheduler_address) as client:
+            while not any((tmp_path / "tasks").glob("*.json")):               # the first result arrived
+                time.sleep(0.005)
+            busy = [address for address, keys in client.processing().items() if keys]
+            pid = client.run(os.getpid, workers=busy[:1])[busy[0]]
+            os.kill(pid, signal.SIGKILL)
+            killed.append(pid)
+
+    killer = threading.Thread(target=kill_a_busy_worker)
+    killer.start()
+    result = run_study(scene, tmp_path, dask=cluster.scheduler_address)
+    killer.join()
+    assert killed                                           # a worker with a task in flight died
+    assert numbers(result) == numbers(expected) and result.computed == 4
+    assert len(list((tmp_path / "tasks").glob("*.json"))) == 12
+
+
+def test_dask_without_the_extra_names_it(tiny, tmp_path, monkeypatch):
+    monkeypatch.setitem(sys.modules, "distributed", None)                  # import distributed fails
+    with pytest.raises(ImportError, match=r"pip install 'roughcontact\[parallel\]'"):
+        run_study(tiny, tmp_path / "out", dask="tcp://127.0.0.1:8786")
+    assert not (tmp_path / "out").exists()                                 # refused before anything is written
+
+
+@pytest.mark.parametrize("workers, dask, message", [
+    (0, None, r"workers must be an integer in \[1, inf\], got 0"),
+    (2.0, None, r"workers must be an integer"),
+    (2, "tcp://127.0.0.1:8786", r"workers = 2 with dask = 'tcp://127.0.0.1:8786'"),
+])
+def test_bad_executor_choices_are_refused(tiny, workers, dask, message):
+    with pytest.raises(ValueError, match=message):
+        run_study(tiny, workers=workers, dask=dask)
