@@ -31,6 +31,12 @@ else:                                    # pragma: no cover - exercised on Pytho
     import tomli as tomllib
 
 PRESETS = ("draft", "standard", "reference")
+#: The preset name of a setting chosen from the measured table for a target error (``roughcontact.presets``);
+#: a scene at it carries the chosen setting as ``[presets.auto]``.
+AUTO = "auto"
+#: Floating-point types of the solves (``Preset.dtype``) and the scale paths (``Preset.scales``).
+DTYPES = ("float64", "float32")
+SCALES = ("resolved", "coupled")
 
 #: The default scene: every value with its source (docs/references.md sections) or marked as an estimate.
 DEFAULT_SCENE_TOML = """\
@@ -99,8 +105,11 @@ sensitivity = [0.5, 0.75, 1.25]
 preset = "standard"
 seed = 0                       # realisation r uses rng seed + r
 
-# Accuracy presets: patch side = periods ridge periods on grid x grid pixels; realisations of the roughness;
-# solver tolerance; rings of equal area over the apparent contact (fingertip model only).
+# Accuracy presets (measured errors and costs: docs/presets.md): patch side = periods ridge periods on
+# grid x grid pixels; realisations of the roughness; solver tolerance; rings of equal area over the apparent
+# contact (fingertip model only); pixels_per_cutoff: the shortest roughness wavelength in pixels; dtype of the
+# solves ("float64" or "float32"); warm_start: each solve starts from its neighbour along load (true) or cold;
+# scales: "resolved" (ridges and roughness in one grid) or "coupled" (roughness reduced to an interface law).
 [presets.draft]
 grid = 64
 periods = 1
@@ -108,6 +117,9 @@ realisations = 3
 tolerance = 1e-06
 rings = 2
 pixels_per_cutoff = 4.0
+dtype = "float64"
+warm_start = true
+scales = "resolved"
 
 [presets.standard]
 grid = 256
@@ -116,6 +128,9 @@ realisations = 8
 tolerance = 1e-07
 rings = 3
 pixels_per_cutoff = 4.0
+dtype = "float64"
+warm_start = true
+scales = "resolved"
 
 [presets.reference]
 grid = 512
@@ -124,6 +139,9 @@ realisations = 8
 tolerance = 1e-08
 rings = 4
 pixels_per_cutoff = 4.0
+dtype = "float64"
+warm_start = true
+scales = "resolved"
 """
 
 
@@ -302,16 +320,19 @@ class RidgeArea(_Section):
 
 @dataclass(frozen=True)
 class Study(_Section):
-    """The preset in use and the base rng ``seed`` (realisation r uses seed + r)."""
+    """The preset in use (a named one, or "auto": the ``[presets.auto]`` setting chosen for a target error)
+    and the base rng ``seed`` (realisation r uses seed + r)."""
     section = "study"
-    preset: str = _field(_Choice(PRESETS))
+    preset: str = _field(_Choice((*PRESETS, AUTO)))
     seed: int = _field(_Integer(0, 2 ** 31 - 1))
 
 
 @dataclass(frozen=True)
 class Preset(_Section):
-    """Accuracy: ``grid`` pixels per side of a patch of ``periods`` ridge periods, ``realisations``, solver
-    ``tolerance``, ``rings`` over the apparent area (fingertip), ``pixels_per_cutoff`` at the short cut-off."""
+    """Accuracy against cost (``docs/presets.md``): ``grid`` pixels per side of a patch of ``periods`` ridge
+    periods, ``realisations``, solver ``tolerance``, ``rings`` over the apparent area (fingertip),
+    ``pixels_per_cutoff`` at the short cut-off, ``dtype`` of the solves, ``warm_start`` (continuation along
+    load, else cold solves) and ``scales`` ("resolved" in one grid or "coupled" through an interface law)."""
     section = "presets.*"
     grid: int = _field(_Integer(8, 4096))
     periods: int = _field(_Integer(1, 64))
@@ -319,6 +340,9 @@ class Preset(_Section):
     tolerance: float = _field(_Real(1e-14, 0.1))
     rings: int = _field(_Integer(1, 64))
     pixels_per_cutoff: float = _field(_Real(2.0, 64.0))
+    dtype: str = _field(_Choice(DTYPES))
+    warm_start: bool = _field(_Boolean())
+    scales: str = _field(_Choice(SCALES))
 
 
 SECTIONS = {"fingerpad": Fingerpad, "ridges": Ridges, "roughness": Roughness, "skin": Skin, "screen": Screen,
@@ -344,8 +368,17 @@ class Scene:
         return self.presets[self.study.preset]
 
     def with_preset(self, name: str) -> Scene:
-        """The same scene at preset ``name``."""
+        """The same scene at preset ``name`` (one of its ``presets``)."""
+        if name not in self.presets:
+            raise ValueError(f"preset = {name!r} is not one of the scene's presets: {', '.join(self.presets)}"
+                             + (" (choose the auto setting with roughcontact.presets.auto_scene)" if name == AUTO else ""))
         return dataclasses.replace(self, study=dataclasses.replace(self.study, preset=name))
+
+    def with_setting(self, preset: Preset) -> Scene:
+        """The same scene at the setting ``preset``, held as ``presets.auto`` (so that ``scene.toml`` and the
+        results' attributes record it) and selected."""
+        return dataclasses.replace(self, presets={**self.presets, AUTO: preset},
+                                   study=dataclasses.replace(self.study, preset=AUTO))
 
     def to_dict(self) -> dict:
         """Plain nested dict of the scene (tuples as lists), as in the TOML file."""
@@ -467,12 +500,22 @@ def load_scene(path=None, *, text: str | None = None, preset: str | None = None)
     sections = {name: _build(cls, (name,), _DEFAULTS[name], given.get(name, {}), origin, text)
                 for name, cls in SECTIONS.items()}
     presets = {}
-    for name, table in given.get("presets", {}).items():
-        if name not in PRESETS or not isinstance(table, dict):
+    tables = given.get("presets", {})
+    for name, table in tables.items():
+        if name not in (*PRESETS, AUTO) or not isinstance(table, dict):
             raise _error(origin, text, ("presets", name), None, "unknown preset or not a table",
-                         "[presets.NAME] with NAME " + _Choice(PRESETS).valid)
+                         "[presets.NAME] with NAME " + _Choice((*PRESETS, AUTO)).valid)
     for name in PRESETS:
-        presets[name] = _build(Preset, ("presets", name), _DEFAULTS["presets"][name],
-                               given.get("presets", {}).get(name, {}), origin, text)
+        presets[name] = _build(Preset, ("presets", name), _DEFAULTS["presets"][name], tables.get(name, {}),
+                               origin, text)
+    if AUTO in tables:                              # a chosen setting has no defaults: every key is given
+        missing = [item.name for item in dataclasses.fields(Preset) if item.name not in tables[AUTO]]
+        if missing:
+            raise _error(origin, text, ("presets", AUTO), None, "missing keys " + ", ".join(missing),
+                         "every key of a preset")
+        presets[AUTO] = _build(Preset, ("presets", AUTO), {}, tables[AUTO], origin, text)
+    elif sections["study"].preset == AUTO:
+        raise _error(origin, text, ("study",), "preset", 'study.preset = "auto" without a [presets.auto] table',
+                     "a named preset, or [presets.auto] (roughcontact run --preset auto --target-error chooses it)")
     scene = Scene(**sections, presets=presets)
-    return scene if preset is None else scene.with_preset(_Choice(PRESETS)("preset", preset))
+    return scene if preset is None else scene.with_preset(preset)

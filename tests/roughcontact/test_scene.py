@@ -39,12 +39,35 @@ def test_partial_scene_keeps_the_other_defaults_and_preset_override():
     ("[roughness]\nenabled = 1\n", "roughness.enabled", 2, "true or false"),
     ("\n[ridgez]\nperiod = 1\n", "ridgez", 2, "fingerpad, ridges"),
     ("[roughness]\nshort_cutoff = 1e-4\n", "roughness.short_cutoff", 2, "below roughness.long_cutoff"),
+    ("[presets.draft]\ndtype = \"float16\"\n", "presets.draft.dtype", 2, '"float64", "float32"'),
+    ("[presets.standard]\nwarm_start = \"yes\"\n", "presets.standard.warm_start", 2, "true or false"),
+    ("[presets.reference]\nscales = \"mixed\"\n", "presets.reference.scales", 2, '"resolved", "coupled"'),
+    ("\n[study]\npreset = \"auto\"\n", "study.preset", 3, "[presets.auto]"),
+    ("[presets.auto]\ngrid = 64\n", "presets.auto", 1, "missing keys periods, realisations"),
 ])
 def test_scene_errors_name_key_line_and_valid_values(text, key, line, valid):
     with pytest.raises(ValueError) as error:
         load_scene(text=text)
     message = str(error.value)
     assert f"scene key {key}" in message and f"line {line}:" in message and valid in message, message
+
+
+def test_preset_knobs_default_to_float64_warm_resolved():
+    for preset in load_scene().presets.values():
+        assert (preset.dtype, preset.warm_start, preset.scales) == ("float64", True, "resolved")
+
+
+def test_a_chosen_setting_is_held_as_presets_auto_and_round_trips():
+    scene = load_scene()
+    setting = dataclasses.replace(scene.presets["standard"], grid=128, realisations=3, dtype="float32",
+                                  warm_start=False)
+    auto = scene.with_setting(setting)
+    assert auto.study.preset == "auto" and auto.preset == setting and auto.presets["draft"] == scene.presets["draft"]
+    assert load_scene(text=auto.to_toml()) == auto                    # scene.toml of a results directory
+    assert auto.flat()["presets.auto.grid"] == 128                    # the results' attributes
+    assert load_scene(text=auto.to_toml(), preset="draft").preset == scene.presets["draft"]
+    with pytest.raises(ValueError, match="preset = 'auto' is not one of the scene.s presets.*presets.auto_scene"):
+        load_scene(preset="auto")
 
 
 def test_invalid_toml_and_missing_file(tmp_path):
