@@ -10,9 +10,12 @@ Fourier multipliers Φ(q) [m/Pa] with ũ(q) = Φ(q) p̃(q) (u positive into the 
   u(x, y) = 1/(π E*) Σ± F(x ± dx/2, y ± dy/2), F(X, Y) = X asinh(Y/|X|) + Y asinh(X/|Y|)
   (DC-FFT, Liu, Wang & Liu 2000, Wear 243:101; Hockney 1970) — the linear, not circular, convolution;
 * a layer of thickness t on a rigid base or on a softer half-space: Φ(q) from :mod:`roughcontact.layered`.
-  On a rigid base the uniform (q = 0) mode is the uniaxial-strain compression t/M (see
+  Periodic: on a rigid base the uniform (q = 0) mode is the uniaxial-strain compression t/M (see
   :attr:`ElasticHalfSpace.uniform_compliance`), so <u> = <p> t/M; on a half-space it is set to 0. A layer much
   thicker than the window is the half-space (docs/layered.md, "A layer much thicker than the window").
+  Free surface: Love's coefficients of the layer's half-space plus the real-space correction of
+  :func:`roughcontact.layered.free_surface_correction` (docs/layered.md, "The free-surface kernel"), zero-padded
+  like the half-space (wider, with a tapered continuation, where 2n would not give a positive multiplier).
 
 Periodicity comes from the grid and is never changed: a 2-D grid must be periodic on both axes or on none
 (mixed periodicity raises ``ValueError``); a profile (shape ``(n, 1)``, plane strain) must be periodic
@@ -38,21 +41,35 @@ BOTTOMS = ("bonded", "frictionless")
 _COLUMN_LIMIT = 1.0 / np.sqrt(np.finfo(np.float64).eps)
 
 
-def love_pixel_displacement(x, y, dx, dy, E_star):
-    """Displacement u(x, y) [m per Pa] of a half-space under unit pressure on the pixel |x'| ≤ dx/2, |y'| ≤ dy/2.
+def pixel_potential(x, y, dx, dy, height=0.0):
+    """∫∫ dA'/√(|r − r'|² + c²) [m] over the pixel |x'| ≤ dx/2, |y'| ≤ dy/2, at (x, y) [m] and height c ≥ 0 [m].
 
-    Love (1929): u = 1/(π E*) ∫∫ dA'/|r − r'|, evaluated in closed form. ``x``, ``y`` [m] broadcast.
+    Closed form: Σ± G(x ± dx/2, y ± dy/2) with G(X, Y) = X asinh(Y/√(X² + c²)) + Y asinh(X/√(Y² + c²))
+    − c atan(XY/(c √(X² + Y² + c²))), whose ∂²G/∂X∂Y is the integrand (the X ln√(X² + c²) and Y ln√(Y² + c²)
+    terms of the antiderivative cancel in the sum). ``x``, ``y`` broadcast; overflow-free for any finite c.
     """
     x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    c = float(height)
 
-    def antiderivative(X, Y):   # ∂²F/∂X∂Y = 1/√(X² + Y²); the X ln|X|, Y ln|Y| terms cancel in the sum
-        ax, ay = np.abs(X), np.abs(Y)
-        return (np.where(ax > 0, X * np.arcsinh(Y / np.where(ax > 0, ax, 1.0)), 0.0)
-                + np.where(ay > 0, Y * np.arcsinh(X / np.where(ay > 0, ay, 1.0)), 0.0))
+    def antiderivative(X, Y):
+        rx, ry = np.hypot(X, c), np.hypot(Y, c)
+        value = (np.where(rx > 0, X * np.arcsinh(Y / np.where(rx > 0, rx, 1.0)), 0.0)
+                 + np.where(ry > 0, Y * np.arcsinh(X / np.where(ry > 0, ry, 1.0)), 0.0))
+        if c > 0:
+            value = value - c * np.arctan2(X * Y / c, np.hypot(np.hypot(X, Y), c))
+        return value
 
     a, b = dx / 2, dy / 2
     return (antiderivative(x + a, y + b) - antiderivative(x + a, y - b)
-            - antiderivative(x - a, y + b) + antiderivative(x - a, y - b)) / (np.pi * E_star)
+            - antiderivative(x - a, y + b) + antiderivative(x - a, y - b))
+
+
+def love_pixel_displacement(x, y, dx, dy, E_star):
+    """Displacement u(x, y) [m per Pa] of a half-space under unit pressure on the pixel |x'| ≤ dx/2, |y'| ≤ dy/2.
+
+    Love (1929): u = 1/(π E*) ∫∫ dA'/|r − r'| (:func:`pixel_potential` at height 0). ``x``, ``y`` [m] broadcast.
+    """
+    return pixel_potential(x, y, dx, dy) / (np.pi * E_star)
 
 
 @njit(cache=True)
@@ -104,13 +121,24 @@ def _pressure_work(pressure, displacement):
     return total
 
 
+def _taper(n, extra) -> np.ndarray:
+    """Weights of the offsets 0 … n + extra pixels: 1 up to n − 1 (the window's) and, with ``extra`` > 0, a raised
+    cosine beyond that reaches 0 at n + extra (the free-surface layered kernel's continuation into a wider
+    padding)."""
+    if extra == 0:
+        return np.ones(n + 1)
+    s = np.clip((np.arange(n + extra + 1) - (n - 1)) / (extra + 1), 0.0, 1.0)
+    return 0.5 * (1.0 + np.cos(np.pi * s))
+
+
 class ElasticHalfSpace:
     """Surface Green's function of the elastic body on ``grid``, applied by FFT on pre-planned buffers.
 
     Parameters
     ----------
     grid : surfaces.Grid
-        Surface grid; its periodicity selects periodic (both axes) or free-surface (neither) convolution.
+        Surface grid; its periodicity selects periodic (both axes) or free-surface (neither) convolution, for the
+        half-space and every layered body.
     E_star : float
         Contact modulus E* = E/(1 − ν²) [Pa] of the half-space, or of the layer when ``thickness`` is set.
     thickness : float, optional
@@ -144,17 +172,19 @@ class ElasticHalfSpace:
         self.E_star = check_positive("E_star", E_star)
         self.periodic = self._check_periodicity(grid)
         self.layer = self._check_layer(thickness, poisson, bottom, substrate_E_star, substrate_poisson)
-        if self.layer is not None and not self.periodic:
-            raise ValueError("a layered body needs a periodic grid; the free-surface (non-periodic) layered "
-                             "kernel is not implemented (got grid.periodic = "
-                             f"{grid.periodic})")
         nx, ny = grid.shape
-        self.transform_shape = (nx, ny) if self.periodic else (2 * nx, 2 * ny)
+        layered_spectrum = None
+        if self.periodic:
+            self.transform_shape = (nx, ny)
+        elif self.layer is None:
+            self.transform_shape = (2 * nx, 2 * ny)
+        else:
+            layered_spectrum, self.transform_shape = self._layered_free_surface_spectrum()
         self._transform_size = self.transform_shape[0] * self.transform_shape[1]   # N of the FFT pair's 1/N
         self._fft = make_backend(backend, self.transform_shape, dtype, threads, planner_effort)
         self.dtype = self._fft.dtype
-        self._padded = None if self.periodic else self._fft.work_array()   # free surface: 2nx × 2ny
-        self._multiplier = self._fourier_multiplier().astype(self.dtype, copy=False)
+        self._padded = None if self.periodic else self._fft.work_array()   # free surface: the padded grid
+        self._multiplier = self._fourier_multiplier(layered_spectrum).astype(self.dtype, copy=False)
         self._multiplier.flags.writeable = False
         self._pending = False              # a quadratic_form's K p awaits its backward transform
 
@@ -188,8 +218,9 @@ class ElasticHalfSpace:
                          substrate_poisson=check_real("substrate_poisson", substrate_poisson, low=-1.0,
                                                       high=0.5, low_open=True))
         else:
-            layer.update(kind="layer on rigid base", bottom=bottom,
-                         uniform_mode=self._uniform_mode(layer["thickness"], layer["poisson"], bottom))
+            layer.update(kind="layer on rigid base", bottom=bottom)
+            if self.periodic:
+                layer["uniform_mode"] = self._uniform_mode(layer["thickness"], layer["poisson"], bottom)
         return layer
 
     def _uniform_mode(self, thickness, poisson, bottom) -> str:
@@ -215,8 +246,11 @@ class ElasticHalfSpace:
         return layered.layer_on_half_space_compliance(q, self.E_star, layer["poisson"], layer["thickness"],
                                                       layer["substrate_E_star"], layer["substrate_poisson"])
 
-    def _fourier_multiplier(self) -> np.ndarray:
-        """Φ on the half spectrum of the transform grid, including the 1/N of the unnormalised FFT pair."""
+    def _fourier_multiplier(self, layered_spectrum=None) -> np.ndarray:
+        """Φ on the half spectrum of the transform grid, including the 1/N of the unnormalised FFT pair
+        (``layered_spectrum``: the free-surface layered body's, made before the FFT plan)."""
+        if layered_spectrum is not None:
+            return layered_spectrum / self._transform_size
         if not self.periodic:
             return self._free_surface_multiplier() / self._transform_size
         qx, qy = self.grid.wavevectors(real=True)
@@ -230,7 +264,7 @@ class ElasticHalfSpace:
 
     @property
     def uniform_compliance(self) -> float:
-        """⟨u⟩/⟨p⟩ [m/Pa] of a periodic layer on a rigid base: the uniaxial-strain column t/M,
+        """⟨u⟩/⟨p⟩ [m/Pa] of a periodic layer on a rigid base (0 on a free surface, which has no separate mode): the uniaxial-strain column t/M,
         M = E*(1 − ν)²/(1 − 2ν), whatever the bottom condition (by symmetry a uniform load on a laterally
         periodic layer moves nothing sideways; it is not the q → 0 limit of the frictionless Φ(q), t/E*, for
         which the layer can spread over a long wavelength). 0 for the half-space and the layer on a
@@ -265,6 +299,40 @@ class ElasticHalfSpace:
             row[:] = love_pixel_displacement(offset, offsets_y, dx, dy, self.E_star)
         self._fft.forward(self._padded)
         return self._fft.spectrum.real.astype(np.float64)   # coefficients are even in x and y → real spectrum
+
+    def _layered_free_surface_spectrum(self) -> tuple:
+        """``(spectrum, transform_shape)`` of a layered body on a free surface (``docs/layered.md``, "The
+        free-surface kernel"): Love's coefficients of the layer's half-space plus
+        :func:`roughcontact.layered.free_surface_correction` (b = 2/E0* − 2/E* on a half-space E0*, −2/E* on a
+        rigid base), laid out for the linear convolution and transformed in float64. The window needs the offsets
+        up to n − 1 pixels only; if the 2n padding's spectrum is not positive (a stiff layer far stiffer than its
+        substrate on a coarse grid: the truncated 1/r tail of the substrate's response outweighs the layer's small
+        high-q compliance), the padding grows to 3n, then 4n, with the kernel continued beyond n − 1 pixels and
+        tapered to zero by a raised cosine, until it is; ``ValueError`` if it never is."""
+        from scipy import fft
+
+        from .layered import free_surface_correction
+        on_substrate = self.layer["kind"] == "layer on half-space"
+        slope = 2.0 / self.layer["substrate_E_star"] - 2.0 / self.E_star if on_substrate else -2.0 / self.E_star
+        (nx, ny), (dx, dy) = self.grid.shape, self.grid.spacing
+        coefficients = None
+        for extension in (0, 2, 4):                            # extra offsets: 0, n/2, n pixels per axis
+            mx, my = extension * nx // 4, extension * ny // 4
+            if coefficients is None or coefficients.shape[0] < nx + mx + 1:
+                x, y = np.arange(nx + mx + 1) * dx, np.arange(ny + my + 1) * dy
+                coefficients = (love_pixel_displacement(x[:, None], y[None, :], dx, dy, self.E_star)
+                                + free_surface_correction(self.compliance, self.E_star, slope,
+                                                          self.layer["thickness"], x, y, dx, dy))
+            layout = coefficients[:nx + mx + 1, :ny + my + 1] * np.outer(_taper(nx, mx), _taper(ny, my))
+            shape = (2 * (nx + mx), 2 * (ny + my))
+            rows = np.abs(np.fft.fftfreq(shape[0], 1.0 / shape[0])).astype(int)
+            columns = np.abs(np.fft.fftfreq(shape[1], 1.0 / shape[1])).astype(int)
+            spectrum = fft.rfft2(layout[rows][:, columns]).real      # even in x and y → real spectrum
+            if spectrum.min() > 0:
+                return spectrum, shape
+        raise ValueError(f"the free-surface kernel of the layer {self.layer} on grid {self.grid} is not positive "
+                         f"on a padded grid up to {shape}: smallest Fourier multiplier {spectrum.min():.3g} of "
+                         f"largest {spectrum.max():.3g}; refine the grid (pixel {dx:g} m x {dy:g} m)")
 
     def coarsened(self) -> ElasticHalfSpace:
         """A new half-space: the same body on ``grid.coarsened(2)`` (the solver's nested cold start);

@@ -156,3 +156,85 @@ def layer_on_half_space_compliance(q, E_star, poisson, thickness, substrate_E_st
     numerator, denominator = _bonded_ratio(X, mu, nu_, one_minus_mn)
     with np.errstate(divide="ignore"):
         return _half_space_beyond(thick, q, E_star, 2.0 / (E_star * q) * (numerator / denominator))
+
+
+# -- free surface: real-space influence coefficients (docs/layered.md, "The free-surface kernel") -------------
+# ΔΦ(q) = Φ(q) − 2/(E* q) splits into b e^{−qt}/q (b = lim q ΔΦ, transformed in closed form) and a remainder
+# ΔΦ₂ whose q ΔΦ₂ vanishes at q = 0 and, like ΔΦ, dies beyond q t ≈ 25, so its Hankel transform converges fast.
+_HANKEL_QT = 30.0        # upper limit of the Hankel integral in q t: the remainder's tail is b e^{−30} ~ 1e-13 b
+_HANKEL_NODES = 20       # Gauss–Legendre nodes per q panel
+_HANKEL_PERIODS = 3.0    # a q panel spans at most 3 periods of J0(q r) and at most Δq = 1/t
+_TABLE_STEP = 16         # the table of Δw₂(r) is uniform in r with step t/16 up to _TABLE_UNIFORM t ...
+_TABLE_UNIFORM = 100.0
+_TABLE_RATIO = 1.02      # ... and geometric beyond (the smooth r⁻³ tail)
+_PIXEL_NODES = 4         # Gauss–Legendre nodes per pixel (or sub-cell) and axis
+_MAX_SUBCELLS = 32       # sub-cells per pixel and axis near the load: at most 32, each ≤ t/2 wide
+_NEAR_PIXELS, _NEAR_THICKNESSES = 3.0, 60.0    # "near": within 3 pixels + 60 t of the loaded pixel
+
+
+def _gauss_panels(edges, nodes):
+    """Gauss–Legendre nodes and weights on consecutive panels ``edges`` (1-D, increasing)."""
+    x, w = np.polynomial.legendre.leggauss(nodes)
+    width = np.diff(edges)[:, None]
+    return (edges[:-1, None] + (x + 1.0) / 2.0 * width).ravel(), (w / 2.0 * width).ravel()
+
+
+def _hankel_table(remainder, thickness, radii):
+    """Δw₂(r) = (1/2π) ∫₀^∞ q ΔΦ₂(q) J0(q r) dq [m/Pa per m²] at ``radii`` [m], composite Gauss–Legendre in q on
+    panels that resolve J0 for each block of radii (``remainder(q)`` = q ΔΦ₂(q) [1/Pa])."""
+    from scipy.special import j0
+    q_max = _HANKEL_QT / thickness
+    table = np.empty(radii.size)
+    for start in range(0, radii.size, 32):
+        block = radii[start:start + 32]
+        step = min(1.0 / thickness, _HANKEL_PERIODS * 2 * np.pi / block[-1]) if block[-1] > 0 else 1.0 / thickness
+        q, weight = _gauss_panels(np.linspace(0.0, q_max, int(np.ceil(q_max / step)) + 1), _HANKEL_NODES)
+        table[start:start + 32] = j0(np.outer(block, q)) @ (weight * remainder(q))
+    return table / (2 * np.pi)
+
+
+def _pixel_average(kernel, x, y, dx, dy, subcells):
+    """∫∫ kernel(|r − r'|) dA' over the pixel centred at 0 for the offsets (x, y) (flat arrays), by
+    ``subcells``² sub-cells of _PIXEL_NODES² Gauss–Legendre points."""
+    points, weights = _gauss_panels(np.linspace(-0.5, 0.5, subcells + 1), _PIXEL_NODES)
+    total = np.zeros(x.size)
+    for a, weight in zip(points, weights):
+        total += weight * (kernel(np.hypot(x[:, None] + a * dx, y[:, None] + points * dy)) @ weights)
+    return total * dx * dy
+
+
+def free_surface_correction(compliance, E_star, long_wave_slope, thickness, x, y, dx, dy):
+    """Influence coefficients [m/Pa] of ΔΦ(q) = Φ(q) − 2/(E* q) on a free surface (``docs/layered.md``, Eq. L5).
+
+    The displacement at the offsets ``x[:, None]``, ``y[None, :]`` [m] (≥ 0) under unit pressure on a dx × dy
+    pixel, to be added to Love's coefficients of the layer's half-space (E* = the layer's modulus, the q → ∞
+    limit of Φ). ``compliance(q)``: Φ(q) [m/Pa]; ``long_wave_slope``: b = lim_{q→0} q ΔΦ(q) [1/Pa]
+    (2/E0* − 2/E* on a half-space E0*, −2/E* on a rigid base); ``thickness`` t [m] of the layer.
+
+        Δu = b/(2π) ∫∫ dA'/√(|r − r'|² + t²)  +  ∫∫ Δw₂(|r − r'|) dA',
+        Δw₂(r) = (1/2π) ∫₀^∞ [q Φ(q) − 2/E* − b e^{−q t}] J0(q r) dq.
+    """
+    from .elastic import pixel_potential
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    X, Y = np.meshgrid(x, y, indexing="ij")
+    r_max = float(np.hypot(x.max() + dx, y.max() + dy))
+    step = min(thickness / _TABLE_STEP, r_max / 64)
+    uniform_end = min(r_max, _TABLE_UNIFORM * thickness)
+    radii = np.arange(0.0, uniform_end + step, step)
+    if r_max > radii[-1]:
+        count = int(np.ceil(np.log(r_max / radii[-1]) / np.log(_TABLE_RATIO))) + 1
+        radii = np.concatenate([radii, radii[-1] * _TABLE_RATIO ** np.arange(1, count + 1)])
+
+    def remainder(q):        # q ΔΦ₂(q): O(q) at q = 0, no division
+        with np.errstate(over="ignore"):
+            return q * compliance(q) - 2.0 / E_star - long_wave_slope * np.exp(-q * thickness)
+
+    from scipy.interpolate import CubicSpline
+    kernel = CubicSpline(radii, _hankel_table(remainder, thickness, radii), bc_type=((1, 0.0), "not-a-knot"))
+    distance = np.hypot(np.maximum(X - dx / 2, 0.0), np.maximum(Y - dy / 2, 0.0))   # to the loaded pixel
+    near = distance < _NEAR_PIXELS * max(dx, dy) + _NEAR_THICKNESSES * thickness
+    subcells = min(_MAX_SUBCELLS, max(1, int(np.ceil(2 * max(dx, dy) / thickness))))
+    smooth = np.empty(X.shape)
+    smooth[~near] = _pixel_average(kernel, X[~near], Y[~near], dx, dy, 1)
+    smooth[near] = _pixel_average(kernel, X[near], Y[near], dx, dy, subcells)
+    return long_wave_slope / (2 * np.pi) * pixel_potential(X, Y, dx, dy, thickness) + smooth
