@@ -421,7 +421,8 @@ def _start_worker(threads: int):
     the client's to handle (it cancels the tasks and stops the workers)."""
     import signal
     from .fft import THREADS_VARIABLE
-    os.environ.setdefault(THREADS_VARIABLE, str(threads))
+    if not os.environ.get(THREADS_VARIABLE):                 # (unset or empty)
+        os.environ[THREADS_VARIABLE] = str(threads)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
@@ -480,7 +481,10 @@ class _Dask:
         self.distributed, self.address, self.futures = distributed, address, []
 
     def __enter__(self):
-        self.client = self.distributed.Client(self.address)
+        try:
+            self.client = self.distributed.Client(self.address)
+        except OSError as error:                                 # no scheduler answers (after its connect timeout)
+            raise ValueError(f"dask = {self.address!r}: {error}") from None
         return self
 
     def __exit__(self, kind, error, traceback):

@@ -142,3 +142,17 @@ def test_help_shows_defaults_without_markup(capsys):
 def test_default_output_directory_is_git_ignored():
     gitignore = Path(__file__).resolve().parents[2] / ".gitignore"
     assert f"{DEFAULT_FIGURES_OUTPUT}/" in gitignore.read_text().split()
+
+
+@pytest.mark.parametrize("options, message", [
+    (["--workers", "0"], "roughcontact run: error: workers must be an integer in [1, inf], got 0"),
+    (["--workers", "2", "--dask", "tcp://127.0.0.1:8786"], "argument --dask: not allowed with argument --workers"),
+    (["--dask", "tcp://127.0.0.1:8786"], "needs dask.distributed: pip install 'roughcontact[parallel]'"),
+])
+def test_run_executor_mistakes_exit_2_with_one_line(tmp_path, capsys, monkeypatch, options, message):
+    monkeypatch.setitem(sys.modules, "distributed", None)                 # as without roughcontact[parallel]
+    with contextlib.suppress(SystemExit):
+        assert main(["run", "--preset", "draft", "--out", str(tmp_path / "out"), *options]) == 2
+    error = capsys.readouterr().err
+    assert len(error.strip().splitlines()) == 1 and message in error
+    assert not (tmp_path / "out" / "scene.toml").exists()                  # refused before the study starts

@@ -113,6 +113,15 @@ def test_dask_without_the_extra_names_it(tiny, tmp_path, monkeypatch):
     assert not (tmp_path / "out").exists()                                 # refused before anything is written
 
 
+def test_an_unreachable_scheduler_is_named(tiny, tmp_path):
+    dask = pytest.importorskip("dask")
+    pytest.importorskip("distributed")
+    with dask.config.set({"distributed.comm.timeouts.connect": "1s"}):
+        with pytest.raises(ValueError, match=r"dask = 'tcp://127.0.0.1:9': Timed out trying to connect"):
+            run_study(tiny, tmp_path, dask="tcp://127.0.0.1:9")
+    assert not (tmp_path / "run.lock").exists() and not any((tmp_path / "tasks").iterdir())
+
+
 @pytest.mark.parametrize("workers, dask, message", [
     (0, None, r"workers must be an integer in \[1, inf\], got 0"),
     (2.0, None, r"workers must be an integer"),
