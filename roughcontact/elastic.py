@@ -264,10 +264,10 @@ class ElasticHalfSpace:
 
     @property
     def uniform_compliance(self) -> float:
-        """⟨u⟩/⟨p⟩ [m/Pa] of a periodic layer on a rigid base (0 on a free surface, which has no separate mode): the uniaxial-strain column t/M,
-        M = E*(1 − ν)²/(1 − 2ν), whatever the bottom condition (by symmetry a uniform load on a laterally
-        periodic layer moves nothing sideways; it is not the q → 0 limit of the frictionless Φ(q), t/E*, for
-        which the layer can spread over a long wavelength). 0 for the half-space and the layer on a
+        """⟨u⟩/⟨p⟩ [m/Pa] of a periodic layer on a rigid base (0 on a free surface, which has no separate uniform
+        mode): the uniaxial-strain column t/M, M = E*(1 − ν)²/(1 − 2ν), whatever the bottom condition (by
+        symmetry a uniform load on a laterally periodic layer moves nothing sideways; it is not the q → 0 limit
+        of the frictionless Φ(q), t/E*, for which the layer can spread over a long wavelength). 0 for the half-space and the layer on a
         half-space (q = 0 mode undetermined, set to 0), and for a layer so thick that the column would exceed the
         compliance of the window's longest wavelength 6.7e7-fold (``layer["uniform_mode"] == "half-space"``;
         ``docs/layered.md``, "A layer much thicker than the window")."""
@@ -315,15 +315,12 @@ class ElasticHalfSpace:
         on_substrate = self.layer["kind"] == "layer on half-space"
         slope = 2.0 / self.layer["substrate_E_star"] - 2.0 / self.E_star if on_substrate else -2.0 / self.E_star
         (nx, ny), (dx, dy) = self.grid.shape, self.grid.spacing
-        coefficients = None
-        for extension in (0, 2, 4):                            # extra offsets: 0, n/2, n pixels per axis
-            mx, my = extension * nx // 4, extension * ny // 4
-            if coefficients is None or coefficients.shape[0] < nx + mx + 1:
-                x, y = np.arange(nx + mx + 1) * dx, np.arange(ny + my + 1) * dy
-                coefficients = (love_pixel_displacement(x[:, None], y[None, :], dx, dy, self.E_star)
-                                + free_surface_correction(self.compliance, self.E_star, slope,
-                                                          self.layer["thickness"], x, y, dx, dy))
-            layout = coefficients[:nx + mx + 1, :ny + my + 1] * np.outer(_taper(nx, mx), _taper(ny, my))
+        for mx, my in ((0, 0), (nx // 2, ny // 2), (nx, ny)):       # offsets beyond the window's, per axis
+            x, y = np.arange(nx + mx + 1) * dx, np.arange(ny + my + 1) * dy
+            coefficients = (love_pixel_displacement(x[:, None], y[None, :], dx, dy, self.E_star)
+                            + free_surface_correction(self.compliance, self.E_star, slope, self.layer["thickness"],
+                                                      x, y, dx, dy))
+            layout = coefficients * np.outer(_taper(nx, mx), _taper(ny, my))
             shape = (2 * (nx + mx), 2 * (ny + my))
             rows = np.abs(np.fft.fftfreq(shape[0], 1.0 / shape[0])).astype(int)
             columns = np.abs(np.fft.fftfreq(shape[1], 1.0 / shape[1])).astype(int)

@@ -226,8 +226,7 @@ def free_surface_correction(compliance, E_star, long_wave_slope, thickness, x, y
         radii = np.concatenate([radii, radii[-1] * _TABLE_RATIO ** np.arange(1, count + 1)])
 
     def remainder(q):        # q ΔΦ₂(q): O(q) at q = 0, no division
-        with np.errstate(over="ignore"):
-            return q * compliance(q) - 2.0 / E_star - long_wave_slope * np.exp(-q * thickness)
+        return q * compliance(q) - 2.0 / E_star - long_wave_slope * np.exp(-q * thickness)
 
     from scipy.interpolate import CubicSpline
     kernel = CubicSpline(radii, _hankel_table(remainder, thickness, radii), bc_type=((1, 0.0), "not-a-knot"))
