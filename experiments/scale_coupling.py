@@ -1,93 +1,164 @@
 """The coupled path (roughcontact.coupling) against the fully resolved patches of the fingerpad study (a script).
 
-    python experiments/scale_coupling.py                           # docs/equivalent_gap.md, "Scale coupling"
-    python experiments/scale_coupling.py --fast                    # 32² patches, seconds
+    python experiments/scale_coupling.py --preset standard --realisations 3     # docs/equivalent_gap.md
+    python experiments/scale_coupling.py --fast                                  # 32² patches, seconds
 
-(from the repository root after ``pip install -e .``). The default scene at 0.5 and 2 N and the voltages given:
-the fully resolved study (ridges and micro-roughness in one grid, ``roughcontact.study.run_study``) and the
-coupled path — an :class:`~roughcontact.coupling.InterfaceLaw` built from the micro-roughness of the same
-realisation on the same grid, acting on the ridges alone on a ``--ridge-grid``² grid. Writes
-``scale_coupling.csv`` (one row per realisation, load and voltage: d_eq and the real contact fraction of both
-paths, their relative differences, the solve times) into ``--output`` and prints the mean and largest
-differences.
+(from the repository root after ``pip install -e .``). The default scene at 0.5 and 2 N and the voltages given,
+for each realisation r and voltage U: the resolved task (``roughcontact.study.solve_chain``: ridges and
+micro-roughness in one grid) and the coupled path (``roughcontact.coupling``): an interface law of ``--nodes``
+separations built from the same realisation's micro-roughness, and every other node of it, each acting on the
+ridges alone on grids of ``--ridge-pixels`` pixels per period (``ridge_chain``). ``--shared-law`` adds one law
+per voltage from a micro patch of two periods (another rng seed) acting for every realisation.
+
+Writes ``scale_coupling.csv`` (one row per variant, realisation, load and voltage: d_eq, the real contact
+fraction and A_R/A0 of both paths and their relative differences; CPU seconds of the resolved task, the law
+and the ridge chain, ``time.process_time`` of this process) into ``--output`` and prints, per variant, the
+differences per realisation and of the realisation means (95 % Student-t intervals) and the cost ratio.
 """
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import time
 
 import numpy as np
 
-from roughcontact.coupling import coupled_point, interface_law
+from roughcontact.coupling import LAW_NODES, RIDGE_PIXELS_PER_PERIOD, interface_law, ridge_chain
 from roughcontact.provenance import output_directory, parse_arguments, write_csv
 from roughcontact.scene import load_scene
-from roughcontact.study import (apparent_contact, confidence_interval, patch_body, patch_grid, ridge_heights,
-                                roughness_heights, run_study)
+from roughcontact.study import (_lengths, confidence_interval, patch_body, patch_grid, roughness_heights,
+                                solve_chain)
 
-FAST = "[presets.draft]\ngrid = 32\nrealisations = 1\npixels_per_cutoff = 3.0\n[roughness]\nlong_cutoff = 1.5e-4\n"
+FAST = "[presets.draft]\ngrid = 32\nrealisations = 2\npixels_per_cutoff = 3.0\n[roughness]\nlong_cutoff = 1.5e-4\n"
+#: The compared quantities: (record field, CSV name); A_R/A0 at the scene's coarse-graining length.
+QUANTITIES = (("equivalent_gap", "equivalent_gap_um"), ("contact_fraction", "contact_fraction"),
+              ("ridge_area", "ridge_area_fraction"))
+#: rng seed offset of the shared law's micro patch (a patch none of the compared realisations uses).
+SHARED_SEED = 1000
 
 
-def compare(scene, ridge_grid: int) -> list:
-    """Rows of the fully resolved study and the coupled path of ``scene`` (ridges on ``ridge_grid``² pixels)."""
+def _value(record, name):
+    if name == "ridge_area":
+        return record.ridge_area_fractions[0]
+    return record.equivalent_gap * 1e6 if name == "equivalent_gap" else getattr(record, name)
+
+
+def _thinned(law):
+    """The same law on every other node."""
+    columns = ("separations", "tractions", "equivalent_gaps", "contact_fractions", "slopes")
+    return dataclasses.replace(law, **{name: getattr(law, name)[::2] for name in columns},
+                               ridge_area_fractions=tuple(column[::2] for column in law.ridge_area_fractions))
+
+
+def _shared_laws(scene, nodes):
+    """One law per voltage from a micro patch of two periods on twice the grid (rng seed + SHARED_SEED)."""
+    preset = dataclasses.replace(scene.preset, grid=2 * scene.preset.grid, periods=2 * scene.preset.periods)
+    large = dataclasses.replace(scene, presets={**scene.presets, scene.study.preset: preset},
+                                study=dataclasses.replace(scene.study, seed=scene.study.seed + SHARED_SEED))
+    micro, body = roughness_heights(large, 0), patch_body(large)
+    laws = {}
+    for voltage in scene.loads.voltages:
+        start = time.process_time()
+        law = interface_law(micro, body, scene.screen.stack(), voltage, nodes=nodes, tol=scene.preset.tolerance,
+                            coarse_graining=_lengths(scene))
+        laws[voltage] = law, time.process_time() - start
+    return laws
+
+
+def compare(scene, nodes: int, ridge_pixels, shared: bool) -> list:
+    """Rows of the resolved and coupled tasks of every realisation and voltage of ``scene``."""
     from surfaces import Grid
-    start = time.perf_counter()
-    full = run_study(scene)
-    full_seconds = time.perf_counter() - start
-    grid = patch_grid(scene)
-    coarse = Grid((ridge_grid, ridge_grid), grid.lengths, periodic=True)
-    body, ridge_body = patch_body(scene), patch_body(scene, coarse)
-    ridges, stack = ridge_heights(scene, coarse), scene.screen.stack()
+    side = patch_grid(scene).lengths
+    grids = {n: Grid((n * scene.preset.periods,) * 2, side, periodic=True) for n in ridge_pixels}
+    shared_laws = _shared_laws(scene, nodes) if shared else {}
     rows = []
-    for r in range(full.array("equivalent_gap").shape[-1]):
-        micro = roughness_heights(scene, r)
+    for r in range(scene.preset.realisations):
+        micro, body = roughness_heights(scene, r), patch_body(scene)
         for j, voltage in enumerate(scene.loads.voltages):
-            start = time.perf_counter()
-            law = interface_law(micro, body, stack, voltage, tol=scene.preset.tolerance)
-            law_seconds, previous = time.perf_counter() - start, None
-            for i, force in enumerate(scene.loads.normal_forces):
-                _, (pressure,) = apparent_contact(scene.fingerpad, force, 1)
-                start = time.perf_counter()
-                point, previous = coupled_point(ridges, ridge_body, law, pressure, tol=scene.preset.tolerance,
-                                                x0=previous)
-                resolved = full.points[i][j]
-                rows.append({"realisation": r, "normal_force_N": force, "voltage_V": voltage,
-                             "full_equivalent_gap_um": resolved.equivalent_gap[r] * 1e6,
-                             "coupled_equivalent_gap_um": point.equivalent_gap * 1e6,
-                             "equivalent_gap_difference": point.equivalent_gap / resolved.equivalent_gap[r] - 1,
-                             "full_contact_fraction": resolved.contact_fraction[r],
-                             "coupled_contact_fraction": point.contact_fraction,
-                             "contact_fraction_difference": point.contact_fraction / resolved.contact_fraction[r] - 1,
-                             "coupled_converged": point.converged, "law_seconds": law_seconds,
-                             "ridge_seconds": time.perf_counter() - start,
-                             "full_seconds_per_point": full_seconds / full.array("seconds").size})
+            start = time.process_time()
+            resolved = solve_chain(scene, r, j)
+            resolved_seconds = time.process_time() - start
+            start = time.process_time()
+            law = interface_law(micro, body, scene.screen.stack(), voltage, nodes=nodes,
+                                tol=scene.preset.tolerance, coarse_graining=_lengths(scene))
+            law_seconds = time.process_time() - start
+            variants = [("own", law, law_seconds, n) for n in ridge_pixels]
+            variants.append(("own", _thinned(law), law_seconds * len(law.separations[::2]) / nodes,
+                             ridge_pixels[0]))
+            if shared:
+                variants.append(("shared", *shared_laws[voltage], ridge_pixels[0]))
+            for kind, variant, seconds, pixels in variants:
+                start = time.process_time()
+                coupled = ridge_chain(scene, variant, grid=grids[pixels])
+                ridge_seconds = time.process_time() - start
+                for force, full, point in zip(scene.loads.normal_forces, resolved, coupled):
+                    row = {"law": kind, "law_nodes": len(variant.separations), "ridge_pixels": pixels,
+                           "realisation": r, "normal_force_N": force, "voltage_V": voltage}
+                    for name, column in QUANTITIES:
+                        row[f"full_{column}"] = _value(full, name)
+                        row[f"coupled_{column}"] = _value(point, name)
+                        row[f"{column}_difference"] = _value(point, name) / _value(full, name) - 1
+                    row.update(coupled_converged=point.converged, resolved_cpu_s=resolved_seconds,
+                               law_cpu_s=seconds, ridge_cpu_s=ridge_seconds)
+                    rows.append(row)
     return rows
+
+
+def summarise(rows) -> list:
+    """Printed lines per variant: differences per realisation and of the realisation means, cost ratio."""
+    lines = []
+    for variant in dict.fromkeys((row["law"], row["law_nodes"], row["ridge_pixels"]) for row in rows):
+        chosen = [row for row in rows if (row["law"], row["law_nodes"], row["ridge_pixels"]) == variant]
+        lines.append(f"law {variant[0]}, {variant[1]} nodes, ridges {variant[2]} px per period:")
+        for _, column in QUANTITIES:
+            values = np.array([row[f"{column}_difference"] for row in chosen])
+            mean, half = confidence_interval(values)
+            # realisation means per (F_N, U): paired differences over the realisations, relative to the mean
+            points = dict.fromkeys((row["normal_force_N"], row["voltage_V"]) for row in chosen)
+            worst = (0.0, 0.0)
+            for point in points:
+                pairs = [(row[f"coupled_{column}"], row[f"full_{column}"]) for row in chosen
+                         if (row["normal_force_N"], row["voltage_V"]) == point]
+                coupled, full = np.array(pairs).T
+                difference, spread = confidence_interval(coupled - full)
+                relative = (difference / full.mean(), spread / full.mean())
+                worst = max(worst, relative, key=lambda pair: abs(pair[0]))
+            lines.append(f"  {column}: per realisation mean {100 * mean:+.1f} % ± {100 * half:.1f} %, largest "
+                         f"|.| {100 * np.abs(values).max():.1f} %; realisation mean, largest of {len(points)} "
+                         f"points {100 * worst[0]:+.1f} % ± {100 * worst[1]:.1f} %")
+        chains = {(row["realisation"], row["voltage_V"]): row for row in chosen}.values()
+        resolved = sum(row["resolved_cpu_s"] for row in chains)
+        coupled = sum(row["law_cpu_s"] + row["ridge_cpu_s"] for row in chains)
+        lines.append(f"  CPU: coupled {coupled:.1f} s (law {sum(row['law_cpu_s'] for row in chains):.1f} s), "
+                     f"resolved {resolved:.1f} s, ratio {coupled / resolved:.2f}")
+    return lines
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--fast", action="store_true", help="32² patches, one realisation: a smoke run")
+    parser.add_argument("--fast", action="store_true", help="32² patches, two realisations: a smoke run")
     parser.add_argument("--preset", default="draft", choices=("draft", "standard", "reference"))
     parser.add_argument("--realisations", type=int, default=None, help="default: the preset's")
     parser.add_argument("--voltages", type=float, nargs="+", default=[0.0, 100.0, 200.0], help="[V]")
-    parser.add_argument("--ridge-grid", type=int, default=64, help="pixels per side of the ridge-scale grid")
+    parser.add_argument("--nodes", type=int, default=LAW_NODES,
+                        help="separations of the law (every other one is the second variant)")
+    parser.add_argument("--ridge-pixels", type=int, nargs="+", default=[RIDGE_PIXELS_PER_PERIOD, 32, 128],
+                        help="ridge-scale pixels per period (the first also for the thinned and shared laws)")
+    parser.add_argument("--shared-law", action="store_true",
+                        help="also one law per voltage from a two-period micro patch, for every realisation")
     parser.add_argument("--output", default="out", help="output directory (its parent must exist)")
     args, provenance = parse_arguments(parser, argv, "python experiments/scale_coupling.py")
     output = output_directory(args.output)
     voltages = ", ".join(str(v) for v in args.voltages)
     text = f"[loads]\nnormal_forces = [0.5, 2.0]\nvoltages = [{voltages}]\n" + (FAST if args.fast else "")
-    if args.realisations is not None:
-        text += f"[presets.{args.preset}]\nrealisations = {args.realisations}\n"
     scene = load_scene(text=text, preset="draft" if args.fast else args.preset)
-    rows = compare(scene, 16 if args.fast else args.ridge_grid)
+    if args.realisations is not None:
+        scene = dataclasses.replace(scene, presets={**scene.presets, scene.study.preset: dataclasses.replace(
+            scene.preset, realisations=args.realisations)})
+    pixels = [16, 32] if args.fast else args.ridge_pixels
+    rows = compare(scene, 7 if args.fast else args.nodes, pixels, args.shared_law)
     write_csv(output / "scale_coupling.csv", rows, provenance)
-    for name in ("equivalent_gap_difference", "contact_fraction_difference"):
-        values = np.array([row[name] for row in rows])
-        mean, half = confidence_interval(values)
-        print(f"{name}: mean {100 * mean:+.1f} % ± {100 * half:.1f} % (95 %), "
-              f"largest |.| {100 * np.abs(values).max():.1f} %")
-    print(f"law {np.mean([row['law_seconds'] for row in rows]):.1f} s per voltage and realisation, ridge solve "
-          f"{np.mean([row['ridge_seconds'] for row in rows]):.2f} s, fully resolved "
-          f"{rows[0]['full_seconds_per_point']:.2f} s per point; written to {output}/")
+    print("\n".join(summarise(rows)) + f"\nwritten to {output}/")
     return rows
 
 

@@ -571,7 +571,8 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
               dask: str | None = None) -> StudyResult:
     """Run (or resume, with a ``directory``) the study of ``scene``; ``progress`` shows a tqdm bar of points.
 
-    The tasks (:func:`solve_chain`, one per realisation and voltage) run in a local pool of ``workers``
+    The tasks (:func:`solve_chain`, or :func:`roughcontact.coupling.coupled_chain` where the preset's ``scales``
+    is "coupled"; one per realisation and voltage) run in a local pool of ``workers``
     processes (default: the cores this process may run on, at most one per task), each task with cores //
     workers FFT threads; ``workers=1`` runs them in this process. ``dask``, the address of a dask.distributed
     scheduler (``"tcp://host:8786"``), runs them on that cluster instead (one FFT thread per task; needs
@@ -594,9 +595,12 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
         from tqdm import tqdm
         bar = tqdm(total=len(todo) * len(forces) / count, desc="roughcontact run", unit="point",
                    bar_format="{l_bar}{bar}| {n:.4g}/{total:.4g} [{elapsed}<{remaining}]")
+    task = solve_chain
+    if scene.preset.scales == "coupled":            # the micro-roughness as an interface law (roughcontact.coupling)
+        from .coupling import coupled_chain as task
     try:
         with executor:
-            futures = {executor.submit(solve_chain, scene, r, j, executor.threads): (r, j) for r, j in todo}
+            futures = {executor.submit(task, scene, r, j, executor.threads): (r, j) for r, j in todo}
             for future in executor.as_completed(list(futures)):
                 key = futures[future]
                 records[key] = future.result()
