@@ -90,12 +90,13 @@ def _cmd_run(args, provenance) -> int:
 
     from .provenance import output_directory
     from .report import write_results
-    from .scene import load_scene
+    from .presets import run_scene
     from .study import run_study
 
     start = time.perf_counter()
     try:
-        scene = load_scene(getattr(args, "scene", None), preset=getattr(args, "preset", None))
+        scene = run_scene(getattr(args, "scene", None), getattr(args, "preset", None),
+                          getattr(args, "target_error", None))
         output = output_directory(args.out)
         result = run_study(scene, output, progress=True, workers=getattr(args, "workers", None),
                            dask=getattr(args, "dask", None))
@@ -136,8 +137,11 @@ def build_parser() -> argparse.ArgumentParser:
                               formatter_class=formatter)
     run.add_argument("scene", nargs="?", default=argparse.SUPPRESS,
                      help="scene TOML file (default: the embedded scene, see 'roughcontact scene --show')")
-    run.add_argument("--preset", choices=("draft", "standard", "reference"), default=argparse.SUPPRESS,
-                     help="accuracy preset (default: the scene's study.preset)")
+    run.add_argument("--preset", choices=("draft", "standard", "reference", "auto"), default=argparse.SUPPRESS,
+                     help="accuracy preset (default: the scene's study.preset); auto: the cheapest measured setting "
+                          "meeting --target-error (docs/presets.md)")
+    run.add_argument("--target-error", metavar="ERROR", default=argparse.SUPPRESS,
+                     help="with --preset auto: the largest error accepted, e.g. 2%% or 0.02")
     run.add_argument("--out", default=DEFAULT_RUN_OUTPUT,
                      help="results directory; created if missing, but its parent must exist")
     executors = run.add_mutually_exclusive_group()

@@ -16,6 +16,7 @@ from surfaces.validation import check_broadcast, check_finite_array
 
 from .macro import LinearGap, PowerLawGap, SlidingFrictionModel, TabulatedGap
 from .macro.gap import locate, table_axis
+from .presets import describe
 from .provenance import save_figure, write_csv
 from .study import CONFIDENCE, StudyResult
 
@@ -324,6 +325,7 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
             "from the solver's own start) and are left out of the means."
             + (f" Run time {seconds:.0f} s ({result.computed} points computed with {result.solves} solves, "
                f"{result.array('seconds').size - result.computed} read back)." if seconds is not None else ""), "",
+            describe(preset, scene.study.preset), "",
             "Figures: `equivalent_gap.png`, `voltage_dependence.png`, `friction.png`. Tables: `points.csv`, "
             "`realisations.csv`, `ridge_area_sensitivity.csv`, `friction.csv`"
             + (", all of it in `results.nc`." if nc_written else

@@ -105,18 +105,19 @@ sensitivity = [0.5, 0.75, 1.25]
 preset = "standard"
 seed = 0                       # realisation r uses rng seed + r
 
-# Accuracy presets (measured errors and costs: docs/presets.md): patch side = periods ridge periods on
-# grid x grid pixels; realisations of the roughness; solver tolerance; rings of equal area over the apparent
-# contact (fingertip model only); pixels_per_cutoff: the shortest roughness wavelength in pixels; dtype of the
-# solves ("float64" or "float32"); warm_start: each solve starts from its neighbour along load (true) or cold;
-# scales: "resolved" (ridges and roughness in one grid) or "coupled" (roughness reduced to an interface law).
+# Accuracy presets, chosen from the measured speed-accuracy front (errors and costs: docs/presets.md): patch
+# side = periods ridge periods on grid x grid pixels; realisations of the roughness; solver tolerance; rings of
+# equal area over the apparent contact (fingertip model only); pixels_per_cutoff: the shortest roughness
+# wavelength in pixels; dtype of the solves ("float64" or "float32"); warm_start: each solve starts from its
+# neighbour along load (true) or cold; scales: "resolved" (ridges and roughness in one grid) or "coupled"
+# (the roughness reduced to an interface law).
 [presets.draft]
-grid = 64
+grid = 128
 periods = 1
-realisations = 3
+realisations = 2
 tolerance = 1e-06
 rings = 2
-pixels_per_cutoff = 4.0
+pixels_per_cutoff = 2.0
 dtype = "float64"
 warm_start = true
 scales = "resolved"
@@ -124,8 +125,8 @@ scales = "resolved"
 [presets.standard]
 grid = 256
 periods = 1
-realisations = 8
-tolerance = 1e-07
+realisations = 5
+tolerance = 1e-05
 rings = 3
 pixels_per_cutoff = 4.0
 dtype = "float64"

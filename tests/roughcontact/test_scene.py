@@ -20,7 +20,7 @@ def test_partial_scene_keeps_the_other_defaults_and_preset_override():
     scene = load_scene(text="[loads]\nnormal_forces = [1.0]\nvoltages = [0, 100]\n", preset="draft")
     assert scene.loads.normal_forces == (1.0,) and scene.loads.voltages == (0.0, 100.0)
     assert scene.ridges == load_scene().ridges
-    assert scene.preset == scene.presets["draft"] and scene.preset.grid == 64
+    assert scene.preset == scene.presets["draft"] and scene.preset.grid == 128
     assert set(scene.presets) == set(PRESETS)
     with pytest.raises(ValueError, match="preset = 'fast' is not one of"):
         load_scene(preset="fast")
