@@ -482,7 +482,7 @@ class _Dask:
 
     def __enter__(self):
         try:
-            self.client = self.distributed.Client(self.address)
+            self.client = self.distributed.Client(self.address, set_as_default=False)   # dask's config untouched
         except OSError as error:                                 # no scheduler answers (after its connect timeout)
             raise ValueError(f"dask = {self.address!r}: {error}") from None
         return self
@@ -499,7 +499,7 @@ class _Dask:
         return future
 
     def as_completed(self, futures):
-        return self.distributed.as_completed(futures)
+        return self.distributed.as_completed(futures, loop=self.client.loop)
 
 
 def _check_executor(workers, dask) -> None:

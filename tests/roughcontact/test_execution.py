@@ -83,13 +83,14 @@ def test_local_cluster_gives_the_in_process_records(tiny, serial, cluster):
 
 
 def test_a_worker_lost_mid_run_costs_only_its_tasks(cluster, tmp_path):
+    import dask
     import distributed
     scene = load_scene(text=TINY.replace("realisations = 2", "realisations = 6"), preset="draft")
     expected = run_study(scene, workers=1)
     killed = []
 
     def kill_a_busy_worker():
-        with distributed.Client(cluster.scheduler_address) as client:
+        with distributed.Client(cluster.scheduler_address, set_as_default=False) as client:
             while not any((tmp_path / "tasks").glob("*.json")):               # the first result arrived
                 time.sleep(0.005)
             busy = [address for address, keys in client.processing().items() if keys]
@@ -102,6 +103,7 @@ def test_a_worker_lost_mid_run_costs_only_its_tasks(cluster, tmp_path):
     result = run_study(scene, tmp_path, dask=cluster.scheduler_address)
     killer.join()
     assert killed                                           # a worker with a task in flight died
+    assert dask.config.get("scheduler", None) is None       # the user's dask configuration is left alone
     assert numbers(result) == numbers(expected) and result.computed == 4
     assert len(list((tmp_path / "tasks").glob("*.json"))) == 12
 
