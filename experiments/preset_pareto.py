@@ -7,9 +7,10 @@ versus CPU cost, the Pareto front, and the measured table behind the presets (``
 
 Scenes: the default scene (the presets are chosen on it) and two variants that are not used to choose them,
 ``rough`` (roughness rms 5 µm, seed 1000) and ``smooth`` (rms 1 µm, seed 2000); each at F_N = 0.5, 2 N and
-U = 0, 200 V (the ends of the default scene's ranges). Settings: every combination of ``GRIDS`` x
-``TOLERANCES`` (one ridge period), two-period patches at ``PERIODS_GRIDS``, and the first 1 ... 8 realisations
-of each; the reference setting is 512² pixels, tolerance 1e-8, 8 realisations, float64, warm starts.
+U = 0, 200 V (the ends of the default scene's ranges). Settings: ``GRIDS`` x ``TOLERANCES`` (one ridge
+period; ``TOLERANCES_AT`` for some grids), two-period patches, float32, cold starts, two pixels per cut-off and
+the coupled scales at the grids below, and the first 1 ... 8 realisations of each; the reference setting is
+512² pixels, tolerance 1e-8, 8 realisations, float64, warm starts.
 
 Error of a setting on a scene: the largest relative difference of its realisation mean from the reference
 mean, over the four points for d_eq and A_R/A0 and over the two loads for F_T at 200 V (the seed's friction
@@ -69,6 +70,9 @@ FLOAT32 = ((128, 1e-5),)
 COLD = ((128, 1e-6), (256, 1e-6))
 #: Two pixels per short cut-off at the grids that raise it (64², 128²: the cut-off 14 and 7 µm instead of 28, 14).
 COARSE_CUTOFF = ((64, 1e-6), (128, 1e-6))
+#: The coupled scale path (roughcontact.coupling: an interface law per realisation and voltage), one realisation:
+#: its laws cost about 100 resolved 128² studies, far off the front.
+COUPLED = ((128, 1e-6, 1),)
 #: --fast: 32² patches against a 48² reference, two realisations.
 FAST = {"reference": {**REFERENCE, "grid": 48, "tolerance": 1e-7}, "grids": (32,), "tolerances": (1e-5, 1e-7),
         "realisations": 2}
@@ -185,6 +189,8 @@ def settings_grid(args) -> list:
         periods += [({**REFERENCE, "grid": grid, "tolerance": tol, "warm_start": False}, count) for grid, tol in COLD]
         periods += [({**REFERENCE, "grid": grid, "tolerance": tol, "pixels_per_cutoff": 2.0}, count)
                     for grid, tol in COARSE_CUTOFF]
+        periods += [({**REFERENCE, "grid": grid, "tolerance": tol, "scales": "coupled"}, used)
+                    for grid, tol, used in COUPLED]
     settings = [({**reference, "grid": grid, "tolerance": tol}, count) for grid in grids
                 for tol in TOLERANCES_AT.get(grid, tolerances)]
     settings = sorted([s for s in settings + periods if s[0] != reference],
@@ -262,6 +268,8 @@ def preset_labels(entries: list) -> dict:
 
 
 def _kind(entry: dict) -> str:
+    if entry["scales"] == "coupled":
+        return "coupled scales"
     if entry["dtype"] == "float32":
         return "float32"
     if not entry["warm_start"]:
@@ -271,7 +279,8 @@ def _kind(entry: dict) -> str:
     return "two periods" if entry["periods"] == 2 else "float64, warm"
 
 
-MARKERS = {"float64, warm": "o", "float32": "s", "cold starts": "^", "two periods": "D", "2 px per cut-off": "v"}
+MARKERS = {"float64, warm": "o", "float32": "s", "cold starts": "^", "two periods": "D", "2 px per cut-off": "v",
+           "coupled scales": "P"}
 
 
 def figure_of(entries: list, provenance, path: Path) -> Path:
