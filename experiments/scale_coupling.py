@@ -1,7 +1,7 @@
 """The coupled path (roughcontact.coupling) against the fully resolved patches of the fingerpad study (a script).
 
     python experiments/scale_coupling.py --preset standard --realisations 3     # docs/equivalent_gap.md
-    python experiments/scale_coupling.py --fast                                  # 32² patches, seconds
+    python experiments/scale_coupling.py --fast                                  # 32² patches, 100 V, seconds
 
 (from the repository root after ``pip install -e .``). The default scene at 0.5 and 2 N and the voltages given,
 for each realisation r and voltage U: the resolved task (``roughcontact.study.solve_chain``: ridges and
@@ -12,7 +12,8 @@ per voltage from a micro patch of two periods (another rng seed) acting for ever
 
 Writes ``scale_coupling.csv`` (one row per variant, realisation, load and voltage: d_eq, the real contact
 fraction and A_R/A0 of both paths and their relative differences; CPU seconds of the resolved task, the law
-and the ridge chain, ``time.process_time`` of this process) into ``--output`` and prints, per variant, the
+and the ridge chain, ``time.process_time`` of this process; the thinned law's is the full law's times its share
+of the nodes, an estimate) into ``--output`` and prints, per variant, the
 differences per realisation and of the realisation means (95 % Student-t intervals) and the cost ratio.
 """
 from __future__ import annotations
@@ -105,13 +106,14 @@ def compare(scene, nodes: int, ridge_pixels, shared: bool) -> list:
 
 
 def summarise(rows) -> list:
-    """Printed lines per variant: differences per realisation and of the realisation means, cost ratio."""
+    """Printed lines per variant: differences per realisation and of the realisation means, cost ratio (rows
+    as written or as read back from the CSV)."""
     lines = []
     for variant in dict.fromkeys((row["law"], row["law_nodes"], row["ridge_pixels"]) for row in rows):
         chosen = [row for row in rows if (row["law"], row["law_nodes"], row["ridge_pixels"]) == variant]
         lines.append(f"law {variant[0]}, {variant[1]} nodes, ridges {variant[2]} px per period:")
         for _, column in QUANTITIES:
-            values = np.array([row[f"{column}_difference"] for row in chosen])
+            values = np.array([row[f"{column}_difference"] for row in chosen], dtype=float)
             mean, half = confidence_interval(values)
             # realisation means per (F_N, U): paired differences over the realisations, relative to the mean
             points = dict.fromkeys((row["normal_force_N"], row["voltage_V"]) for row in chosen)
@@ -119,7 +121,7 @@ def summarise(rows) -> list:
             for point in points:
                 pairs = [(row[f"coupled_{column}"], row[f"full_{column}"]) for row in chosen
                          if (row["normal_force_N"], row["voltage_V"]) == point]
-                coupled, full = np.array(pairs).T
+                coupled, full = np.array(pairs, dtype=float).T
                 difference, spread = confidence_interval(coupled - full)
                 relative = (difference / full.mean(), spread / full.mean())
                 worst = max(worst, relative, key=lambda pair: abs(pair[0]))
@@ -127,19 +129,21 @@ def summarise(rows) -> list:
                          f"|.| {100 * np.abs(values).max():.1f} %; realisation mean, largest of {len(points)} "
                          f"points {100 * worst[0]:+.1f} % ± {100 * worst[1]:.1f} %")
         chains = {(row["realisation"], row["voltage_V"]): row for row in chosen}.values()
-        resolved = sum(row["resolved_cpu_s"] for row in chains)
-        coupled = sum(row["law_cpu_s"] + row["ridge_cpu_s"] for row in chains)
-        lines.append(f"  CPU: coupled {coupled:.1f} s (law {sum(row['law_cpu_s'] for row in chains):.1f} s), "
+        resolved, law, ridge = (sum(float(row[f"{name}_cpu_s"]) for row in chains)
+                                for name in ("resolved", "law", "ridge"))
+        coupled = law + ridge
+        lines.append(f"  CPU: coupled {coupled:.1f} s (law {law:.1f} s), "
                      f"resolved {resolved:.1f} s, ratio {coupled / resolved:.2f}")
     return lines
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--fast", action="store_true", help="32² patches, two realisations: a smoke run")
+    parser.add_argument("--fast", action="store_true",
+                        help="32² patches, two realisations, a 7-node law, 100 V unless --voltages: a smoke run")
     parser.add_argument("--preset", default="draft", choices=("draft", "standard", "reference"))
     parser.add_argument("--realisations", type=int, default=None, help="default: the preset's")
-    parser.add_argument("--voltages", type=float, nargs="+", default=[0.0, 100.0, 200.0], help="[V]")
+    parser.add_argument("--voltages", type=float, nargs="+", default=None, help="[V] (default: 0 100 200)")
     parser.add_argument("--nodes", type=int, default=LAW_NODES,
                         help="separations of the law (every other one is the second variant)")
     parser.add_argument("--ridge-pixels", type=int, nargs="+", default=[RIDGE_PIXELS_PER_PERIOD, 32, 128],
@@ -149,7 +153,8 @@ def main(argv=None):
     parser.add_argument("--output", default="out", help="output directory (its parent must exist)")
     args, provenance = parse_arguments(parser, argv, "python experiments/scale_coupling.py")
     output = output_directory(args.output)
-    voltages = ", ".join(str(v) for v in args.voltages)
+    voltages = args.voltages or ([100.0] if args.fast else [0.0, 100.0, 200.0])   # a 0 V law costs most
+    voltages = ", ".join(str(v) for v in voltages)
     text = f"[loads]\nnormal_forces = [0.5, 2.0]\nvoltages = [{voltages}]\n" + (FAST if args.fast else "")
     scene = load_scene(text=text, preset="draft" if args.fast else args.preset)
     if args.realisations is not None:
