@@ -416,14 +416,23 @@ class _InProcess:
         return iter(futures)
 
 
-def _start_worker(threads: int):
+def _start_worker(threads: int, client: int):
     """Pool worker start: ``threads`` FFT threads unless ``$ROUGHCONTACT_FFT_THREADS`` says otherwise; Ctrl-C is
-    the client's to handle (it cancels the tasks and stops the workers)."""
+    the client's to handle (it cancels the tasks and stops the workers); the worker ends with the client
+    process ``client`` even when that is killed (a worker would otherwise wait for tasks for ever)."""
     import signal
+    import threading
     from .fft import THREADS_VARIABLE
     if not os.environ.get(THREADS_VARIABLE):                 # (unset or empty)
         os.environ[THREADS_VARIABLE] = str(threads)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    threading.Thread(target=_end_with, args=(client,), daemon=True).start()
+
+
+def _end_with(client: int) -> None:
+    while _running(client):
+        time.sleep(1.0)
+    os._exit(1)
 
 
 class _Pool:
@@ -443,7 +452,7 @@ class _Pool:
         else:
             context = multiprocessing.get_context("spawn")
         self.executor = ProcessPoolExecutor(self.workers, mp_context=context,
-                                            initializer=_start_worker, initargs=(self.fft_threads,))
+                                            initializer=_start_worker, initargs=(self.fft_threads, os.getpid()))
         return self
 
     def __exit__(self, kind, error, traceback):

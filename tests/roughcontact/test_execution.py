@@ -5,9 +5,12 @@ import dataclasses
 import multiprocessing
 import os
 import signal
+import subprocess
 import sys
+import textwrap
 import threading
 import time
+from pathlib import Path
 
 import pytest
 
@@ -75,6 +78,33 @@ def test_interrupted_pool_keeps_finished_tasks_and_resume_solves_the_rest(tiny, 
     assert resumed.solves == 8 - sum(record.solves for record in first)      # 3 tasks of 2 solves
     assert resumed.computed == 4                            # the other realisation of each point was missing
     assert numbers(resumed) == numbers(serial)
+
+
+def test_the_pool_ends_with_a_killed_client(tmp_path):
+    psutil = pytest.importorskip("psutil")
+    script = tmp_path / "study.py"
+    script.write_text(textwrap.dedent(f"""\
+        import sys
+        sys.path[:0] = [{str(Path(__file__).parents[2])!r}, {str(Path(__file__).parent)!r}]
+        from study_scenes import TINY
+        from roughcontact.scene import load_scene
+        from roughcontact.study import run_study
+        if __name__ == "__main__":
+            scene = load_scene(text=TINY.replace("realisations = 2", "realisations = 500"), preset="draft")
+            run_study(scene, {str(tmp_path / "out")!r}, workers=2)
+        """))
+    client = subprocess.Popen([sys.executable, str(script)])
+    try:
+        while not any((tmp_path / "out" / "tasks").glob("*.json")):          # the workers have started
+            assert client.poll() is None
+            time.sleep(0.05)
+        pool = psutil.Process(client.pid).children(recursive=True)          # forkserver, workers, tracker
+    finally:
+        client.kill()                                                        # SIGKILL: no clean-up runs
+        client.wait()
+    assert len(pool) >= 3
+    gone, alive = psutil.wait_procs(pool, timeout=30)
+    assert alive == []
 
 
 def test_local_cluster_gives_the_in_process_records(tiny, serial, cluster):
