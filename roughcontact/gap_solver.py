@@ -51,7 +51,7 @@ METHOD = "projected-cg-gap"
 ARMIJO = 1e-4             # sufficient-decrease constant of the projected line search
 MAX_HALVINGS = 40         # line-search step halvings before the direction is given up
 APPROACH = 2.0            # a stable point closes by at most this times (gap + law length) in one step
-ENERGY_ROUND_OFF = 1e-12  # relative round-off of the energy sums, below which a rise is not a rise
+ENERGY_ROUND_OFF = 1e-12  # relative round-off of the energy sums (float64), below which a rise is not a rise
 START_TOL = 1e-2          # tolerance of the hard-wall solve that starts a cold solve (a guess, not the answer)
 _REFRESH = 50             # exact recomputation of p_el at least every _REFRESH incremental steps
 
@@ -450,6 +450,8 @@ class _Solver:
         self.law_now = [np.empty(n, dtype) for _ in range(3)]     # V, p_int, k at g
         self.law_trial = [np.empty(n, dtype) for _ in range(3)]   # the same at the trial gap
         self.pixel_compliance = body.pixel_compliance
+        # float32 fields carry the energy's terms to a few ε32: a smaller rise is round-off, not a rise
+        self.round_off = max(ENERGY_ROUND_OFF, 3 * float(np.finfo(dtype).eps))
         self.transforms = 2 * start_pairs                      # the start's solve included
 
     def elastic(self, gap, field):
@@ -573,7 +575,7 @@ class _Solver:
                 step = self.trial_field.reshape(-1)
                 _advance_traction(pel, w, tau, step)
             trial_value, trial_magnitude = self.evaluate(trial, step, self.law_trial)
-            if trial_value <= value + ARMIJO * predicted / n + ENERGY_ROUND_OFF * magnitude:
+            if trial_value <= value + ARMIJO * predicted / n + self.round_off * magnitude:
                 return True, tau, step, 0 if exact else since_exact + 1, (trial_value, trial_magnitude)
             tau *= 0.5
         return False, tau, pel, since_exact, (value, magnitude)
