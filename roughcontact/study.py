@@ -585,8 +585,9 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
     processes (default: the cores this process may run on, at most one per task), each task with cores //
     workers FFT threads; ``workers=1`` runs them in this process. ``dask``, the address of a dask.distributed
     scheduler (``"tcp://host:8786"``), runs them on that cluster instead (one FFT thread per task; needs
-    ``roughcontact[parallel]``). Every executor gives the same records for the same FFT plans and threads.
-    Interrupted (Ctrl-C), the waiting and running tasks are cancelled; finished ones stay in ``directory``.
+    ``roughcontact[parallel]``). Every executor gives the same records for the same FFT plans. Interrupted
+    (Ctrl-C), the waiting tasks are cancelled and the pool's workers stopped (a cluster's running tasks finish
+    and are dropped); the finished ones stay in ``directory``.
     """
     _check_executor(workers, dask)
     store = None if directory is None else TaskStore(directory, scene)
