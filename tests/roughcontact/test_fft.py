@@ -100,3 +100,15 @@ def test_defaults_use_every_core_and_measured_plans_cached_as_wisdom(monkeypatch
     monkeypatch.setenv(fft.THREADS_VARIABLE, "many")
     with pytest.raises(ValueError, match="ROUGHCONTACT_FFT_THREADS"):
         fft.default_threads()
+
+
+def test_pyfftw_is_imported_without_dask_array():
+    # pyfftw.interfaces imports dask.array where dask is installed (1.5 s per process and pool worker); the
+    # backend imports pyfftw without it, and dask.array stays importable afterwards
+    pytest.importorskip("dask.array")
+    import subprocess
+    import sys
+    code = ("import sys; from roughcontact.fft import PyFFTW; PyFFTW((8, 8), planner_effort='FFTW_ESTIMATE'); "
+            "print('dask.array' in sys.modules); import dask.array.fft; print(callable(dask.array.fft.fft))")
+    output = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert output.split() == ["False", "True"]
