@@ -124,7 +124,7 @@ def patch_body(scene: Scene, grid=None, threads=None):
     from .elastic import ElasticHalfSpace
     skin = scene.skin
     grid = patch_grid(scene) if grid is None else grid
-    numbers = {"threads": threads, "dtype": getattr(scene.preset, "dtype", "float64")}
+    numbers = {"threads": threads, "dtype": scene.preset.dtype}
     if skin.layer_thickness == 0:
         return ElasticHalfSpace(grid, E_star=skin.E_star, **numbers)
     return ElasticHalfSpace(grid, E_star=skin.layer_E_star, thickness=skin.layer_thickness, poisson=skin.poisson,
@@ -243,7 +243,7 @@ def solve_chain(scene: Scene, realisation: int, voltage_index: int, threads: int
     law = ElectrostaticInteraction(stack, voltage=voltage) if voltage > 0 else None       # 0 V: the hard wall
     heights, body = patch_surface(scene, realisation), patch_body(scene, threads=threads)
     lengths, spacing = _lengths(scene), patch_grid(scene).spacing
-    warm_start = getattr(scene.preset, "warm_start", True)
+    warm_start = scene.preset.warm_start
     latest = [None] * _rings(scene)                         # each ring's last result: the next load's x0
     records = []
     for force in scene.loads.normal_forces:

@@ -11,7 +11,7 @@ from roughcontact.provenance import read_csv
 from roughcontact.report import TabulatedArea, bottom_up_friction, report_text
 from roughcontact.scene import Fingerpad, load_scene
 from roughcontact.study import (DirectoryInUse, SceneMismatch, TaskStore, apparent_contact, confidence_interval,
-                                patch_body, patch_surface, ridge_area_fraction, run_study)
+                                patch_body, patch_surface, ridge_area_fraction, run_study, solve_chain)
 from study_scenes import TINY
 
 
@@ -214,3 +214,15 @@ def test_extreme_scenes_run_to_finite_results(change):
 def test_zero_load_scene_is_refused_naming_the_key():
     with pytest.raises(ValueError, match="loads.normal_forces"):
         load_scene(text=TINY.replace("normal_forces = [0.5, 2.0]", "normal_forces = [0.0, 2.0]"), preset="draft")
+
+
+def test_the_preset_chooses_cold_starts_and_the_dtype():
+    cold = load_scene(text=TINY + "warm_start = false\ndtype = \"float32\"\n", preset="draft")   # [presets.draft]
+    assert patch_body(cold).dtype == np.float32
+    records = solve_chain(cold, 0, 0, 1)
+    body = patch_body(cold)
+    for record, force in zip(records, cold.loads.normal_forces):       # each load solved from the solver's start
+        result = roughcontact.contact.solve_contact(patch_surface(cold, 0), body, tol=1e-6, warn=False,
+                                                    mean_pressure=apparent_contact(cold.fingerpad, force, 1)[1][0])
+        assert record.solves == 1 and record.iterations == result.iterations
+        assert record.contact_fraction == result.contact_fraction
