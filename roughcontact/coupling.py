@@ -214,38 +214,45 @@ def ridge_grid(scene):
     return Grid((pixels, pixels), grid.lengths, periodic=True)
 
 
-def coupled_chain(scene, realisation: int, voltage_index: int, threads: int | None = None) -> tuple:
+def coupled_chain(scene, realisation: int, voltage_index: int, threads: int | None = None,
+                  apparent: tuple | None = None) -> tuple:
     """The coupled path's task of the study (the counterpart of :func:`roughcontact.study.solve_chain`): the
     micro-roughness of ``realisation`` reduced to one :class:`InterfaceLaw` at voltage
     ``loads.voltages[voltage_index]`` (:data:`LAW_NODES` nodes on the patch grid, the preset's tolerance, the
     scene's coarse-graining lengths), then :func:`ridge_chain` with it. Returns one
     :class:`~roughcontact.study.PatchRecord` per load; the law's solves and seconds are counted in the first
-    load's record. ``threads`` FFT threads (default: ``roughcontact.fft.default_threads``)."""
+    load's record. ``threads`` FFT threads (default: ``roughcontact.fft.default_threads``); ``apparent``, the
+    scene's :func:`~roughcontact.study.apparent_scale` (computed when not given)."""
     from .study import _lengths, patch_body, roughness_heights
     if not scene.roughness.enabled:
         raise ValueError("presets.*.scales = 'coupled' needs micro-roughness (roughness.enabled = true): without "
                          "it there is no interface law; use scales = 'resolved'")
+    if scene.ridges.enabled and scene.ridges.pore_density > 0:
+        raise ValueError(f"ridges.pore_density = {scene.ridges.pore_density!r} 1/m² with presets.*.scales = "
+                         "'coupled': the coupled path has no pores; set pore_density = 0 or scales = 'resolved'")
     start = time.perf_counter()
     law = interface_law(roughness_heights(scene, realisation), patch_body(scene, threads=threads),
                         scene.screen.stack(), scene.loads.voltages[voltage_index], tol=scene.preset.tolerance,
                         coarse_graining=_lengths(scene))
-    return ridge_chain(scene, law, threads, spent=(len(law.separations), time.perf_counter() - start))
+    return ridge_chain(scene, law, threads, spent=(len(law.separations), time.perf_counter() - start),
+                       apparent=apparent)
 
 
-def ridge_chain(scene, law: InterfaceLaw, threads: int | None = None, grid=None, spent=(0, 0.0)) -> tuple:
+def ridge_chain(scene, law: InterfaceLaw, threads: int | None = None, grid=None, spent=(0, 0.0),
+                apparent: tuple | None = None) -> tuple:
     """The ridges of ``scene`` on ``grid`` (default :func:`ridge_grid`) pressed with ``law`` (its voltage)
     under every load in order, each ring's solve (:func:`coupled_point`) warm-started from its result at the
     previous load. Returns one :class:`~roughcontact.study.PatchRecord` per load, averaged over the rings as
     the resolved chain does; ``spent`` (solves, seconds) taken before, counted in the first record."""
-    from .study import PatchRecord, _rings, apparent_contact, patch_body, ridge_heights
+    from .study import PatchRecord, _rings, apparent_scale, patch_body, ridge_heights
     grid = ridge_grid(scene) if grid is None else grid
     stack = law.stack
     ridges, body = ridge_heights(scene, grid), patch_body(scene, grid, threads=threads)
     previous = [None] * _rings(scene)                       # each ring's result at the previous load
     records, (solves, seconds) = [], spent
-    for force in scene.loads.normal_forces:
+    for _, pressures in apparent_scale(scene) if apparent is None else apparent:
         start, points = time.perf_counter(), []
-        for k, pressure in enumerate(apparent_contact(scene.fingerpad, force, len(previous))[1]):
+        for k, pressure in enumerate(pressures):
             point, previous[k] = coupled_point(ridges, body, law, pressure, tol=scene.preset.tolerance,
                                                x0=previous[k])
             points.append(point)

@@ -47,11 +47,16 @@ DEFAULT_SCENE_TOML = """\
 # Apparent contact area A0(F_N): "power_law" A0 = area_prefactor * F_N^area_exponent (seed Eq. 27, Dzidek et
 # al. 2017, references.md §0.5) with uniform nominal pressure F_N/A0, or "fingertip": a Hertzian cap of
 # radius and E_star (seed R* = 1 cm, E* = 47.4 kPa, references.md §1.1), Hertz pressure over the disc.
+# layer = true (fingertip only): the cap is pressed onto the [skin] layer bonded on tissue of E_star, solved on
+# a free grid of layer_grid x layer_grid pixels (roughcontact.fingertip; docs/equivalent_gap.md, "The apparent
+# scale on the layered skin": A0 2.5-4.2 % smaller, the outer ring's pressure 10-18 % higher at 0.5-2 N).
 model = "power_law"
 area_prefactor = 9.19e-05      # m^2 N^-area_exponent (91.9 mm^2)
 area_exponent = 0.37
 radius = 0.01                  # m
 E_star = 47400.0               # Pa
+layer = false
+layer_grid = 128
 
 [ridges]
 # Parallel fingerprint ridges (surfaces.parallel_ridges), references.md §1.1.
@@ -59,6 +64,12 @@ enabled = true
 period = 0.00045               # m, adult mean ridge breadth 0.43-0.48 mm (Kralik & Novotny 2003)
 height = 5e-05                 # m, crest to furrow, 50-100 um (OCT, Adams et al. 2013)
 width_ratio = 1.5              # ridge/furrow width at mid-height: 0.27 mm ridges, 0.18 mm furrows
+# Sweat pores on the crests, placed at random per realisation: 300-1000 cm^-2 (seed), openings 88-220 um
+# (Ashbaugh 1999), references.md §1.1. Off by default: a one-period patch (0.2 mm^2) holds one pore at 500 cm^-2,
+# so pores are a scene choice (pore_density = 5e6), not averaged into the default numbers.
+pore_density = 0.0             # 1/m^2
+pore_diameter = 0.00012        # m, opening
+pore_depth = 2e-05             # m, dimple depth seen by a flat counter-face [estimate]
 
 [roughness]
 # Self-affine micro-roughness on the ridges (surfaces.self_affine, spectrum of references.md §3.1).
@@ -241,23 +252,38 @@ class _Section:
 @dataclass(frozen=True)
 class Fingerpad(_Section):
     """Apparent contact: ``model`` "power_law" (A0 = area_prefactor F_N^area_exponent [m²], uniform nominal
-    pressure) or "fingertip" (Hertz cap of ``radius`` [m] and ``E_star`` [Pa])."""
+    pressure) or "fingertip" (Hertz cap of ``radius`` [m] on tissue of ``E_star`` [Pa]; with ``layer`` the cap
+    pressed onto the skin's layer on that tissue, solved on ``layer_grid``² pixels)."""
     section = "fingerpad"
     model: str = _field(_Choice(("power_law", "fingertip")))
     area_prefactor: float = _field(_Real(0.0, low_open=True))
     area_exponent: float = _field(_Real(0.0, 1.0, low_open=True))
     radius: float = _field(_Real(0.0, low_open=True))
     E_star: float = _field(_Real(0.0, low_open=True))
+    layer: bool = _field(_Boolean())
+    layer_grid: int = _field(_Integer(16, 2048))
 
 
 @dataclass(frozen=True)
 class Ridges(_Section):
-    """Parallel ridges: ``period`` [m], crest-to-furrow ``height`` [m], ridge/furrow ``width_ratio``."""
+    """Parallel ridges: ``period`` [m], crest-to-furrow ``height`` [m], ridge/furrow ``width_ratio``; sweat pores
+    of ``pore_density`` [1/m²], ``pore_diameter`` and ``pore_depth`` [m] on the crests."""
     section = "ridges"
     enabled: bool = _field(_Boolean())
     period: float = _field(_Real(0.0, low_open=True))
     height: float = _field(_Real(0.0))
     width_ratio: float = _field(_Real(0.43, 2.33))
+    pore_density: float = _field(_Real(0.0))
+    pore_diameter: float = _field(_Real(0.0, low_open=True))
+    pore_depth: float = _field(_Real(0.0))
+
+    def __post_init__(self):
+        super().__post_init__()
+        from surfaces.ridges import ridge_fraction
+        width = ridge_fraction(self.width_ratio) * self.period
+        if self.pore_diameter > width:
+            raise ValueError(f"ridges.pore_diameter = {self.pore_diameter!r} m is wider than a ridge ({width:g} m at "
+                             f"period {self.period:g} m, width_ratio {self.width_ratio:g}); valid range (0, {width:g}]")
 
 
 @dataclass(frozen=True)

@@ -64,6 +64,26 @@ def apparent_contact(fingerpad, normal_force: float, rings: int) -> tuple:
     return area, tuple(float(p) for p in means)
 
 
+def apparent_scale(scene: Scene) -> tuple:
+    """``(A0 [m²], nominal pressures [Pa])`` at each of the scene's normal forces: :func:`apparent_contact`, or
+    for a fingertip with ``fingerpad.layer`` the cap solved on the skin's layer over the tissue
+    (:func:`roughcontact.fingertip.fingertip_contact` on ``fingerpad.layer_grid``² pixels; ``ValueError`` where a
+    solve does not converge)."""
+    rings, fingerpad = _rings(scene), scene.fingerpad
+    if fingerpad.model != "fingertip" or not fingerpad.layer:
+        return tuple(apparent_contact(fingerpad, force, rings) for force in scene.loads.normal_forces)
+    from .fingertip import fingertip_contact
+    scales = []
+    for force in scene.loads.normal_forces:
+        contact = fingertip_contact(fingerpad, scene.skin, force, rings, grid_points=fingerpad.layer_grid)
+        if not contact.converged:
+            raise ValueError(f"the fingertip on the layered skin did not converge at loads.normal_forces = {force!r} "
+                             f"N ({contact.iterations} iterations on fingerpad.layer_grid = {fingerpad.layer_grid} "
+                             "px); refine layer_grid or set fingerpad.layer = false")
+        scales.append((contact.area, contact.pressures))
+    return tuple(scales)
+
+
 def patch_grid(scene: Scene):
     """The periodic patch grid: ``grid`` × ``grid`` pixels over ``periods`` ridge periods per side."""
     from surfaces import Grid
@@ -83,14 +103,18 @@ def resolved_short_cutoff(scene: Scene) -> float:
     return cutoff
 
 
-def ridge_heights(scene: Scene, grid=None) -> np.ndarray:
-    """Heights [m] of the parallel ridges on ``grid`` (default: the patch grid); zero when disabled."""
+def ridge_heights(scene: Scene, grid=None, realisation: int = 0) -> np.ndarray:
+    """Heights [m] of the parallel ridges on ``grid`` (default: the patch grid), with the sweat pores of
+    ``realisation`` (rng stream (seed + realisation, 1), apart from the roughness's); zero when disabled."""
     from surfaces import parallel_ridges
     grid = patch_grid(scene) if grid is None else grid
-    if not scene.ridges.enabled:
+    ridges = scene.ridges
+    if not ridges.enabled:
         return np.zeros(grid.shape)
-    return parallel_ridges(grid, period=scene.ridges.period, height=scene.ridges.height,
-                           ridge_width_ratio=scene.ridges.width_ratio).heights
+    return parallel_ridges(grid, period=ridges.period, height=ridges.height, ridge_width_ratio=ridges.width_ratio,
+                           pore_density=ridges.pore_density, pore_diameter=ridges.pore_diameter,
+                           pore_depth=ridges.pore_depth,
+                           rng=np.random.default_rng((scene.study.seed + realisation, 1))).heights
 
 
 def roughness_heights(scene: Scene, realisation: int) -> np.ndarray:
@@ -111,7 +135,7 @@ def roughness_heights(scene: Scene, realisation: int) -> np.ndarray:
 
 def patch_surface(scene: Scene, realisation: int) -> np.ndarray:
     """Heights [m] of the patch of ``realisation``: ridges plus micro-roughness."""
-    heights = ridge_heights(scene) + roughness_heights(scene, realisation)
+    heights = ridge_heights(scene, realisation=realisation) + roughness_heights(scene, realisation)
     if not heights.any():
         raise ValueError("the patch is flat: enable ridges (ridges.enabled, ridges.height > 0) or roughness "
                          "(roughness.enabled)")
@@ -133,7 +157,8 @@ def patch_body(scene: Scene, grid=None, threads=None):
 
 def realisation_count(scene: Scene) -> int:
     """Distinct patches: the preset's realisations, one when nothing in the patch is random."""
-    return scene.preset.realisations if scene.roughness.enabled else 1
+    pores = scene.ridges.enabled and scene.ridges.pore_density > 0
+    return scene.preset.realisations if scene.roughness.enabled or pores else 1
 
 
 def ridge_area_fraction(contact: np.ndarray, spacing: float, length: float) -> float:
@@ -229,12 +254,14 @@ def _lengths(scene: Scene) -> tuple:
     return (length, *(factor * length for factor in scene.ridge_area.sensitivity))
 
 
-def solve_chain(scene: Scene, realisation: int, voltage_index: int, threads: int | None = None) -> tuple:
+def solve_chain(scene: Scene, realisation: int, voltage_index: int, threads: int | None = None,
+                apparent: tuple | None = None) -> tuple:
     """One task of the study: the patch of ``realisation`` at voltage ``loads.voltages[voltage_index]`` under
     every load of the scene in order, each ring's solve warm-started from its result at the previous load (cold
     with the preset's ``warm_start`` false; a warm start that fails is repeated cold). ``threads`` FFT threads
-    (default: ``roughcontact.fft.default_threads``). Returns one :class:`PatchRecord` per load; deterministic,
-    so the records do not depend on where the task runs."""
+    (default: ``roughcontact.fft.default_threads``); ``apparent``, the scene's :func:`apparent_scale` (computed
+    when not given). Returns one :class:`PatchRecord` per load; deterministic, so the records do not depend on
+    where the task runs."""
     from .contact import solve_contact
     from .interactions import ElectrostaticInteraction
 
@@ -246,9 +273,9 @@ def solve_chain(scene: Scene, realisation: int, voltage_index: int, threads: int
     warm_start = scene.preset.warm_start
     latest = [None] * _rings(scene)                         # each ring's last result: the next load's x0
     records = []
-    for force in scene.loads.normal_forces:
+    for _, pressures in apparent_scale(scene) if apparent is None else apparent:
         start, solves = time.perf_counter(), 0
-        for k, pressure in enumerate(apparent_contact(scene.fingerpad, force, len(latest))[1]):
+        for k, pressure in enumerate(pressures):
             x0 = latest[k] if warm_start else None
             result = solve_contact(heights, body, mean_pressure=pressure, interaction=law,
                                    tol=scene.preset.tolerance, x0=x0, warn=False)
@@ -608,9 +635,10 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
     task = solve_chain
     if scene.preset.scales == "coupled":            # the micro-roughness as an interface law (roughcontact.coupling)
         from .coupling import coupled_chain as task
+    apparent = apparent_scale(scene)                # once, for every task
     try:
         with executor:
-            futures = {executor.submit(task, scene, r, j, executor.threads): (r, j) for r, j in todo}
+            futures = {executor.submit(task, scene, r, j, executor.threads, apparent): (r, j) for r, j in todo}
             for future in executor.as_completed(list(futures)):
                 key = futures[future]
                 records[key] = future.result()
@@ -623,9 +651,7 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
             bar.close()
         if store is not None:
             store.release()
-    rings = _rings(scene)
-    table = tuple(tuple(_point_result(force, voltage, *apparent_contact(scene.fingerpad, force, rings),
-                                      [records[(r, j)][i] for r in range(count)])
+    table = tuple(tuple(_point_result(force, voltage, *apparent[i], [records[(r, j)][i] for r in range(count)])
                         for j, voltage in enumerate(voltages)) for i, force in enumerate(forces))
     return StudyResult(scene=scene, points=table, coarse_graining=_lengths(scene), short_cutoff=cutoff,
                        computed=len({j for _, j in todo}) * len(forces),

@@ -79,7 +79,8 @@ def test_invalid_toml_and_missing_file(tmp_path):
 
 def test_sections_validate_when_built_in_python():
     with pytest.raises(ValueError, match="ridges.width_ratio"):
-        Ridges(enabled=True, period=4.5e-4, height=5e-5, width_ratio=5.0)
+        Ridges(enabled=True, period=4.5e-4, height=5e-5, width_ratio=5.0, pore_density=0.0, pore_diameter=1.2e-4,
+               pore_depth=2e-5)
 
 
 def test_scene_command_shows_and_validates(tmp_path, capsys):

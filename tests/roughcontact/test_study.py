@@ -10,8 +10,9 @@ from roughcontact.cli import main
 from roughcontact.provenance import read_csv
 from roughcontact.report import TabulatedArea, bottom_up_friction, report_text
 from roughcontact.scene import Fingerpad, load_scene
-from roughcontact.study import (DirectoryInUse, SceneMismatch, TaskStore, apparent_contact, confidence_interval,
-                                patch_body, patch_surface, ridge_area_fraction, run_study, solve_chain)
+from roughcontact.study import (DirectoryInUse, SceneMismatch, TaskStore, apparent_contact, apparent_scale,
+                                confidence_interval, patch_body, patch_surface, realisation_count,
+                                ridge_area_fraction, ridge_heights, run_study, solve_chain)
 from study_scenes import TINY
 
 
@@ -63,15 +64,58 @@ def test_identical_sub_problems_are_solved_once():
 
 
 def test_apparent_contact_models():
-    power = Fingerpad(model="power_law", area_prefactor=91.9e-6, area_exponent=0.37, radius=1e-2, E_star=47.4e3)
+    power = Fingerpad(model="power_law", area_prefactor=91.9e-6, area_exponent=0.37, radius=1e-2, E_star=47.4e3,
+                      layer=False, layer_grid=128)
     area, pressures = apparent_contact(power, 1.0, 3)
     assert area == pytest.approx(91.9e-6) and pressures == (pytest.approx(1.0 / 91.9e-6),)
-    tip = Fingerpad(model="fingertip", area_prefactor=91.9e-6, area_exponent=0.37, radius=1e-2, E_star=47.4e3)
+    tip = Fingerpad(model="fingertip", area_prefactor=91.9e-6, area_exponent=0.37, radius=1e-2, E_star=47.4e3,
+                    layer=False, layer_grid=128)
     area, pressures = apparent_contact(tip, 1.0, 4)
     radius = (3 * 1e-2 / (4 * 47.4e3)) ** (1 / 3)
     assert area == pytest.approx(np.pi * radius ** 2)
     assert np.mean(pressures) * area == pytest.approx(1.0)          # equal-area rings carry the load
     assert list(pressures) == sorted(pressures, reverse=True)
+
+
+def test_layered_fingertip_is_solved_once_for_all_tasks(monkeypatch):
+    # fingerpad.layer: the apparent scale is the cap solved on the layered skin (fingertip_contact), computed once
+    # per load by run_study, not per (realisation, voltage) task, and every task is solved at its ring pressures
+    import roughcontact.fingertip as fingertip
+    scene = load_scene(text=TINY + '[fingerpad]\nmodel = "fingertip"\nlayer = true\nlayer_grid = 32\n',
+                       preset="draft")
+    original, loads = fingertip.fingertip_contact, []
+    monkeypatch.setattr(fingertip, "fingertip_contact",
+                        lambda *arguments, **keywords: loads.append(arguments[2]) or original(*arguments, **keywords))
+    result = run_study(scene, workers=1)
+    assert loads == [0.5, 2.0]
+    layered = original(scene.fingerpad, scene.skin, 2.0, 2, grid_points=32)
+    point = result.points[1][1]
+    assert point.apparent_area == layered.area and point.nominal_pressures == layered.pressures
+    records = solve_chain(scene, 1, 1, 1, apparent_scale(scene))
+    assert point.equivalent_gap[1] == records[1].equivalent_gap
+    hertz = solve_chain(scene, 1, 1, 1, [apparent_contact(scene.fingerpad, force, 2) for force in (0.5, 2.0)])
+    assert hertz[1].equivalent_gap != records[1].equivalent_gap            # the tasks used the layered pressures
+
+
+def test_pores_make_each_realisation_a_patch_of_its_own():
+    # ridges with two 60 µm sweat pores per patch and no roughness: the pores sit at random per realisation, so
+    # each realisation is a patch of its own (without pores the scene is solved once), the plain ridges less the
+    # dimples; the coupled path, which has no pores, refuses them
+    pores = "[ridges]\npore_density = 1e7\npore_diameter = 6e-5\n"
+    smooth = TINY.replace("long_cutoff = 1.5e-4", "long_cutoff = 1.5e-4\nenabled = false")
+    scene = load_scene(text=smooth + pores, preset="draft")
+    plain = ridge_heights(load_scene(text=smooth, preset="draft"))
+    assert realisation_count(scene) == 2
+    patches = [patch_surface(scene, r) for r in range(2)]
+    assert not np.array_equal(*patches)
+    for patch in patches:
+        drop = plain - patch
+        drop -= np.median(drop)                    # undo the mean shift by the dimples' volume
+        assert drop.max() == pytest.approx(2e-5, rel=1e-9) and np.count_nonzero(drop > 1e-12) < 0.05 * drop.size
+    result = run_study(scene, workers=1)
+    assert result.array("equivalent_gap").shape == (2, 2, 2)
+    with pytest.raises(ValueError, match="pore_density"):
+        run_study(load_scene(text=TINY + 'scales = "coupled"\n' + pores, preset="draft"), workers=1)
 
 
 def test_ridge_area_fraction_closes_gaps_shorter_than_the_length():
