@@ -29,26 +29,16 @@ def untimed(records):
 
 
 @pytest.fixture(scope="module")
-def tiny():
-    return load_scene(text=TINY, preset="draft")
-
-
-@pytest.fixture(scope="module")
-def serial(tiny):
-    return run_study(tiny, workers=1)
-
-
-@pytest.fixture(scope="module")
 def cluster():
     distributed = pytest.importorskip("distributed")
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as local:
         yield local
 
 
-def test_local_pool_stores_the_in_process_records(tiny, serial, tmp_path):
+def test_local_pool_stores_the_in_process_records(tiny, tiny_result, tmp_path):
     pooled = run_study(tiny, tmp_path, workers=2)
-    assert numbers(pooled) == numbers(serial)
-    assert pooled.solves == serial.solves == 8 and pooled.computed == 4
+    assert numbers(pooled) == numbers(tiny_result)
+    assert pooled.solves == tiny_result.solves == 8 and pooled.computed == 4
     store = TaskStore(tmp_path, tiny)
     for r in range(2):
         for j in range(2):                                  # the JSON round trip is exact
@@ -56,7 +46,7 @@ def test_local_pool_stores_the_in_process_records(tiny, serial, tmp_path):
     store.release()
 
 
-def test_interrupted_pool_keeps_finished_tasks_and_resume_solves_the_rest(tiny, serial, tmp_path, monkeypatch):
+def test_interrupted_pool_keeps_finished_tasks_and_resume_solves_the_rest(tiny, tiny_result, tmp_path, monkeypatch):
     save = TaskStore.save
 
     def interrupted(self, *args):
@@ -77,7 +67,7 @@ def test_interrupted_pool_keeps_finished_tasks_and_resume_solves_the_rest(tiny, 
     resumed = run_study(tiny, tmp_path, workers=2)
     assert resumed.solves == 8 - sum(record.solves for record in first)      # 3 tasks of 2 solves
     assert resumed.computed == 4                            # the other realisation of each point was missing
-    assert numbers(resumed) == numbers(serial)
+    assert numbers(resumed) == numbers(tiny_result)
 
 
 def test_the_pool_ends_with_a_killed_client(tmp_path):
@@ -107,9 +97,9 @@ def test_the_pool_ends_with_a_killed_client(tmp_path):
     assert alive == []
 
 
-def test_local_cluster_gives_the_in_process_records(tiny, serial, cluster):
+def test_local_cluster_gives_the_in_process_records(tiny, tiny_result, cluster):
     on_cluster = run_study(tiny, dask=cluster.scheduler_address)
-    assert numbers(on_cluster) == numbers(serial) and on_cluster.solves == 8
+    assert numbers(on_cluster) == numbers(tiny_result) and on_cluster.solves == 8
 
 
 def test_a_worker_lost_mid_run_costs_only_its_tasks(cluster, tmp_path):

@@ -17,16 +17,6 @@ from study_scenes import TINY
 
 
 
-@pytest.fixture(scope="module")
-def tiny():
-    return load_scene(text=TINY, preset="draft")
-
-
-@pytest.fixture(scope="module")
-def tiny_result(tiny):
-    return run_study(tiny, workers=1)
-
-
 def test_zero_volt_study_is_the_hard_wall_chain():
     scene = load_scene(text=TINY.replace("voltages = [0.0, 150.0]", "voltages = [0.0]"), preset="draft")
     result = run_study(scene, workers=1)
