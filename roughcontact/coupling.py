@@ -42,7 +42,7 @@ class InterfaceLaw(Interaction):
     increasing): traction p(ū) [Pa] (positive compressive), Eq. 25 gap e(ū) [m], real contact fraction φ(ū),
     weighted mean-square gap slope s²(ū) (weights (ε_a c + g)⁻², as the study's gap slope) and, for each
     closing diameter of ``coarse_graining`` [m], the closed contact fraction a_ℓ(ū) (``ridge_area_fractions``,
-    one tuple per diameter).
+    one tuple per diameter); ``converged``, whether every node's micro-patch solve converged.
 
     Between the nodes monotone cubic (PCHIP) interpolation; below the first node the cubic extrapolates; beyond
     the last node the traction follows the flat-plate attraction −σ_el(ū) of ``stack`` at ``voltage`` scaled to
@@ -60,6 +60,7 @@ class InterfaceLaw(Interaction):
     length: float
     coarse_graining: tuple = ()
     ridge_area_fractions: tuple = ()
+    converged: bool = True
     _splines: dict = field(default=None, repr=False, compare=False)
 
     def __post_init__(self):
@@ -148,7 +149,7 @@ def interface_law(heights, body, stack, voltage: float, nodes: int = LAW_NODES, 
     separations = np.geomspace(0.02 * rms, top - mean + 2 * rms, nodes)
     law = ElectrostaticInteraction(stack, voltage=voltage) if voltage > 0 else None
     spacing, offset = body.grid.spacing, stack.eps_a * stack.dielectric_offset
-    rows, previous = [], None
+    rows, previous, converged = [], None, True
     for separation in separations[::-1]:
         result = solve_contact(heights, body, penetration=top - mean - separation, interaction=law, tol=tol,
                                x0=previous, warn=False)
@@ -156,13 +157,13 @@ def interface_law(heights, body, stack, voltage: float, nodes: int = LAW_NODES, 
         rows.append((result.mean_pressure, stack.equivalent_gap(gap), result.contact_fraction,
                      _gap_slope(gap, (offset + gap) ** -2.0, spacing) ** 2,
                      *(ridge_area_fraction(contact, spacing[0], length) for length in coarse_graining)))
-        previous = result
+        previous, converged = result, converged and bool(result.converged)
     columns = [tuple(float(v) for v in column[::-1]) for column in zip(*rows)]
     return InterfaceLaw(separations=tuple(float(s) for s in separations), tractions=columns[0],
                         equivalent_gaps=columns[1], contact_fractions=columns[2], slopes=columns[3], stack=stack,
                         voltage=float(voltage), length=float(rms),
                         coarse_graining=tuple(float(v) for v in coarse_graining),
-                        ridge_area_fractions=tuple(columns[4:]))
+                        ridge_area_fractions=tuple(columns[4:]), converged=converged)
 
 
 @dataclass(frozen=True)
@@ -265,7 +266,8 @@ def ridge_chain(scene, law: InterfaceLaw, threads: int | None = None, grid=None,
             mean_gap=float(np.mean([p.mean_gap for p in points])),
             contact_fraction=float(np.mean([p.contact_fraction for p in points])), ridge_area_fractions=fractions,
             electrostatic_pressure=float(np.mean([p.electrostatic_pressure for p in points])),
-            gap_slope=float(np.mean([p.gap_slope for p in points])), converged=all(p.converged for p in points),
+            gap_slope=float(np.mean([p.gap_slope for p in points])),
+            converged=law.converged and all(p.converged for p in points),
             iterations=sum(p.iterations for p in points), solves=solves + len(points),
             seconds=seconds + time.perf_counter() - start))
         solves, seconds = 0, 0.0

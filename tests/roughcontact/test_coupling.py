@@ -69,6 +69,26 @@ def test_interface_law_is_consistent(scene, law):
         dataclasses.replace(law, ridge_area_fractions=law.ridge_area_fractions[:1])
 
 
+def test_an_unconverged_law_node_marks_the_law_and_its_records(scene, law, monkeypatch):
+    # every node of the tiny scene's law converged; one micro-patch solve that misses its tolerance marks the law
+    # and, through it, every record of the ridge chain as not converged (not hidden behind the ridge solves)
+    import roughcontact.contact
+    assert law.converged and all(record.converged for record in ridge_chain(scene, law))
+    solve, calls = roughcontact.contact.solve_contact, []
+
+    def one_unconverged(*arguments, **keywords):
+        result = solve(*arguments, **keywords)
+        calls.append(None)
+        return dataclasses.replace(result, converged=False) if len(calls) == 5 else result
+
+    monkeypatch.setattr(roughcontact.contact, "solve_contact", one_unconverged)
+    failed = interface_law(roughness_heights(scene, 0), patch_body(scene), scene.screen.stack(), 150.0,
+                           tol=scene.preset.tolerance, coarse_graining=_lengths(scene))
+    monkeypatch.undo()
+    assert not failed.converged and failed.tractions == law.tractions
+    assert not any(record.converged for record in ridge_chain(scene, failed))
+
+
 def test_coupled_chain_is_the_law_on_the_ridges(scene, law, chains):
     again = ridge_chain(scene, law)
     for coupled, record in zip(chains["coupled"], again):
