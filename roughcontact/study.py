@@ -612,7 +612,8 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
     processes (default: the cores this process may run on, at most one per task), each task with cores //
     workers FFT threads; ``workers=1`` runs them in this process. ``dask``, the address of a dask.distributed
     scheduler (``"tcp://host:8786"``), runs them on that cluster instead (one FFT thread per task; needs
-    ``roughcontact[parallel]``). Every executor gives the same records for the same FFT plans. Interrupted
+    ``roughcontact[parallel]``). Every executor gives the same records for the same FFT plans. A script that
+    uses the pool needs Python's ``if __name__ == "__main__":`` guard around its work (the workers import it). Interrupted
     (Ctrl-C), the waiting tasks are cancelled and the pool's workers stopped (a cluster's running tasks finish
     and are dropped); the finished ones stay in ``directory``.
     """
@@ -636,6 +637,7 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
     if scene.preset.scales == "coupled":            # the micro-roughness as an interface law (roughcontact.coupling)
         from .coupling import coupled_chain as task
     apparent = apparent_scale(scene)                # once, for every task
+    from concurrent.futures.process import BrokenProcessPool
     try:
         with executor:
             futures = {executor.submit(task, scene, r, j, executor.threads, apparent): (r, j) for r, j in todo}
@@ -646,6 +648,12 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
                     store.save(*key, records[key])
                 if bar is not None:
                     bar.update(len(forces) / count)
+    except BrokenProcessPool as error:
+        raise RuntimeError("a worker of the study's process pool ended abruptly: killed (e.g. out of memory), or, "
+                           "in a script, the pool was started without the 'if __name__ == \"__main__\":' guard "
+                           "around the script's work (the workers import the script); add the guard, or run "
+                           "in this process with workers=1. Finished tasks are kept in the results "
+                           "directory") from error
     finally:
         if bar is not None:
             bar.close()

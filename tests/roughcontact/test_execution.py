@@ -152,3 +152,21 @@ def test_an_unreachable_scheduler_is_named(tiny, tmp_path):
 def test_bad_executor_choices_are_refused(tiny, workers, dask, message):
     with pytest.raises(ValueError, match=message):
         run_study(tiny, workers=workers, dask=dask)
+
+
+def test_a_script_without_the_main_guard_gets_a_clear_error(tmp_path):
+    # the pool's workers import the script (forkserver); without the guard they fail to start, which surfaces
+    # as one RuntimeError naming the guard and workers=1, not only the workers' own tracebacks
+    script = tmp_path / "study_script.py"
+    script.write_text(textwrap.dedent(f"""
+        import sys
+        sys.path.insert(0, {str(Path(__file__).parent)!r})
+        from study_scenes import TINY
+        from roughcontact.scene import load_scene
+        from roughcontact.study import run_study
+        run_study(load_scene(text=TINY, preset="draft"), workers=2)
+    """))
+    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=300)
+    assert done.returncode != 0
+    assert done.stderr.strip().splitlines()[-1].startswith("RuntimeError: a worker of the study's process pool")
+    assert "__main__" in done.stderr.splitlines()[-1] and "workers=1" in done.stderr.splitlines()[-1]
