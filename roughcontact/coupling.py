@@ -245,7 +245,7 @@ def ridge_chain(scene, law: InterfaceLaw, threads: int | None = None, grid=None,
     under every load in order, each ring's solve (:func:`coupled_point`) warm-started from its result at the
     previous load. Returns one :class:`~roughcontact.study.PatchRecord` per load, averaged over the rings as
     the resolved chain does; ``spent`` (solves, seconds) taken before, counted in the first record."""
-    from .study import PatchRecord, _rings, apparent_scale, patch_body, ridge_heights
+    from .study import PatchRecord, _rings, apparent_scale, patch_body, ridge_equivalent_gap, ridge_heights
     grid = ridge_grid(scene) if grid is None else grid
     stack = law.stack
     ridges, body = ridge_heights(scene, grid), patch_body(scene, grid, threads=threads)
@@ -259,10 +259,8 @@ def ridge_chain(scene, law: InterfaceLaw, threads: int | None = None, grid=None,
             points.append(point)
         d_eq = stack.equivalent_gap(np.array([point.equivalent_gap for point in points]))   # rings of equal area
         fractions = tuple(float(np.mean(column)) for column in zip(*(p.ridge_area_fractions for p in points)))
-        # σ_el(d_eq,R) A_R = σ_el(d_eq) A0: (c + d_R/ε_a)² = (A_R/A0) (c + d_eq/ε_a)²
-        d_ridge = stack.eps_a * (np.sqrt(fractions[0]) * stack.electrical_thickness(d_eq) - stack.dielectric_offset)
         records.append(PatchRecord(
-            equivalent_gap=d_eq, ridge_equivalent_gap=max(float(d_ridge), 0.0),
+            equivalent_gap=d_eq, ridge_equivalent_gap=ridge_equivalent_gap(stack, d_eq, fractions[0]),
             mean_gap=float(np.mean([p.mean_gap for p in points])),
             contact_fraction=float(np.mean([p.contact_fraction for p in points])), ridge_area_fractions=fractions,
             electrostatic_pressure=float(np.mean([p.electrostatic_pressure for p in points])),

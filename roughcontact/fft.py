@@ -50,6 +50,11 @@ def default_threads() -> int:
         if not value.strip().isdigit() or int(value) < 1:
             raise ValueError(f"{THREADS_VARIABLE} = {value!r} must be a whole number >= 1")
         return int(value)
+    return available_cores()
+
+
+def available_cores() -> int:
+    """The cores this process may run on (its affinity; all cores where the platform has none)."""
     try:
         return len(os.sched_getaffinity(0))
     except AttributeError:                 # (no affinity on this platform)

@@ -54,13 +54,14 @@ class FingertipContact:
         return iter((self.area, self.pressures))
 
 
-def skin_body(grid: Grid, skin, tissue_E_star: float) -> ElasticHalfSpace:
+def skin_body(grid: Grid, skin, tissue_E_star: float, **options) -> ElasticHalfSpace:
     """The skin on ``grid``: the scene's layer bonded on tissue of ``tissue_E_star`` [Pa], or that tissue's
-    half-space when ``skin.layer_thickness`` is 0."""
+    half-space when ``skin.layer_thickness`` is 0; ``options`` (``threads``, ``dtype``, …) go to
+    :class:`~roughcontact.elastic.ElasticHalfSpace`."""
     if skin.layer_thickness == 0:
-        return ElasticHalfSpace(grid, E_star=tissue_E_star)
+        return ElasticHalfSpace(grid, E_star=tissue_E_star, **options)
     return ElasticHalfSpace(grid, E_star=skin.layer_E_star, thickness=skin.layer_thickness, poisson=skin.poisson,
-                            substrate_E_star=tissue_E_star, substrate_poisson=skin.poisson)
+                            substrate_E_star=tissue_E_star, substrate_poisson=skin.poisson, **options)
 
 
 def ring_means(pressure: np.ndarray, radii: np.ndarray, contact_radius: float, rings: int) -> tuple:

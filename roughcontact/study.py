@@ -145,14 +145,9 @@ def patch_surface(scene: Scene, realisation: int) -> np.ndarray:
 def patch_body(scene: Scene, grid=None, threads=None):
     """The skin under the patch on ``grid`` (default: the patch grid): a half-space of ``skin.E_star``, or the
     layer bonded on it; in the preset's dtype, with ``threads`` FFT threads (default: ``roughcontact.fft``'s)."""
-    from .elastic import ElasticHalfSpace
-    skin = scene.skin
+    from .fingertip import skin_body
     grid = patch_grid(scene) if grid is None else grid
-    numbers = {"threads": threads, "dtype": scene.preset.dtype}
-    if skin.layer_thickness == 0:
-        return ElasticHalfSpace(grid, E_star=skin.E_star, **numbers)
-    return ElasticHalfSpace(grid, E_star=skin.layer_E_star, thickness=skin.layer_thickness, poisson=skin.poisson,
-                            substrate_E_star=skin.E_star, substrate_poisson=skin.poisson, **numbers)
+    return skin_body(grid, scene.skin, scene.skin.E_star, threads=threads, dtype=scene.preset.dtype)
 
 
 def realisation_count(scene: Scene) -> int:
@@ -227,17 +222,24 @@ def _gap_slope(gap, weights, spacing) -> float:
     return float(np.sqrt(np.sum(weights * (gx ** 2 + gy ** 2)) / np.sum(weights)))
 
 
+def ridge_equivalent_gap(stack, equivalent_gap: float, ridge_area_fraction: float) -> float:
+    """d_eq,R [m]: the uniform gap over A_R that carries the attraction σ̄_el A0 of ``equivalent_gap`` d_eq [m]
+    over A0, σ_el(d_eq,R) A_R = σ_el(d_eq) A0, i.e. (c + d_eq,R/ε_a)² = (A_R/A0)(c + d_eq/ε_a)² (seed Eq. 21);
+    0 where A_R/A0 (``ridge_area_fraction``) is too small for a positive gap."""
+    electrical = np.sqrt(ridge_area_fraction) * stack.electrical_thickness(equivalent_gap)
+    return max(float(stack.eps_a * (electrical - stack.dielectric_offset)), 0.0)
+
+
 def _patch_record(stack, voltage, results, lengths, spacing, solves, seconds) -> PatchRecord:
     """Average the solved rings ``results`` of one patch over the apparent area (gaps in float64)."""
     gaps = np.stack([np.asarray(res.gap, dtype=np.float64) for res in results])
     d_eq = stack.equivalent_gap(gaps)
     fractions = tuple(float(np.mean([ridge_area_fraction(np.asarray(res.contact), spacing[0], length)
                                      for res in results])) for length in lengths)
-    # σ_el(d_eq,R) A_R = σ_el(d_eq) A0: (c + d_R/ε_a)² = (A_R/A0) (c + d_eq/ε_a)²
-    d_ridge = stack.eps_a * (np.sqrt(fractions[0]) * stack.electrical_thickness(d_eq) - stack.dielectric_offset)
     offset = stack.eps_a * stack.dielectric_offset
     return PatchRecord(
-        equivalent_gap=float(d_eq), ridge_equivalent_gap=max(float(d_ridge), 0.0), mean_gap=float(gaps.mean()),
+        equivalent_gap=float(d_eq), ridge_equivalent_gap=ridge_equivalent_gap(stack, d_eq, fractions[0]),
+        mean_gap=float(gaps.mean()),
         contact_fraction=float(np.mean([res.contact_fraction for res in results])), ridge_area_fractions=fractions,
         electrostatic_pressure=float(np.mean(stack.pressure(gaps, voltage))),
         gap_slope=float(np.mean([_gap_slope(g, (offset + g) ** -2.0, spacing) for g in gaps])),
@@ -554,7 +556,8 @@ def _executor(workers, dask, tasks: int):
     """The executor of ``tasks`` tasks (see :func:`run_study`)."""
     if dask is not None:
         return _Dask(dask)
-    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+    from .fft import available_cores
+    cores = available_cores()
     workers = min(cores, tasks) if workers is None else workers
     if workers == 1 or tasks <= 1:
         return _InProcess()

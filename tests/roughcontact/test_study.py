@@ -12,7 +12,7 @@ from roughcontact.report import TabulatedArea, bottom_up_friction, report_text
 from roughcontact.scene import Fingerpad, load_scene
 from roughcontact.study import (DirectoryInUse, SceneMismatch, TaskStore, apparent_contact, apparent_scale,
                                 confidence_interval, patch_body, patch_surface, realisation_count,
-                                ridge_area_fraction, ridge_heights, run_study, solve_chain)
+                                ridge_area_fraction, ridge_equivalent_gap, ridge_heights, run_study, solve_chain)
 from study_scenes import TINY
 
 
@@ -106,6 +106,17 @@ def test_pores_make_each_realisation_a_patch_of_its_own():
     assert result.array("equivalent_gap").shape == (2, 2, 2)
     with pytest.raises(ValueError, match="pore_density"):
         run_study(load_scene(text=TINY + 'scales = "coupled"\n' + pores, preset="draft"), workers=1)
+
+
+def test_ridge_equivalent_gap_carries_the_same_attraction_over_the_ridge_area():
+    # σ_el(d_eq,R) A_R = σ_el(d_eq) A0 (round-off: 1e-12), d_eq,R = d_eq over the whole area, and 0 where A_R/A0
+    # is too small for a positive gap
+    stack = load_scene().screen.stack()
+    for fraction in (0.3, 0.7, 1.0):
+        gap = ridge_equivalent_gap(stack, 2e-6, fraction)
+        assert stack.pressure(gap, 200.0) * fraction == pytest.approx(stack.pressure(2e-6, 200.0), rel=1e-12)
+    assert ridge_equivalent_gap(stack, 2e-6, 1.0) == pytest.approx(2e-6, rel=1e-12)
+    assert ridge_equivalent_gap(stack, 1e-9, 1e-6) == 0.0
 
 
 def test_ridge_area_fraction_closes_gaps_shorter_than_the_length():
