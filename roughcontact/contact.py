@@ -242,7 +242,10 @@ class ContactResult(SavableResult):
     A/A0. Energies [J]: ``elastic_energy`` ½∫p u dA, ``interaction_energy`` ∫V(g) dA. Convergence:
     ``iterations``, ``residuals`` (history of the relative error), ``converged``, ``message``, ``wall_time``
     [s]. ``control`` ("mean_pressure", "total_force" or "penetration") and ``requested`` say what was fixed;
-    ``params`` the solver's settings and diagnostics.
+    ``params`` the solver's settings and diagnostics. ``unstable_steps``: steps of a smooth law's solve along
+    which the energy was concave (the attraction out-softened the elastic stiffness): the solve crossed an
+    instability (a snap-in), so the equilibrium it reached may depend on the path to it (0 for the hard wall;
+    ``docs/interactions.md``, "Instabilities").
     """
 
     pressure: np.ndarray
@@ -267,6 +270,7 @@ class ContactResult(SavableResult):
     interaction: Interaction = HardWall()
     control: str = ""
     requested: float = math.nan
+    unstable_steps: int = 0
 
     @functools.cached_property
     def perimeter_edges(self) -> int:

@@ -20,7 +20,8 @@ quadratic model (curvature ⟨d, K⁻¹ d⟩ − ⟨k d²⟩). No point whose ga
 length in one step (no tunnelling through an energy barrier into contact). Each step costs one FFT
 pair for z = K r and one for K⁻¹ d, plus one where the projection clipped the step; the pointwise work is in
 fused numba passes (the built-in laws evaluated inside them; a user's law through its numpy methods).
-Π decreases monotonically. Convergence criterion, with ``gap_scale`` the rms height of h (the law's length
+Π decreases monotonically; a step along which Π is concave (⟨d, K⁻¹ d⟩ ≤ ⟨k d²⟩ plus the layer's mean
+term) crosses an instability and is counted on the result (``unstable_steps``). Convergence criterion, with ``gap_scale`` the rms height of h (the law's length
 on a flat surface):
 
     sqrt(⟨(K r)²⟩_F) ≤ tol · gap_scale,   r = G on F,
@@ -453,6 +454,7 @@ class _Solver:
         # float32 fields carry the energy's terms to a few ε32: a smaller rise is round-off, not a rise
         self.round_off = max(ENERGY_ROUND_OFF, 3 * float(np.finfo(dtype).eps))
         self.transforms = 2 * start_pairs                      # the start's solve included
+        self.concave, self.unstable_steps = False, 0           # the last direction's curvature; concave steps taken
 
     def elastic(self, gap, field):
         self.transforms += 2
@@ -529,6 +531,7 @@ class _Solver:
                 message = (f"stalled after {iterations} iterations: no decrease of the energy along the steepest "
                            f"descent (relative residual {residual:.3g}, tol {tol:g})")
                 break
+            self.unstable_steps += self.concave
             self.g, self.trial = self.trial, self.g
             self.pel_field, self.trial_field = self.trial_field, self.pel_field
             self.law_now, self.law_trial = self.law_trial, self.law_now
@@ -557,7 +560,8 @@ class _Solver:
         curvature = (dw - kdd) / n
         if not energy.constrained and energy.load is None:
             curvature += d_mean ** 2 / energy.uniform
-        if curvature > 0:
+        self.concave = curvature <= 0
+        if not self.concave:
             tau = -slope / n / curvature
         else:                                               # concave along d: step out; the cap and Armijo bound it
             tau = 2 * tau if tau > 0 else -slope / max(dw, 1e-300)
@@ -618,4 +622,4 @@ class _Solver:
             wall_time=time.perf_counter() - start, params=params, contact_pressure=contact_pressure,
             interaction_traction=traction, flat_position=float(flat_position),
             interaction_energy=float(np.sum(interaction_energy, dtype=np.float64)) * grid.pixel_area,
-            interaction=law, control=control, requested=float(requested))
+            interaction=law, control=control, requested=float(requested), unstable_steps=self.unstable_steps)

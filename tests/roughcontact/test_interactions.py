@@ -165,6 +165,7 @@ def test_johnson_sinusoid_jump_to_full_contact(alpha, half_width):
     assert res.converged
     # measured 0.2480, 0.2915, 0.5 (full contact): within 1.5 % of the JKR roots 0.2515, 0.2924
     assert np.count_nonzero(res.contact) / n / 2 == pytest.approx(half_width, rel=0.015)
+    assert res.unstable_steps > 0       # the cohesive zone is concave: 3, 18, 19 steps measured
 
 
 def test_no_tunnelling_into_contact(monkeypatch):
@@ -205,6 +206,22 @@ def test_rough_patch_grows_with_voltage():
         assert res.equivalent_gap == STACK.equivalent_gap(res.gap)
         imbalance = check_equilibrium(res, surface, half, tol_traction=1e-6 * 1e3)
         assert imbalance <= 1e-3 * 1e3                                      # measured ≤ 3e-6 p̄
+
+
+def test_unstable_steps_count_the_snap_in():
+    # the attraction out-softens the elastic stiffness only where it pulls regions into contact: on this patch
+    # at 30 V and above (measured 0, 0, 0 steps at 1e-6, 3, 10 V; 6 of 27 at 30 V; all 14 at 100 V, which jumps
+    # to full contact). The count must see the concave steps and only those.
+    surface, half = rough_patch()
+    counts = {}
+    for voltage in (1e-6, 10.0, 30.0, 100.0):
+        res = solve_contact(surface, half, mean_pressure=1e3, interaction=ElectrostaticInteraction(STACK, voltage))
+        assert res.converged
+        counts[voltage] = (res.unstable_steps, res.iterations)
+    assert counts[1e-6][0] == counts[10.0][0] == 0
+    assert 0 < counts[30.0][0] < counts[30.0][1]
+    assert counts[100.0][0] > 0
+    assert solve_contact(surface, half, mean_pressure=1e3).unstable_steps == 0          # the hard wall
 
 
 def test_equilibrium_checks_fail_on_an_unconverged_result():
@@ -261,6 +278,7 @@ def test_problem_object_and_saved_result(tmp_path):
     assert res.control == "total_force" and res.interaction == law
     loaded = ContactResult.load(res.save(tmp_path / "res.npz"))
     assert loaded.interaction == law and loaded.flat_position == res.flat_position
+    assert loaded.unstable_steps == res.unstable_steps > 0                  # 30 V snaps regions in on this patch
     np.testing.assert_array_equal(loaded.interaction_traction, res.interaction_traction)
     with pytest.raises(TypeError, match="interaction"):
         ContactProblem(surface, half, "electrostatic")
