@@ -162,7 +162,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0],
                                      formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     parser.add_argument("--sizes", type=int, nargs="+", default=[256, 512], help="grid sizes n (n² pixels)")
-    parser.add_argument("--voltages", type=float, nargs="+", default=[1e-6, 3.0, 10.0, 30.0, 100.0, 200.0],
+    parser.add_argument("--voltages", type=float, nargs="+", default=[1e-6, 3.0, 10.0, 30.0, 50.0, 100.0, 200.0],
                         help="voltages U [V], solved in this order")
     parser.add_argument("--E-star", type=float, default=1e6, help="contact modulus E* [Pa]")
     parser.add_argument("--pressure", type=float, default=1e3, help="external load p̄ [Pa]")
