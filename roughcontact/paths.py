@@ -27,8 +27,9 @@ JUMP_AREA = 0.02
 class LoadPath(SavableResult):
     """The equilibria along a sequence of external loads ``loads`` [Pa] (mean pressures), in order.
 
-    Per step: ``contact_fraction``, ``mean_gap`` [m], ``flat_position`` s [m], ``converged`` and ``detached``
-    (a tensile load beyond pull-off: no equilibrium). ``jumps``: (step index, kind) for each step that left the
+    Per step: ``contact_fraction``, ``mean_gap`` [m], ``flat_position`` s [m], ``converged``, ``detached``
+    (a tensile load beyond pull-off: no equilibrium) and ``unstable_steps`` (the solve's steps along which the
+    energy was concave: it crossed an instability, :class:`~roughcontact.contact.ContactResult`). ``jumps``: (step index, kind) for each step that left the
     branch being followed — "jump into contact" (the contact fraction rose by more than ``jump_area``),
     "jump to full contact", "jump out of contact" (fell by more), "detachment". ``results``: the
     :class:`~roughcontact.contact.ContactResult` of each step when kept.
@@ -40,6 +41,7 @@ class LoadPath(SavableResult):
     flat_position: np.ndarray
     converged: np.ndarray
     detached: np.ndarray
+    unstable_steps: np.ndarray
     jumps: tuple
     jump_area: float
     results: tuple = field(default=(), repr=False)
@@ -85,7 +87,8 @@ def load_cycle(problem: ContactProblem, loads, x0: ContactResult | None = None, 
         loads=loads[:len(results)], contact_fraction=np.array([r.contact_fraction for r in results]),
         mean_gap=np.array([r.mean_gap for r in results]), flat_position=np.array([r.flat_position for r in results]),
         converged=np.array([r.converged for r in results]),
-        detached=np.array([bool(r.params.get("detached")) for r in results]), jumps=tuple(jumps),
+        detached=np.array([bool(r.params.get("detached")) for r in results]),
+        unstable_steps=np.array([r.unstable_steps for r in results]), jumps=tuple(jumps),
         jump_area=jump_area, results=tuple(results) if keep_results else ())
 
 

@@ -348,6 +348,8 @@ def test_approach_retract_cycle_hysteresis_and_jumps():
     assert (3, "jump to full contact") in path.jumps
     assert path.contact_fraction[1] < 0.6 and path.contact_fraction[4] == 1.0
     assert path.jumps[-1] == (6, "detachment") and path.detached[-1] and not path.converged[-1]
+    # the jump crosses an instability (measured 11 concave steps); unloading in full contact has none
+    assert path.unstable_steps[3] > 0 and path.unstable_steps[4] == path.unstable_steps[5] == 0
 
 
 def test_float32_electrostatic_solve():
@@ -395,6 +397,8 @@ def test_paths_save_and_load_with_their_results(tmp_path):
     assert loaded.jumps == path.jumps and isinstance(loaded.results[1], ContactResult)
     np.testing.assert_array_equal(loaded.results[1].gap, path.results[1].gap)
     np.testing.assert_array_equal(loaded.contact_fraction, path.contact_fraction)
+    np.testing.assert_array_equal(loaded.unstable_steps, path.unstable_steps)
+    assert loaded.results[1].unstable_steps == path.results[1].unstable_steps
     found = pull_off(problem, path.results[0], step=0.05, rtol=0.1)
     again = PullOff.load(found.save(tmp_path / "pull_off.npz"))
     assert again.mean_pressure == found.mean_pressure and again.bracket == found.bracket
