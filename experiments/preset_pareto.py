@@ -104,10 +104,13 @@ def _warm_up(dtype: str) -> None:
 
 def solve_realisation(variant: str, setting: dict, realisation: int, runs: Path) -> dict:
     """The study of one realisation at ``setting``, from the cache in ``runs`` or solved and cached: points,
-    CPU and wall seconds, solves."""
+    CPU and wall seconds, solves. A cached study whose points have other fields (another version's) is solved
+    again."""
     path = runs / variant / setting_name(setting) / f"r{realisation}.json"
     if path.exists():
-        return json.loads(path.read_text())
+        record = json.loads(path.read_text())
+        if set(record["points"][0][0]) == {item.name for item in dataclasses.fields(PointResult)}:
+            return record
     scene = scene_of(variant, setting, realisation)
     _warm_up(setting["dtype"])
     patch_body(scene)                                    # FFTW plans made (and cached as wisdom) before timing

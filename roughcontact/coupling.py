@@ -171,7 +171,7 @@ class CoupledPoint:
     """The coupled path at one nominal ``pressure`` [Pa] and ``voltage`` [V]: d_eq [m] (Eq. 25), the mean gap
     [m], the real contact fraction, A_R/A0 for each of the law's closing diameters, the mean attraction σ̄_el
     [Pa], the weighted rms gap slope (ridge and micro scale in quadrature), and the ridge-scale solve's
-    convergence and iterations."""
+    convergence, iterations and concave (unstable) steps."""
     pressure: float
     voltage: float
     equivalent_gap: float
@@ -182,6 +182,7 @@ class CoupledPoint:
     gap_slope: float
     converged: bool
     iterations: int
+    unstable_steps: int
 
 
 def coupled_point(ridges, body, law: InterfaceLaw, pressure: float, tol: float = 1e-7, x0=None) -> tuple:
@@ -201,7 +202,8 @@ def coupled_point(ridges, body, law: InterfaceLaw, pressure: float, tol: float =
         ridge_area_fractions=tuple(float(np.mean(law.ridge_area_fraction(separation, k)))
                                    for k in range(len(law.coarse_graining))),
         electrostatic_pressure=float(np.mean(law.stack.pressure(gaps, law.voltage))), gap_slope=float(slope),
-        converged=bool(result.converged), iterations=int(result.iterations))
+        converged=bool(result.converged), iterations=int(result.iterations),
+        unstable_steps=int(result.unstable_steps))
     return point, result
 
 
@@ -266,7 +268,8 @@ def ridge_chain(scene, law: InterfaceLaw, threads: int | None = None, grid=None,
             electrostatic_pressure=float(np.mean([p.electrostatic_pressure for p in points])),
             gap_slope=float(np.mean([p.gap_slope for p in points])),
             converged=law.converged and all(p.converged for p in points),
-            iterations=sum(p.iterations for p in points), solves=solves + len(points),
+            iterations=sum(p.iterations for p in points), unstable_steps=sum(p.unstable_steps for p in points),
+            solves=solves + len(points),
             seconds=seconds + time.perf_counter() - start))
         solves, seconds = 0, 0.0
     return tuple(records)

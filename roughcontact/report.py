@@ -172,7 +172,8 @@ def _realisation_rows(result: StudyResult) -> list:
                              **{f"{column}_{unit}": getattr(point, name)[r] * scale
                                 for name, column, scale, unit, _ in FIELDS},
                              "ridge_area_fraction": point.ridge_area_fractions[0][r],
-                             "converged": point.converged[r], "iterations": point.iterations[r]})
+                             "converged": point.converged[r], "iterations": point.iterations[r],
+                             "unstable_steps": point.unstable_steps[r]})
     return rows
 
 
@@ -192,7 +193,7 @@ def dataset(result: StudyResult):
               "coarse_graining": ("coarse_graining", np.array(result.coarse_graining), {"units": "m"})}
     dims = ("normal_force", "voltage", "realisation")
     units = {"equivalent_gap": "m", "ridge_equivalent_gap": "m", "mean_gap": "m", "contact_fraction": "1",
-             "electrostatic_pressure": "Pa", "gap_slope": "1", "iterations": "1"}
+             "electrostatic_pressure": "Pa", "gap_slope": "1", "iterations": "1", "unstable_steps": "1"}
     descriptions = {name: text for name, _, _, _, text in FIELDS}
     variables = {name: (dims, result.array(name), {"units": unit, "long_name": descriptions.get(name, name)})
                  for name, unit in units.items()}

@@ -199,8 +199,9 @@ class PatchRecord:
     """One realisation's patch at one (F_N, U), averaged over the rings: ``equivalent_gap`` d_eq,
     ``ridge_equivalent_gap`` d_eq,R, ``mean_gap`` [m]; ``contact_fraction``; ``ridge_area_fractions`` A_R/A0
     per coarse-graining length; ``electrostatic_pressure`` σ̄_el [Pa]; ``gap_slope`` (rms |∇g|, weighted by
-    (ε_a c + g)⁻²); ``converged`` (every ring); ``iterations`` and ``solves`` (summed over the rings, a cold
-    retry included); ``seconds`` of solving."""
+    (ε_a c + g)⁻²); ``converged`` (every ring); ``iterations``, ``unstable_steps`` (concave steps: the solves
+    crossed instabilities, so the answer may depend on the path; ``docs/interactions.md``) and ``solves`` (summed
+    over the rings, a cold retry included); ``seconds`` of solving."""
 
     equivalent_gap: float
     ridge_equivalent_gap: float
@@ -211,8 +212,12 @@ class PatchRecord:
     gap_slope: float
     converged: bool
     iterations: int
+    unstable_steps: int
     solves: int
     seconds: float
+
+
+_RECORD_FIELDS = {f.name for f in dataclasses.fields(PatchRecord)}
 
 
 def _gap_slope(gap, weights, spacing) -> float:
@@ -244,7 +249,7 @@ def _patch_record(stack, voltage, results, lengths, spacing, solves, seconds) ->
         electrostatic_pressure=float(np.mean(stack.pressure(gaps, voltage))),
         gap_slope=float(np.mean([_gap_slope(g, (offset + g) ** -2.0, spacing) for g in gaps])),
         converged=all(bool(res.converged) for res in results), iterations=int(sum(res.iterations for res in results)),
-        solves=solves, seconds=seconds)
+        unstable_steps=int(sum(res.unstable_steps for res in results)), solves=solves, seconds=seconds)
 
 
 def _rings(scene: Scene) -> int:
@@ -314,11 +319,12 @@ class PointResult:
     gap_slope: tuple
     converged: tuple
     iterations: tuple
+    unstable_steps: tuple
     seconds: float
 
 
 _PER_REALISATION = ("equivalent_gap", "ridge_equivalent_gap", "mean_gap", "contact_fraction",
-                    "electrostatic_pressure", "gap_slope", "converged", "iterations")
+                    "electrostatic_pressure", "gap_slope", "converged", "iterations", "unstable_steps")
 
 
 def _point_result(force, voltage, area, pressures, records) -> PointResult:
@@ -387,12 +393,16 @@ class TaskStore:
         return self.tasks / f"R{realisation:03d}_U{voltage_index:03d}.json"
 
     def load(self, realisation: int, voltage_index: int) -> tuple | None:
-        """The records of task (r, j), or None if it has not finished."""
+        """The records of task (r, j), or None if it has not finished (or was written with other fields, by
+        another version: solved again)."""
         path = self._path(realisation, voltage_index)
         if not path.exists():
             return None
+        records = json.loads(path.read_text())
+        if any(set(record) != _RECORD_FIELDS for record in records):
+            return None
         return tuple(PatchRecord(**{key: tuple(value) if isinstance(value, list) else value
-                                    for key, value in record.items()}) for record in json.loads(path.read_text()))
+                                    for key, value in record.items()}) for record in records)
 
     def save(self, realisation: int, voltage_index: int, records: tuple) -> None:
         _write_atomic(self._path(realisation, voltage_index), json.dumps([dataclasses.asdict(r) for r in records]))

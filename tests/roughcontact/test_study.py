@@ -1,11 +1,14 @@
 """The fingerpad study on tiny patches: the 0 V chain is the hard-wall chain, the trends with load and voltage,
 resume after an interruption, refusal of another scene, and `roughcontact run` end to end."""
+import json
 import os
 
 import numpy as np
 import pytest
 
 import roughcontact.contact
+import roughcontact.gap_solver  # noqa: F401  (imported before a test patches contact.solve_contact, which it binds)
+import roughcontact.interactions
 from roughcontact.cli import main
 from roughcontact.provenance import read_csv
 from roughcontact.report import TabulatedArea, bottom_up_friction, report_text
@@ -31,6 +34,21 @@ def test_zero_volt_study_is_the_hard_wall_chain():
             assert result.points[i][0].contact_fraction[r] == previous.contact_fraction
             assert result.points[i][0].electrostatic_pressure[r] == 0.0
     assert "One voltage (0 V) in the scene: its dependence on the voltage is not tested" in report_text(result, False)
+
+
+def test_records_count_the_unstable_steps_of_their_solves(tiny, tiny_result):
+    # the 150 V chain solved again by hand: each record's count is the sum over its solves (measured 5-10 at
+    # 150 V, where the attraction snaps regions in), and the 0 V hard wall has none
+    stack, body = tiny.screen.stack(), patch_body(tiny)
+    law = roughcontact.interactions.ElectrostaticInteraction(stack, 150.0)
+    for r in range(2):
+        heights, previous = patch_surface(tiny, r), None
+        for i, force in enumerate(tiny.loads.normal_forces):
+            _, (pressure,) = apparent_contact(tiny.fingerpad, force, 1)
+            previous = roughcontact.contact.solve_contact(heights, body, mean_pressure=pressure, interaction=law,
+                                                          tol=1e-6, x0=previous, warn=False)
+            assert tiny_result.points[i][1].unstable_steps[r] == previous.unstable_steps > 0
+            assert tiny_result.points[i][0].unstable_steps[r] == 0
 
 
 def test_trends_with_load_and_voltage(tiny_result):
@@ -193,6 +211,16 @@ def test_resume_after_interruption_recomputes_nothing_done(tiny, tmp_path, monke
     assert resumed.computed == 2 and resumed.solves == 4
     again = run_study(tiny, tmp_path / "run", workers=1)
     assert again.computed == 0 and again.solves == 0 and again.points == resumed.points
+    # a task file written with other record fields (another version's) is solved again, not misread
+    stale = tmp_path / "run" / "tasks" / "R000_U001.json"
+    records = json.loads(stale.read_text())
+    stale.write_text(json.dumps([{key: value for key, value in record.items() if key != "unstable_steps"}
+                                 for record in records]))
+    refreshed = run_study(tiny, tmp_path / "run", workers=1)
+    assert refreshed.computed == 2 and refreshed.solves == 2            # its two loads' points, one solve each
+    for row, resumed_row in zip(refreshed.points, resumed.points):
+        assert [point.equivalent_gap for point in row] == [point.equivalent_gap for point in resumed_row]
+        assert [point.unstable_steps for point in row] == [point.unstable_steps for point in resumed_row]
 
 
 def test_another_scene_and_a_running_study_are_refused(tiny, tmp_path):
