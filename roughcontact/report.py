@@ -303,6 +303,17 @@ def _table(result, mean, half, scale=1.0, digits=2, unit="") -> list:
     return lines + ([note] if unit else [])
 
 
+def _unstable_sentence(result: StudyResult) -> str:
+    """How many patch results crossed an instability on the way (concave solver steps), and from which voltage."""
+    crossed = result.array("unstable_steps") > 0                 # (forces, voltages, realisations)
+    if not crossed.any():
+        return "No solve crossed an instability."
+    lowest = result.voltages[int(np.flatnonzero(crossed.any(axis=(0, 2)))[0])]
+    return (f"{int(crossed.sum())} of {crossed.size} patch results came from solves that crossed an instability "
+            f"(concave steps, from {lowest:g} V on): where the attraction snaps regions into contact the "
+            "equilibrium may depend on the path to it (`docs/interactions.md`, \"Several equilibria\").")
+
+
 def report_text(result: StudyResult, nc_written: bool, seconds: float | None = None) -> str:
     """The Markdown report: what was computed, tables with intervals, and where the equivalent-gap
     assumption holds and where it fails, with numbers."""
@@ -323,7 +334,7 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
             f"realisation(s) (seed {scene.study.seed}), solver tolerance {preset.tolerance:g}, micro-roughness "
             f"short cut-off in use {result.short_cutoff * MICRO:.3g} µm. Scene: `scene.toml` in this directory. "
             f"{converged.size - int(converged.sum())} of {converged.size} patch results did not converge (also "
-            "from the solver's own start) and are left out of the means."
+            "from the solver's own start) and are left out of the means. " + _unstable_sentence(result)
             + (f" Run time {seconds:.0f} s ({result.computed} points computed with {result.solves} solves, "
                f"{result.array('seconds').size - result.computed} read back)." if seconds is not None else ""), "",
             describe(preset, scene.study.preset), "",

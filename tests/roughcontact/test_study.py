@@ -34,6 +34,7 @@ def test_zero_volt_study_is_the_hard_wall_chain():
             assert result.points[i][0].contact_fraction[r] == previous.contact_fraction
             assert result.points[i][0].electrostatic_pressure[r] == 0.0
     assert "One voltage (0 V) in the scene: its dependence on the voltage is not tested" in report_text(result, False)
+    assert "No solve crossed an instability." in report_text(result, False)
 
 
 def test_records_count_the_unstable_steps_of_their_solves(tiny, tiny_result):
@@ -49,6 +50,8 @@ def test_records_count_the_unstable_steps_of_their_solves(tiny, tiny_result):
                                                           tol=1e-6, x0=previous, warn=False)
             assert tiny_result.points[i][1].unstable_steps[r] == previous.unstable_steps > 0
             assert tiny_result.points[i][0].unstable_steps[r] == 0
+    assert "4 of 8 patch results came from solves that crossed an instability (concave steps, from 150 V on)" \
+        in report_text(tiny_result, False)
 
 
 def test_trends_with_load_and_voltage(tiny_result):
