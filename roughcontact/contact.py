@@ -245,7 +245,7 @@ class ContactResult(SavableResult):
     ``params`` the solver's settings and diagnostics. ``unstable_steps``: steps of a smooth law's solve along
     which the energy was concave (the attraction out-softened the elastic stiffness): the solve crossed an
     instability (a snap-in), so the equilibrium it reached may depend on the path to it (0 for the hard wall;
-    ``docs/interactions.md``, "Instabilities").
+    ``docs/interactions.md``, "Several equilibria").
     """
 
     pressure: np.ndarray

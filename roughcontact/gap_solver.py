@@ -21,8 +21,8 @@ length in one step (no tunnelling through an energy barrier into contact). Each 
 pair for z = K r and one for K⁻¹ d, plus one where the projection clipped the step; the pointwise work is in
 fused numba passes (the built-in laws evaluated inside them; a user's law through its numpy methods).
 Π decreases monotonically; a step along which Π is concave (⟨d, K⁻¹ d⟩ ≤ ⟨k d²⟩ plus the layer's mean
-term) crosses an instability and is counted on the result (``unstable_steps``). Convergence criterion, with ``gap_scale`` the rms height of h (the law's length
-on a flat surface):
+term) crosses an instability and is counted on the result (``unstable_steps``). Convergence criterion, with
+``gap_scale`` the rms height of h (the law's length on a flat surface):
 
     sqrt(⟨(K r)²⟩_F) ≤ tol · gap_scale,   r = G on F,
 

@@ -29,10 +29,10 @@ class LoadPath(SavableResult):
 
     Per step: ``contact_fraction``, ``mean_gap`` [m], ``flat_position`` s [m], ``converged``, ``detached``
     (a tensile load beyond pull-off: no equilibrium) and ``unstable_steps`` (the solve's steps along which the
-    energy was concave: it crossed an instability, :class:`~roughcontact.contact.ContactResult`). ``jumps``: (step index, kind) for each step that left the
-    branch being followed — "jump into contact" (the contact fraction rose by more than ``jump_area``),
-    "jump to full contact", "jump out of contact" (fell by more), "detachment". ``results``: the
-    :class:`~roughcontact.contact.ContactResult` of each step when kept.
+    energy was concave: it crossed an instability, :class:`~roughcontact.contact.ContactResult`). ``jumps``:
+    (step index, kind) for each step that left the branch being followed — "jump into contact" (the contact
+    fraction rose by more than ``jump_area``), "jump to full contact", "jump out of contact" (fell by more),
+    "detachment". ``results``: the :class:`~roughcontact.contact.ContactResult` of each step when kept.
     """
 
     loads: np.ndarray
