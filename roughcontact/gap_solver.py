@@ -454,7 +454,7 @@ class _Solver:
         # float32 fields carry the energy's terms to a few ε32: a smaller rise is round-off, not a rise
         self.round_off = max(ENERGY_ROUND_OFF, 3 * float(np.finfo(dtype).eps))
         self.transforms = 2 * start_pairs                      # the start's solve included
-        self.concave, self.unstable_steps = False, 0           # the last direction's curvature; concave steps taken
+        self.unstable_steps = 0                                # accepted steps along which Π was concave
 
     def elastic(self, gap, field):
         self.transforms += 2
@@ -531,7 +531,6 @@ class _Solver:
                 message = (f"stalled after {iterations} iterations: no decrease of the energy along the steepest "
                            f"descent (relative residual {residual:.3g}, tol {tol:g})")
                 break
-            self.unstable_steps += self.concave
             self.g, self.trial = self.trial, self.g
             self.pel_field, self.trial_field = self.trial_field, self.pel_field
             self.law_now, self.law_trial = self.law_trial, self.law_now
@@ -560,8 +559,8 @@ class _Solver:
         curvature = (dw - kdd) / n
         if not energy.constrained and energy.load is None:
             curvature += d_mean ** 2 / energy.uniform
-        self.concave = curvature <= 0
-        if not self.concave:
+        concave = curvature <= 0
+        if not concave:
             tau = -slope / n / curvature
         else:                                               # concave along d: step out; the cap and Armijo bound it
             tau = 2 * tau if tau > 0 else -slope / max(dw, 1e-300)
@@ -580,6 +579,7 @@ class _Solver:
                 _advance_traction(pel, w, tau, step)
             trial_value, trial_magnitude = self.evaluate(trial, step, self.law_trial)
             if trial_value <= value + ARMIJO * predicted / n + self.round_off * magnitude:
+                self.unstable_steps += concave
                 return True, tau, step, 0 if exact else since_exact + 1, (trial_value, trial_magnitude)
             tau *= 0.5
         return False, tau, pel, since_exact, (value, magnitude)
