@@ -16,13 +16,15 @@ s = ⟨g⟩ + ⟨h⟩ − Φ(0) P̄; under the constraint λ is its multiplier.
 Method: projected non-linear conjugate gradients (Polak–Ribière⁺) on the free set F = {g > 0} ∪ {g = 0, G < 0},
 preconditioned by the compliance K (the inverse of the elastic Hessian; its q = 0 mode given the largest
 compliance), with a projected Armijo line search on Π started from the step that minimises the local
-quadratic model (curvature ⟨d, K⁻¹ d⟩ − ⟨k d²⟩). No point whose gap can be stable closes by more than g + law
-length in one step (no tunnelling through an energy barrier into contact). Each step costs one FFT
+quadratic model (curvature ⟨d, K⁻¹ d⟩ − ⟨k d²⟩). No point whose gap can be stable closes by more than 2 (g + law
+length) in one step (no tunnelling through an energy barrier into contact). Each step costs one FFT
 pair for z = K r and one for K⁻¹ d, plus one where the projection clipped the step; the pointwise work is in
 fused numba passes (the built-in laws evaluated inside them; a user's law through its numpy methods).
 Π decreases monotonically; a step along which Π is concave (⟨d, K⁻¹ d⟩ ≤ ⟨k d²⟩ plus the layer's mean
-term) crosses an instability and is counted on the result (``unstable_steps``). Convergence criterion, with
-``gap_scale`` the rms height of h (the law's length on a flat surface):
+term) crosses an instability and is counted on the result (``unstable_steps``). After such a step the next
+one skips the model and its K⁻¹ d: it tries twice the last length with the trial's exact p_el, and its own
+curvature is that along the step taken, ⟨Δg, Δp_el⟩ − ⟨k Δg²⟩ (a snap-in step: two FFT pairs, not three).
+Convergence criterion, with ``gap_scale`` the rms height of h (the law's length on a flat surface):
 
     sqrt(⟨(K r)²⟩_F) ≤ tol · gap_scale,   r = G on F,
 
@@ -200,16 +202,44 @@ def _centred_into(d, mean, out):
 
 
 @njit(cache=True)
+def _closing_limit(g, d, stiffness, inside, length, pixel_compliance, approach):
+    """The step τ by which a stable approaching point of the window (k K_ii < 1) closes by ``approach`` (g + ρ);
+    inf for any other point."""
+    if d < 0 and inside and stiffness * pixel_compliance < 1.0:
+        return approach * (g + length) / -d
+    return np.inf
+
+
+@njit(cache=True)
 def _curvature_and_cap(g, d, w, stiffness, window, length, pixel_compliance, approach):
-    """Σ d K⁻¹d, Σ k d², and the largest step τ by which no stable approaching point of the window (k K_ii < 1)
-    closes by more than ``approach`` (g + ρ) (inf if none)."""
+    """Σ d K⁻¹d, Σ k d², and the largest step τ by which no stable approaching point closes by more than
+    ``approach`` (g + ρ) (inf if none)."""
     dw, kdd, cap = 0.0, 0.0, np.inf
     for i in range(d.size):
         dw += d[i] * w[i]
         kdd += stiffness[i] * d[i] * d[i]
-        if d[i] < 0 and window[i] and stiffness[i] * pixel_compliance < 1.0:
-            cap = min(cap, approach * (g[i] + length) / -d[i])
+        cap = min(cap, _closing_limit(g[i], d[i], stiffness[i], window[i], length, pixel_compliance, approach))
     return dw, kdd, cap
+
+
+@njit(cache=True)
+def _cap(g, d, stiffness, window, length, pixel_compliance, approach):
+    """The cap of :func:`_curvature_and_cap` alone."""
+    cap = np.inf
+    for i in range(d.size):
+        cap = min(cap, _closing_limit(g[i], d[i], stiffness[i], window[i], length, pixel_compliance, approach))
+    return cap
+
+
+@njit(cache=True)
+def _step_curvature(g, trial, pel, step, stiffness):
+    """Σ Δg Δp_el − Σ k Δg² and Σ Δg for the step taken, Δg = trial − g, Δp_el = step − pel (exact)."""
+    curvature, total = 0.0, 0.0
+    for i in range(g.size):
+        dg = trial[i] - g[i]
+        curvature += dg * (step[i] - pel[i] - stiffness[i] * dg)
+        total += dg
+    return curvature, total
 
 
 @njit(cache=True)
@@ -455,6 +485,7 @@ class _Solver:
         self.round_off = max(ENERGY_ROUND_OFF, 3 * float(np.finfo(dtype).eps))
         self.transforms = 2 * start_pairs                      # the start's solve included
         self.unstable_steps = 0                                # accepted steps along which Π was concave
+        self.snapping = False                                  # whether the last accepted step was concave
 
     def elastic(self, gap, field):
         self.transforms += 2
@@ -545,44 +576,70 @@ class _Solver:
                            start_kind, tol, maxiter, detached, history)
 
     def line_search(self, slope, sum_d, pel, value, magnitude, tau, since_exact):
-        """Projected Armijo search along d from the minimiser of the quadratic model (capped so that no stable
-        point tunnels into contact). Returns (accepted, τ, the trial's p_el, steps since an exact p_el, the trial's
-        energy and its magnitude)."""
-        energy, body, n, g, d = self.energy, self.body, self.n, self.g, self.d
+        """Projected Armijo search along d. Where the last step was concave (the solve is crossing an instability)
+        it first tries twice that step's length, evaluated exactly, without the model's FFT pair; otherwise, or if
+        that fails, it starts from the minimiser of the quadratic model along d (twice the last length where Π is
+        concave along d) and halves. Every first try is capped so that no stable point tunnels into contact.
+        Returns (accepted, τ, the trial's p_el, steps since an exact p_el, the trial's energy and its magnitude)."""
+        body, n, g, d = self.body, self.n, self.g, self.d
+        stiffness, length = self.law_now[2], float(self.law.length)
+        longest = math.inf
+        if self.snapping:
+            tau = min(2 * tau, _cap(g, d, stiffness, self.window, length, self.pixel_compliance, APPROACH))
+            trial = self.trial_step(tau, None, pel, value, magnitude, since_exact)
+            if trial is not None:                           # concave along the step taken: the next one snaps too
+                curvature, total = _step_curvature(g, self.trial, pel, trial[0], stiffness)
+                self.snapping = self.curvature(curvature / n, total / n) <= 0
+                self.unstable_steps += self.snapping
+                return (True, tau) + trial
+            longest = tau / 2
+        self.snapping = False
         d_mean = sum_d / n
-        centred = self.work.reshape(-1)
-        _centred_into(d, d_mean, centred)
+        _centred_into(d, d_mean, self.work.reshape(-1))
         w = body.stiffness_into(self.work, self.w_field).reshape(-1)        # K⁻¹ d_f
         self.transforms += 2
-        dw, kdd, cap = _curvature_and_cap(g, d, w, self.law_now[2], self.window, float(self.law.length),
-                                          self.pixel_compliance, APPROACH)
-        curvature = (dw - kdd) / n
-        if not energy.constrained and energy.load is None:
-            curvature += d_mean ** 2 / energy.uniform
+        dw, kdd, cap = _curvature_and_cap(g, d, w, stiffness, self.window, length, self.pixel_compliance, APPROACH)
+        curvature = self.curvature((dw - kdd) / n, d_mean)
         concave = curvature <= 0
         if not concave:
-            tau = -slope / n / curvature
+            tau = min(-slope / n / curvature, cap)
         else:                                               # concave along d: step out; the cap and Armijo bound it
-            tau = 2 * tau if tau > 0 else -slope / max(dw, 1e-300)
-        tau = min(tau, cap)
-        trial, r = self.trial, self.r
+            tau = min(2 * tau if tau > 0 else -slope / max(dw, 1e-300), cap, longest)
         for _ in range(MAX_HALVINGS):
-            clipped, predicted = _trial_gap(g, d, tau, r, self.window, trial)
-            if clipped and energy.constrained:
-                _restore_mean(trial, energy.mean_target)
-                predicted = _dot(r, trial) - _dot(r, g)
-            exact = clipped or since_exact >= _REFRESH
-            if exact:
-                step = self.elastic(trial, self.trial_field)
-            else:
-                step = self.trial_field.reshape(-1)
-                _advance_traction(pel, w, tau, step)
-            trial_value, trial_magnitude = self.evaluate(trial, step, self.law_trial)
-            if trial_value <= value + ARMIJO * predicted / n + self.round_off * magnitude:
+            trial = self.trial_step(tau, w, pel, value, magnitude, since_exact)
+            if trial is not None:
+                self.snapping = concave
                 self.unstable_steps += concave
-                return True, tau, step, 0 if exact else since_exact + 1, (trial_value, trial_magnitude)
+                return (True, tau) + trial
             tau *= 0.5
         return False, tau, pel, since_exact, (value, magnitude)
+
+    def curvature(self, curvature, mean):
+        """Π's curvature per unit area along a step from Σ Δg K⁻¹Δg − Σ k Δg² over n and ⟨Δg⟩: plus the layer's
+        uniform compression ⟨Δg⟩²/Φ(0) where the flat position is fixed."""
+        if not self.energy.constrained and self.energy.load is None:
+            curvature += mean ** 2 / self.energy.uniform
+        return curvature
+
+    def trial_step(self, tau, w, pel, value, magnitude, since_exact):
+        """The trial gap g + τ d projected onto g ≥ 0 (and ⟨g⟩ restored under that constraint) into ``trial``, and
+        its p_el: τ w added where nothing was clipped and ``w`` = K⁻¹d is given, else exact. Returns (p_el, steps
+        since an exact p_el, (energy, magnitude)) if the trial passes the Armijo test, else None."""
+        energy, n, g, trial, r = self.energy, self.n, self.g, self.trial, self.r
+        clipped, predicted = _trial_gap(g, self.d, tau, r, self.window, trial)
+        if clipped and energy.constrained:
+            _restore_mean(trial, energy.mean_target)
+            predicted = _dot(r, trial) - _dot(r, g)
+        exact = w is None or clipped or since_exact >= _REFRESH
+        if exact:
+            step = self.elastic(trial, self.trial_field)
+        else:
+            step = self.trial_field.reshape(-1)
+            _advance_traction(pel, w, tau, step)
+        trial_value, trial_magnitude = self.evaluate(trial, step, self.law_trial)
+        if trial_value <= value + ARMIJO * predicted / n + self.round_off * magnitude:
+            return step, 0 if exact else since_exact + 1, (trial_value, trial_magnitude)
+        return None
 
     def result(self, pel, half, heights, control, requested, iterations, residuals, converged, message, start,
                start_kind, tol, maxiter, detached, history):

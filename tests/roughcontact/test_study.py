@@ -38,7 +38,7 @@ def test_zero_volt_study_is_the_hard_wall_chain():
 
 
 def test_records_count_the_unstable_steps_of_their_solves(tiny, tiny_result):
-    # the 150 V chain solved again by hand: each record's count is the sum over its solves (measured 5-10 at
+    # the 150 V chain solved again by hand: each record's count is the sum over its solves (measured 4-12 at
     # 150 V, where the attraction snaps regions in), and the 0 V hard wall has none
     stack, body = tiny.screen.stack(), patch_body(tiny)
     law = roughcontact.interactions.ElectrostaticInteraction(stack, 150.0)
