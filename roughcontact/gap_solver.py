@@ -65,10 +65,10 @@ _ELECTROSTATIC, _EXPONENTIAL, _DUGDALE, _USER = 0, 1, 2, -1
 def _law_code(law):
     """(kind, a, b, c) of a built-in law for :func:`_law_at`; ``_USER`` for any other (numpy methods)."""
     if isinstance(law, ElectrostaticInteraction):
-        stack = law.stack                                   # V = −a/h, h = c + g/ε_a, a = ε0 U²/2
-        return _ELECTROSTATIC, 0.5 * EPSILON_0 * law.voltage ** 2, stack.eps_a, stack.dielectric_offset
-    if isinstance(law, ExponentialAdhesion):
-        return _EXPONENTIAL, law.work_of_adhesion, law.length, 0.0
+        stack = law.stack                                   # V = −a/h, h = c + g b, a = ε0 U²/2, b = 1/ε_a
+        return _ELECTROSTATIC, 0.5 * EPSILON_0 * law.voltage ** 2, 1.0 / stack.eps_a, stack.dielectric_offset
+    if isinstance(law, ExponentialAdhesion):                # V = −a e^(−g b), b = 1/ρ
+        return _EXPONENTIAL, law.work_of_adhesion, 1.0 / law.length, 0.0
     if isinstance(law, MaugisDugdale):
         return _DUGDALE, law.cohesive_stress, law.length, 0.0
     return _USER, 0.0, 0.0, 0.0
@@ -77,12 +77,14 @@ def _law_code(law):
 @njit(cache=True)
 def _law_at(kind, a, b, c, g):
     """V [J/m²], p_int = −dV/dg [Pa] and k = dp_int/dg [Pa/m] of a built-in law at the gap g."""
-    if kind == 0:
-        h = c + g / b
-        return -a / h, -a / (b * h * h), 2.0 * a / (b * b * h * h * h)
-    if kind == 1:
-        e = a * math.exp(-g / b)
-        return -e, -e / b, e / (b * b)
+    if kind == 0:                                           # one division: 1/h
+        inverse = 1.0 / (c + g * b)
+        energy = -a * inverse
+        traction = energy * inverse * b
+        return energy, traction, -2.0 * traction * inverse * b
+    if kind == 1:                                           # b = 1/ρ
+        e = a * math.exp(-g * b)
+        return -e, -e * b, e * b * b
     if g < b:
         return -a * (b - g), -a, 0.0
     return 0.0, 0.0, 0.0
@@ -144,16 +146,20 @@ def _residual(g, pel, traction, load, window, r, free):
 
 
 @njit(cache=True)
-def _mask_shift(z, free, shift):
-    """z ← z + shift on F, 0 elsewhere; returns Σ z over F."""
-    total = 0.0
+def _mask_shift(z, free, shift, r, r_prev):
+    """z ← z + shift on F, 0 elsewhere; returns Σ z, Σ z², Σ r z and Σ r_prev z."""
+    total, zz, rz, pz = 0.0, 0.0, 0.0, 0.0
     for i in range(z.size):
         if free[i]:
-            z[i] += shift
-            total += z[i]
+            value = z[i] + shift
+            z[i] = value
+            total += value
+            zz += value * value
+            rz += r[i] * value
+            pz += r_prev[i] * value
         else:
             z[i] = 0.0
-    return total
+    return total, zz, rz, pz
 
 
 @njit(cache=True)
@@ -164,27 +170,18 @@ def _centre_on_free(values, free, mean):
 
 
 @njit(cache=True)
-def _moments(z, r, r_prev):
-    """Σ z², Σ r z, Σ r_prev z."""
-    zz, rz, pz = 0.0, 0.0, 0.0
-    for i in range(z.size):
-        zz += z[i] * z[i]
-        rz += r[i] * z[i]
-        pz += r_prev[i] * z[i]
-    return zz, rz, pz
-
-
-@njit(cache=True)
-def _direction(d, z, free, beta):
-    """d ← β d − z on F, 0 elsewhere; returns Σ d."""
-    total = 0.0
+def _direction(d, z, free, beta, r):
+    """d ← β d − z on F, 0 elsewhere; returns Σ d and the slope Σ r d."""
+    total, slope = 0.0, 0.0
     for i in range(d.size):
         if free[i]:
-            d[i] = beta * d[i] - z[i]
-            total += d[i]
+            value = beta * d[i] - z[i]
+            d[i] = value
+            total += value
+            slope += r[i] * value
         else:
             d[i] = 0.0
-    return total
+    return total, slope
 
 
 @njit(cache=True)
@@ -199,6 +196,17 @@ def _dot(x, y):
 def _centred_into(d, mean, out):
     for i in range(d.size):
         out[i] = d[i] - mean
+
+
+@njit(cache=True)
+def _fluctuation_into(g, h_f, out):
+    """out ← u_f = (g − ⟨g⟩) + h_f, the displacement fluctuation of the gap g."""
+    total = 0.0
+    for i in range(g.size):
+        total += g[i]
+    mean = total / g.size
+    for i in range(g.size):
+        out[i] = g[i] - mean + h_f[i]
 
 
 @njit(cache=True)
@@ -310,9 +318,7 @@ class _Energy:
 
     def elastic_traction(self, g, out, work):
         """out ← p_el = K⁻¹ u_f for the flat gap g (one FFT pair); ``work`` (grid-shaped) holds u_f."""
-        flat = work.reshape(-1)
-        _centred_into(g, float(g.mean(dtype=np.float64)), flat)
-        flat += self.h_f
+        _fluctuation_into(g, self.h_f, work.reshape(-1))
         return self.body.stiffness_into(work, out).reshape(-1)
 
     def external_load(self, g, pel, traction):
@@ -512,10 +518,10 @@ class _Solver:
             # under the ⟨g⟩ constraint
             z = body._displacement_into(r.reshape(self.z_field.shape), self.z_field).reshape(-1)
             self.transforms += 2
-            sum_z = _mask_shift(z, free, (self.largest_compliance - energy.uniform) * sum_r / n)
-            if energy.constrained and n_free:
-                _centre_on_free(z, free, sum_z / n_free)
-            zz, rz, prz = _moments(z, r, self.r_prev)
+            sum_z, zz, rz, prz = _mask_shift(z, free, (self.largest_compliance - energy.uniform) * sum_r / n, r,
+                                             self.r_prev)
+            if energy.constrained and n_free:           # centred on F, and the moments of the centred z
+                _, zz, rz, prz = _mask_shift(z, free, -sum_z / n_free, r, self.r_prev)
             residual = math.sqrt(zz / n) / self.gap_scale
             residuals.append(residual)
             if callback is not None and iterations:
@@ -547,11 +553,11 @@ class _Solver:
             for attempt_beta in ((beta, 0.0) if beta > 0 else (0.0,)):
                 if attempt_beta == 0.0 and beta > 0:        # retry along the preconditioned steepest descent
                     d[:] = 0.0
-                sum_d = _direction(d, z, free, attempt_beta)
-                if energy.constrained and n_free:
+                sum_d, slope = _direction(d, z, free, attempt_beta, r)
+                if energy.constrained and n_free:       # centred on F: Σ r (d − m) = slope − m Σ r
                     _centre_on_free(d, free, sum_d / n_free)
+                    slope -= sum_d / n_free * sum_r
                     sum_d = 0.0
-                slope = _dot(r, d)
                 if slope >= 0:                              # not a descent direction
                     continue
                 accepted, tau, step, since_exact, step_value = self.line_search(slope, sum_d, pel, value, magnitude,
