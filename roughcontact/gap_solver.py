@@ -589,16 +589,16 @@ class _Solver:
         Returns (accepted, τ, the trial's p_el, steps since an exact p_el, the trial's energy and its magnitude)."""
         body, n, g, d = self.body, self.n, self.g, self.d
         stiffness, length = self.law_now[2], float(self.law.length)
-        longest = math.inf
+        rejected = math.inf                                 # the snap-in try's length, if Armijo rejected it
         if self.snapping:
-            tau = min(2 * tau, _cap(g, d, stiffness, self.window, length, self.pixel_compliance, APPROACH))
-            trial = self.trial_step(tau, None, pel, value, magnitude, since_exact)
+            first = min(2 * tau, _cap(g, d, stiffness, self.window, length, self.pixel_compliance, APPROACH))
+            trial = self.trial_step(first, None, pel, value, magnitude, since_exact)
             if trial is not None:                           # concave along the step taken: the next one snaps too
                 curvature, total = _step_curvature(g, self.trial, pel, trial[0], stiffness)
                 self.snapping = self.curvature(curvature / n, total / n) <= 0
                 self.unstable_steps += self.snapping
-                return (True, tau) + trial
-            longest = tau / 2
+                return (True, first) + trial
+            rejected = first
         self.snapping = False
         d_mean = sum_d / n
         _centred_into(d, d_mean, self.work.reshape(-1))
@@ -610,7 +610,7 @@ class _Solver:
         if not concave:
             tau = min(-slope / n / curvature, cap)
         else:                                               # concave along d: step out; the cap and Armijo bound it
-            tau = min(2 * tau if tau > 0 else -slope / max(dw, 1e-300), cap, longest)
+            tau = min(2 * tau if tau > 0 else -slope / max(dw, 1e-300), cap, rejected / 2)
         for _ in range(MAX_HALVINGS):
             trial = self.trial_step(tau, w, pel, value, magnitude, since_exact)
             if trial is not None:
