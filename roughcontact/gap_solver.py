@@ -91,26 +91,31 @@ def _law_at(kind, a, b, c, g):
 
 
 @njit(cache=True)
-def _evaluate_law(kind, a, b, c, g, window, energy, traction, stiffness):
-    """energy, traction, stiffness ← the law at every g in the window (0 outside); returns Σ V."""
-    total = 0.0
+def _evaluate_law(kind, a, b, c, g, window, h_f, pel, traction, stiffness):
+    """traction, stiffness ← the law at every g in the window (0 outside); returns the sums of
+    :func:`_work_terms` and Σ V, in one pass."""
+    gap_sum, work, pel_sum, energy_sum = 0.0, 0.0, 0.0, 0.0
     for i in range(g.size):
         if window[i]:
-            energy[i], traction[i], stiffness[i] = _law_at(kind, a, b, c, g[i])
-            total += energy[i]
+            energy, traction[i], stiffness[i] = _law_at(kind, a, b, c, g[i])
+            energy_sum += energy
         else:
-            energy[i], traction[i], stiffness[i] = 0.0, 0.0, 0.0
-    return total
+            traction[i], stiffness[i] = 0.0, 0.0
+        gap_sum += g[i]
+        work += (g[i] + h_f[i]) * pel[i]
+        pel_sum += pel[i]
+    return gap_sum, work, pel_sum, energy_sum
 
 
-def _law_into(law, code, g, window, energy, traction, stiffness) -> float:
-    """Evaluate the law at g in the window into the three arrays (0 outside; numba for a built-in law); Σ V."""
+def _evaluate(law, code, g, window, h_f, pel, traction, stiffness) -> tuple:
+    """The law's traction and stiffness at g in the window into the two arrays (0 outside; numba for a built-in
+    law); returns Σ g, Σ (g + h_f) p_el, Σ p_el and Σ V (the sums of Π/A, :meth:`_Energy.value`)."""
     if code[0] != _USER:
-        return _evaluate_law(*code, g, window, energy, traction, stiffness)
-    energy[:], traction[:], stiffness[:] = 0.0, 0.0, 0.0
+        return _evaluate_law(*code, g, window, h_f, pel, traction, stiffness)
+    traction[:], stiffness[:] = 0.0, 0.0
     inside = g[window]
-    energy[window], traction[window], stiffness[window] = law.energy(inside), law.traction(inside), law.stiffness(inside)
-    return float(np.sum(energy, dtype=np.float64))
+    traction[window], stiffness[window] = law.traction(inside), law.stiffness(inside)
+    return _work_terms(g, h_f, pel) + (float(np.sum(law.energy(inside), dtype=np.float64)),)
 
 
 @njit(cache=True)
@@ -484,8 +489,8 @@ class _Solver:
         self.pel_field, self.trial_field, self.work, self.z_field, self.w_field = (body.empty() for _ in range(5))
         self.d, self.r, self.r_prev = np.zeros(n, dtype), np.zeros(n, dtype), np.zeros(n, dtype)
         self.free = np.zeros(n, np.bool_)
-        self.law_now = [np.empty(n, dtype) for _ in range(3)]     # V, p_int, k at g
-        self.law_trial = [np.empty(n, dtype) for _ in range(3)]   # the same at the trial gap
+        self.law_now = [np.empty(n, dtype) for _ in range(2)]     # p_int, k at g
+        self.law_trial = [np.empty(n, dtype) for _ in range(2)]   # the same at the trial gap
         self.pixel_compliance = body.pixel_compliance
         # float32 fields carry the energy's terms to a few ε32: a smaller rise is round-off, not a rise
         self.round_off = max(ENERGY_ROUND_OFF, 3 * float(np.finfo(dtype).eps))
@@ -498,20 +503,20 @@ class _Solver:
         return self.energy.elastic_traction(gap, field, self.work)
 
     def evaluate(self, gap, pel, arrays):
-        """Π/A and its magnitude at ``gap`` with elastic traction ``pel``; the law evaluated into ``arrays``."""
-        energy_sum = _law_into(self.law, self.code, gap, self.window, *arrays)
-        return self.energy.value(*_work_terms(gap, self.energy.h_f, pel), energy_sum, self.n)
+        """Π/A, its magnitude and Σ V at ``gap`` with elastic traction ``pel``; the law evaluated into ``arrays``."""
+        sums = _evaluate(self.law, self.code, gap, self.window, self.energy.h_f, pel, *arrays)
+        return self.energy.value(*sums, self.n) + (sums[-1],)
 
     def run(self, tol, maxiter, callback, warn, half, heights, control, requested, start_kind, start):
         energy, body, n = self.energy, self.body, self.n
         pel = self.elastic(self.g, self.pel_field)
-        value, magnitude = self.evaluate(self.g, pel, self.law_now)
+        value, magnitude, interaction = self.evaluate(self.g, pel, self.law_now)
         history, residuals = [value], []
         iterations, converged, message, detached = 0, False, "", False
         previous_rz, tau, since_exact = 0.0, 0.0, 0
         while True:
             g, d, r, free = self.g, self.d, self.r, self.free
-            traction = self.law_now[1]
+            traction = self.law_now[0]
             load = energy.external_load(g, pel, traction)
             n_free, sum_r, at_wall, largest_pull = _residual(g, pel, traction, load, self.window, r, free)
             # preconditioned residual z = K r on F (+ the largest compliance for the mean mode); zero mean on F
@@ -574,21 +579,22 @@ class _Solver:
             self.r, self.r_prev = self.r_prev, self.r
             previous_rz = rz
             pel = step
-            value, magnitude = step_value
+            value, magnitude, interaction = step_value
             history.append(value)
         if not converged and warn:
             warnings.warn(message, ConvergenceWarning, stacklevel=4)
-        return self.result(pel, half, heights, control, requested, iterations, residuals, converged, message, start,
-                           start_kind, tol, maxiter, detached, history)
+        return self.result(pel, interaction, half, heights, control, requested, iterations, residuals, converged,
+                           message, start, start_kind, tol, maxiter, detached, history)
 
     def line_search(self, slope, sum_d, pel, value, magnitude, tau, since_exact):
         """Projected Armijo search along d. Where the last step was concave (the solve is crossing an instability)
         it first tries twice that step's length, evaluated exactly, without the model's FFT pair; otherwise, or if
         that fails, it starts from the minimiser of the quadratic model along d (twice the last length where Π is
         concave along d) and halves. Every first try is capped so that no stable point tunnels into contact.
-        Returns (accepted, τ, the trial's p_el, steps since an exact p_el, the trial's energy and its magnitude)."""
+        Returns (accepted, τ, the trial's p_el, steps since an exact p_el, the trial's Π/A, its magnitude and Σ V
+        (None if rejected))."""
         body, n, g, d = self.body, self.n, self.g, self.d
-        stiffness, length = self.law_now[2], float(self.law.length)
+        stiffness, length = self.law_now[1], float(self.law.length)
         rejected = math.inf                                 # the snap-in try's length, if Armijo rejected it
         if self.snapping:
             first = min(2 * tau, _cap(g, d, stiffness, self.window, length, self.pixel_compliance, APPROACH))
@@ -618,7 +624,7 @@ class _Solver:
                 self.unstable_steps += concave
                 return (True, tau) + trial
             tau *= 0.5
-        return False, tau, pel, since_exact, (value, magnitude)
+        return False, tau, pel, since_exact, None
 
     def curvature(self, curvature, mean):
         """Π's curvature per unit area along a step from Σ Δg K⁻¹Δg − Σ k Δg² over n and ⟨Δg⟩: plus the layer's
@@ -630,7 +636,7 @@ class _Solver:
     def trial_step(self, tau, w, pel, value, magnitude, since_exact):
         """The trial gap g + τ d projected onto g ≥ 0 (and ⟨g⟩ restored under that constraint) into ``trial``, and
         its p_el: τ w added where nothing was clipped and ``w`` = K⁻¹d is given, else exact. Returns (p_el, steps
-        since an exact p_el, (energy, magnitude)) if the trial passes the Armijo test, else None."""
+        since an exact p_el, (Π/A, its magnitude, Σ V)) if the trial passes the Armijo test, else None."""
         energy, n, g, trial, r = self.energy, self.n, self.g, self.trial, self.r
         clipped, predicted = _trial_gap(g, self.d, tau, r, self.window, trial)
         if clipped and energy.constrained:
@@ -642,18 +648,18 @@ class _Solver:
         else:
             step = self.trial_field.reshape(-1)
             _advance_traction(pel, w, tau, step)
-        trial_value, trial_magnitude = self.evaluate(trial, step, self.law_trial)
-        if trial_value <= value + ARMIJO * predicted / n + self.round_off * magnitude:
-            return step, 0 if exact else since_exact + 1, (trial_value, trial_magnitude)
+        evaluated = self.evaluate(trial, step, self.law_trial)
+        if evaluated[0] <= value + ARMIJO * predicted / n + self.round_off * magnitude:
+            return step, 0 if exact else since_exact + 1, evaluated
         return None
 
-    def result(self, pel, half, heights, control, requested, iterations, residuals, converged, message, start,
-               start_kind, tol, maxiter, detached, history):
+    def result(self, pel, interaction, half, heights, control, requested, iterations, residuals, converged, message,
+               start, start_kind, tol, maxiter, detached, history):
         """The ContactResult on the window (the whole grid when periodic)."""
         energy, law, g = self.energy, self.law, self.g
         grid = half.grid
         g_mean = float(g.mean(dtype=np.float64))
-        interaction_energy, traction, _ = self.law_now
+        traction = self.law_now[0]
         load = energy.external_load(g, pel, traction)
         mean_displacement = energy.uniform * load
         flat_position = g_mean + energy.h_mean - mean_displacement
@@ -684,5 +690,5 @@ class _Solver:
             residuals=np.asarray(residuals, dtype=np.float64), converged=bool(converged), message=message,
             wall_time=time.perf_counter() - start, params=params, contact_pressure=contact_pressure,
             interaction_traction=traction, flat_position=float(flat_position),
-            interaction_energy=float(np.sum(interaction_energy, dtype=np.float64)) * grid.pixel_area,
+            interaction_energy=interaction * grid.pixel_area,
             interaction=law, control=control, requested=float(requested), unstable_steps=self.unstable_steps)

@@ -40,15 +40,19 @@ def test_law_traction_and_stiffness_are_derivatives(law, gaps):
 def test_solver_kernel_evaluates_the_laws_as_their_methods(law):
     # the solver evaluates the built-in laws in a numba kernel (gap_solver._law_at), a second writing of the
     # formulas of roughcontact.interactions: the two must agree to round-off
-    from roughcontact.gap_solver import _law_code, _law_into
+    from roughcontact.gap_solver import _evaluate, _law_at, _law_code
 
     gaps = np.concatenate([[0.0, 1.999e-7, 2.001e-7], np.random.default_rng(0).uniform(0, 5e-6, 50)])
-    energy, traction, stiffness = (np.empty_like(gaps) for _ in range(3))
-    total = _law_into(law, _law_code(law), gaps, np.ones(gaps.size, np.bool_), energy, traction, stiffness)
+    code = _law_code(law)
+    energy = np.array([_law_at(*code, gap)[0] for gap in gaps])
     np.testing.assert_allclose(energy, law.energy(gaps), rtol=1e-13, atol=0)
+    traction, stiffness = np.empty_like(gaps), np.empty_like(gaps)
+    pel, h_f = np.linspace(0.5, 1.5, gaps.size), np.linspace(-1e-6, 1e-6, gaps.size)
+    sums = _evaluate(law, code, gaps, np.ones(gaps.size, np.bool_), h_f, pel, traction, stiffness)
     np.testing.assert_allclose(traction, law.traction(gaps), rtol=1e-13, atol=0)
     np.testing.assert_allclose(stiffness, law.stiffness(gaps), rtol=1e-13, atol=0)
-    assert total == pytest.approx(float(np.sum(law.energy(gaps))), rel=1e-13)
+    expected = (gaps.sum(), np.sum((gaps + h_f) * pel), pel.sum(), np.sum(law.energy(gaps)))
+    np.testing.assert_allclose(sums, expected, rtol=1e-13, atol=0)
 
 
 def test_laws_reject_bad_parameters():
@@ -229,7 +233,7 @@ def test_step_curvature_is_the_energy_second_difference():
     # (gap_solver._step_curvature); it must be Π's second derivative along that step. The central second
     # difference over Δg ~ 2.5 nm at gaps ≥ 0.2 µm differs by the law's fourth-order term: measured 8.3e-5,
     # 1.3e-3 at 10 nm, falling 4× per halving of Δg.
-    from roughcontact.gap_solver import _Energy, _law_code, _law_into, _step_curvature, _work_terms
+    from roughcontact.gap_solver import _Energy, _evaluate, _law_code, _step_curvature
     surface, half = rough_patch()
     law = ElectrostaticInteraction(STACK, 100.0)
     h = surface.heights.reshape(-1)
@@ -242,9 +246,9 @@ def test_step_curvature_is_the_energy_second_difference():
     def state(gap):
         """Π/A, p_el and k at the gap."""
         pel = energy.elastic_traction(gap, half.empty(), half.empty()).copy()
-        laws = [np.empty(n) for _ in range(3)]
-        total = _law_into(law, _law_code(law), gap, window, *laws)
-        return energy.value(*_work_terms(gap, energy.h_f, pel), total, n)[0], pel, laws[2]
+        traction, stiffness = np.empty(n), np.empty(n)
+        sums = _evaluate(law, _law_code(law), gap, window, energy.h_f, pel, traction, stiffness)
+        return energy.value(*sums, n)[0], pel, stiffness
 
     value, pel, stiffness = state(g)
     ahead, behind = state(g + dg), state(g - dg)
