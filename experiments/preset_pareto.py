@@ -43,7 +43,7 @@ os.environ.setdefault("ROUGHCONTACT_FFT_THREADS", "1")            # CPU seconds 
 import numpy as np
 
 from roughcontact.presets import SETTING_KEYS, TABLE_PATH, write_table
-from roughcontact.provenance import output_directory, parse_arguments, save_figure, write_csv
+from roughcontact.provenance import output_directory, parse_arguments, save_figure, write_atomic, write_csv
 from roughcontact.report import bottom_up_friction
 from roughcontact.scene import load_scene
 from roughcontact.study import PointResult, StudyResult, patch_body, run_study
@@ -121,9 +121,7 @@ def solve_realisation(variant: str, setting: dict, realisation: int, runs: Path)
               "coarse_graining": list(result.coarse_graining),
               "points": [[dataclasses.asdict(point) for point in row] for row in result.points]}
     path.parent.mkdir(parents=True, exist_ok=True)
-    temporary = path.with_suffix(".part")
-    temporary.write_text(json.dumps(record))
-    os.replace(temporary, path)
+    write_atomic(path, json.dumps(record))
     return record
 
 

@@ -113,6 +113,16 @@ def write_csv(path, rows, provenance: Provenance | None, columns=None, echo=Fals
     return Path(path)
 
 
+def write_atomic(path, text: str) -> Path:
+    """Write ``text`` to ``path`` through a sibling ``.part`` file renamed over it: a reader (or a resumed run)
+    sees the old file or the whole new one, never a half-written one."""
+    path = Path(path)
+    temporary = path.with_name(path.name + ".part")
+    temporary.write_text(text)
+    os.replace(temporary, path)
+    return path
+
+
 def write_columns(path, header, columns, provenance: Provenance) -> Path:
     """Write equal-length numeric ``columns`` under the names ``header`` to the CSV file ``path`` (full
     precision), after the provenance comment."""

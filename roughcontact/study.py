@@ -41,6 +41,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .provenance import write_atomic
 from .scene import Scene
 
 #: Two-sided confidence level of every reported interval.
@@ -367,7 +368,7 @@ class TaskStore:
                                     "run into a new --out directory, or delete this one to start over")
         else:
             self.directory.mkdir(exist_ok=True)
-            _write_atomic(stored, scene.to_toml())
+            write_atomic(stored, scene.to_toml())
         self.tasks.mkdir(exist_ok=True)
         self.lock = self.directory / "run.lock"
         try:
@@ -380,7 +381,7 @@ class TaskStore:
             if holder is not None and holder != os.getpid() and _running(holder):
                 raise DirectoryInUse(f"{self.directory} is being written by another roughcontact run (process "
                                      f"{holder}); wait for it to finish or choose another --out directory") from None
-            _write_atomic(self.lock, str(os.getpid()))                                # a stale lock: taken over
+            write_atomic(self.lock, str(os.getpid()))                                # a stale lock: taken over
         else:
             with os.fdopen(descriptor, "w") as stream:
                 stream.write(str(os.getpid()))
@@ -405,7 +406,7 @@ class TaskStore:
                                     for key, value in record.items()}) for record in records)
 
     def save(self, realisation: int, voltage_index: int, records: tuple) -> None:
-        _write_atomic(self._path(realisation, voltage_index), json.dumps([dataclasses.asdict(r) for r in records]))
+        write_atomic(self._path(realisation, voltage_index), json.dumps([dataclasses.asdict(r) for r in records]))
 
 
 def _running(pid: int) -> bool:
@@ -416,12 +417,6 @@ def _running(pid: int) -> bool:
     except PermissionError:                     # it runs, under another user
         return True
     return True
-
-
-def _write_atomic(path: Path, text: str) -> None:
-    temporary = path.with_name(path.name + ".part")
-    temporary.write_text(text)
-    os.replace(temporary, path)
 
 
 # ---------------------------------------------------------------------------------------------------------

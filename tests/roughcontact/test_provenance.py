@@ -8,7 +8,7 @@ from PIL import Image
 
 from roughcontact import __version__
 from roughcontact.provenance import (OutputPathError, Provenance, output_directory, read_csv, save_figure,
-                                     write_columns, write_csv)
+                                     write_atomic, write_columns, write_csv)
 
 PROVENANCE = Provenance.of_command("python experiments/study.py", ["--output", "a b"], {"output": "a b", "n": 3})
 
@@ -46,3 +46,11 @@ def test_output_directory_creates_only_the_last_level(tmp_path):
     with pytest.raises(OutputPathError, match="does not exist"):
         output_directory(tmp_path / "missing" / "new")
     assert not (tmp_path / "missing").exists()
+
+
+def test_write_atomic_replaces_the_file_whole(tmp_path):
+    path = tmp_path / "record.json"
+    path.write_text("old")
+    assert write_atomic(path, '{"new": 1}') == path
+    assert json.loads(path.read_text()) == {"new": 1}
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["record.json"]      # no .part left behind
