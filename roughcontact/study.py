@@ -621,9 +621,9 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
     workers FFT threads; ``workers=1`` runs them in this process. ``dask``, the address of a dask.distributed
     scheduler (``"tcp://host:8786"``), runs them on that cluster instead (one FFT thread per task; needs
     ``roughcontact[parallel]``). Every executor gives the same records for the same FFT plans. A script that
-    uses the pool needs Python's ``if __name__ == "__main__":`` guard around its work (the workers import it). Interrupted
-    (Ctrl-C), the waiting tasks are cancelled and the pool's workers stopped (a cluster's running tasks finish
-    and are dropped); the finished ones stay in ``directory``.
+    uses the pool needs Python's ``if __name__ == "__main__":`` guard around its work (the workers import it).
+    Interrupted (Ctrl-C), the waiting tasks are cancelled and the pool's workers stopped (a cluster's running
+    tasks finish and are dropped); the finished ones stay in ``directory``.
     """
     _check_executor(workers, dask)
     store = None if directory is None else TaskStore(directory, scene)
