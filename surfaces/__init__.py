@@ -22,6 +22,8 @@ _LAZY = {
                     "ridges"),
     **dict.fromkeys(["dominant_wavelength", "orientation_field", "OrientationField", "angular_difference",
                      "detect_pores", "DetectedPores"], "texture"),
+    # measured topographies through the optional SurfaceTopography (imported inside these functions)
+    **dict.fromkeys(["read_topography", "from_topography", "to_topography"], "topography"),
 }
 
 __getattr__, __dir__, __all__ = lazy_attributes(

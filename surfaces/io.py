@@ -52,3 +52,108 @@ def load_npz(path) -> tuple:
         metadata = json.loads(data[_METADATA_KEY].tobytes().decode("utf-8"), object_hook=_restore_tuple)
         arrays = {name: data[name] for name in data.files if name != _METADATA_KEY}
     return arrays, metadata
+
+
+# -- plain-text height maps and unit names ------------------------------------------------------------------
+#: Length units accepted by name at the file boundary, in metres (the micro sign and the Greek mu both work).
+LENGTH_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "\u00b5m": 1e-6, "\u03bcm": 1e-6, "nm": 1e-9, "pm": 1e-12,
+                "\u00c5": 1e-10}
+
+# First bytes of the binary containers that instruments write (zip: x3p, plux, datx-in-zip; HDF5; NetCDF 3)
+_BINARY_MAGIC = {b"PK\x03\x04": "a zip container (x3p, plux, ...)", b"\x89HDF": "an HDF5 file (datx, NetCDF 4, ...)",
+                 b"CDF\x01": "a NetCDF file", b"CDF\x02": "a NetCDF file"}
+
+
+def length_unit(name: str, unit) -> float:
+    """Metres per stored number: ``unit`` is a positive factor or one of :data:`LENGTH_UNITS`' names."""
+    if isinstance(unit, str):
+        if unit not in LENGTH_UNITS:
+            raise ValueError(f"{name} = {unit!r} is not a known length unit; valid: a positive factor to metres "
+                             f"or one of {', '.join(repr(u) for u in LENGTH_UNITS)}")
+        return LENGTH_UNITS[unit]
+    from .validation import check_real
+    return check_real(name, unit, low=0.0, low_open=True)
+
+
+def read_text_table(path, delimiter=None, skiprows: int = 0) -> np.ndarray:
+    """The numbers of the text file ``path`` as a 2-D array (one row per line; ``#`` starts a comment).
+
+    ``delimiter=None`` takes it from the first data line: ``;`` if present, else ``,``, else white space.
+    Binary files and lines that are not numbers raise ``ValueError`` naming the file (and the line).
+    """
+    path = Path(path)
+    raw = path.read_bytes()
+    for magic, kind in _BINARY_MAGIC.items():
+        if raw.startswith(magic):
+            raise ValueError(f"{path} is {kind}, not a text height map; read instrument formats with "
+                             "surfaces.topography.read_topography (optional SurfaceTopography: "
+                             "pip install 'roughcontact[topography]')")
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise ValueError(f"{path} is not UTF-8 text (byte {error.start}: {raw[error.start:error.start + 1]!r}), so "
+                         "not a text height map; read instrument formats with "
+                         "surfaces.topography.read_topography (optional SurfaceTopography)") from None
+    lines = text.splitlines()
+    data_lines = [line for line in lines[skiprows:] if line.split("#", 1)[0].strip()]
+    if not data_lines:
+        raise ValueError(f"{path} holds no numbers (after skiprows = {skiprows} lines and '#' comments)")
+    if delimiter is None:
+        first = data_lines[0].split("#", 1)[0]
+        delimiter = ";" if ";" in first else "," if "," in first else None
+    rows = []
+    for number, line in enumerate(lines[skiprows:], start=skiprows + 1):
+        content = line.split("#", 1)[0].strip()
+        if not content:
+            continue
+        fields = content.split(delimiter)
+        try:
+            rows.append([float(value) for value in fields])
+        except ValueError:
+            raise ValueError(f"{path}, line {number}: {content[:60]!r} is not a row of numbers separated by "
+                             f"{'white space' if delimiter is None else repr(delimiter)}; pass delimiter= or "
+                             "skiprows= (header lines), or start comment lines with '#'") from None
+        if len(rows[-1]) != len(rows[0]):
+            raise ValueError(f"{path}, line {number}: {len(rows[-1])} columns, but the first data row has "
+                             f"{len(rows[0])}")
+    return np.array(rows, dtype=np.float64)
+
+
+def _lattice_indices(name: str, values: np.ndarray) -> tuple:
+    """``(index, step, count)`` of coordinates ``values`` on a regular lattice ``values.min() + index*step``;
+    ``ValueError`` if they are not on one (to 1 % of a step). Printing noise below a quarter step is merged."""
+    levels = np.unique(values)
+    if levels.size == 1:
+        return np.zeros(values.size, dtype=np.intp), None, 1
+    gaps = np.diff(levels)
+    levels = levels[np.concatenate([[True], gaps > 0.25 * gaps.max()])]
+    step = (levels[-1] - levels[0]) / (levels.size - 1)
+    position = (values - levels[0]) / step
+    index = np.rint(position).astype(np.intp)
+    worst = np.abs(position - index).max()
+    if worst > 0.01:
+        raise ValueError(f"the {name} column is not on a regular lattice: a value lies {worst:.2g} steps off the "
+                         f"lattice of {levels.size} values spaced {step:g}; regrid the scan before reading it")
+    return index, step, levels.size
+
+
+def grid_from_columns(columns: np.ndarray) -> tuple:
+    """``(heights, spacing)`` of an x-z or x-y-z column export on a regular lattice: ``heights[i, j]`` at
+    ``(x0 + i dx, y0 + j dy)``, NaN where the export has no point; ``spacing`` (dx, dy) in the file's unit
+    (dy None for a profile). ``ValueError`` if the points are off a lattice or a point is given twice."""
+    if columns.ndim != 2 or columns.shape[1] not in (2, 3):
+        raise ValueError(f"a column export has 2 (x z) or 3 (x y z) columns, got shape {columns.shape}")
+    x_index, dx, nx = _lattice_indices("x", columns[:, 0])
+    y_index, dy, ny = (_lattice_indices("y", columns[:, 1]) if columns.shape[1] == 3
+                       else (np.zeros(len(columns), dtype=np.intp), None, 1))
+    if dx is None:
+        raise ValueError(f"the x column holds a single value ({columns[0, 0]!r}); a column export needs x to vary")
+    heights = np.full((nx, ny), np.nan)
+    counts = np.zeros((nx, ny), dtype=np.intp)
+    np.add.at(counts, (x_index, y_index), 1)
+    if counts.max() > 1:
+        i, j = np.argwhere(counts > 1)[0]
+        raise ValueError(f"the point (x index {i}, y index {j}) is given {counts[i, j]} times; a column export "
+                         "holds each lattice point once")
+    heights[x_index, y_index] = columns[:, -1]
+    return heights, (dx, dy)

@@ -211,8 +211,18 @@ def test_read_plain_height_maps(tmp_path):
 
 
 def test_from_array():
-    field = surfaces.HeightField.from_array(np.ones((4, 3)), L, periodic=True, source="test")
+    field = surfaces.HeightField.from_array(np.ones((4, 3)), (L, L), periodic=True, source="test")
     assert field.grid == surfaces.Grid((4, 3), (L, L), True) and field.metadata["source"] == "test"
+    assert surfaces.HeightField.from_array(np.ones((4, 4)), L).grid.lengths == (L, L)
+    square = surfaces.HeightField.from_array(np.ones((4, 3)), pixel_size=L / 4)
+    assert square.grid.lengths == (L, 0.75 * L) and square.grid.spacing == (L / 4, L / 4)
+    assert surfaces.HeightField.from_array(np.ones((4, 3)), pixel_size=(1e-6, 2e-6)).grid.lengths == (4e-6, 6e-6)
+    with pytest.raises(ValueError, match=r"lengths = 0.002 is one number for a map of shape \(4, 3\).*non-square"):
+        surfaces.HeightField.from_array(np.ones((4, 3)), L)              # would give non-square pixels silently
+    with pytest.raises(ValueError, match="exactly one of them"):
+        surfaces.HeightField.from_array(np.ones((4, 3)), (L, L), pixel_size=L / 4)
+    with pytest.raises(ValueError, match=r"pixel_size\[1\] = -1.0 is out of range"):
+        surfaces.HeightField.from_array(np.ones((4, 3)), pixel_size=(1.0, -1.0))
     assert surfaces.HeightField.from_array(np.ones(8), L).grid.shape == (8, 1)
     for empty in (np.zeros(0), np.zeros((3, 0))):
         with pytest.raises(ValueError, match="heights is empty"):
@@ -249,3 +259,138 @@ def test_plotting_helpers_return_their_artists():
     finally:
         plt.close(figure)
     assert dict(matplotlib.rcParams) == rc_before
+
+
+# -- text exports, units, missing data, tilt, mirroring --------------------------------------------------------
+def xyz_lines(heights_um, dx_um, dy_um, delimiter=" ", skip=()):
+    """x y z lines of a map in micrometres, y outer, x inner (an export's usual order), without points ``skip``."""
+    nx, ny = heights_um.shape
+    return "".join(f"{i * dx_um!r}{delimiter}{j * dy_um!r}{delimiter}{float(heights_um[i, j])!r}\n"
+                   for j in range(ny) for i in range(nx) if (i, j) not in skip)
+
+
+MAP_UM = np.random.default_rng(5).standard_normal((7, 5))
+
+
+@pytest.mark.parametrize("delimiter, suffix", [(" ", "xyz"), (",", "csv"), (";", "txt"), ("\t", "dat")])
+def test_xyz_exports_are_regridded_not_read_as_a_three_column_map(tmp_path, delimiter, suffix):
+    path = tmp_path / f"scan.{suffix}"
+    path.write_text("# exported scan, x y z in um\n" + xyz_lines(MAP_UM, 0.25, 0.4, delimiter))
+    field = surfaces.HeightField.read(path, unit="um")
+    assert field.grid.shape == (7, 5) and field.grid.periodic == (False, False)
+    np.testing.assert_allclose(field.grid.spacing, (0.25e-6, 0.4e-6), rtol=1e-14)       # lattice step: a few ulp
+    np.testing.assert_allclose(field.grid.lengths, (7 * 0.25e-6, 5 * 0.4e-6), rtol=1e-14)
+    np.testing.assert_allclose(field.heights, MAP_UM * 1e-6, rtol=1e-15)
+    assert field.metadata["layout"] == "columns"
+    nm_heights = surfaces.HeightField.read(path, unit=1e-9, lateral_unit="um")     # z in nm, x and y in um
+    np.testing.assert_allclose(nm_heights.heights, MAP_UM * 1e-9, rtol=1e-15)
+    assert nm_heights.grid.lengths == field.grid.lengths
+
+
+def test_xz_profile_export_and_comma_matrix(tmp_path):
+    (tmp_path / "profile.csv").write_text("".join(f"{i * 0.5!r},{float(v)!r}\n" for i, v in enumerate(MAP_UM[:, 0])))
+    profile = surfaces.HeightField.read(tmp_path / "profile.csv", unit="um")
+    assert profile.grid.is_profile and profile.grid.lengths == pytest.approx((3.5e-6, 0.5e-6), rel=1e-14)
+    np.testing.assert_allclose(profile.heights[:, 0], MAP_UM[:, 0] * 1e-6, rtol=1e-15)
+    np.savetxt(tmp_path / "map.csv", MAP_UM, delimiter=",")                      # a comma matrix, 5 columns
+    matrix = surfaces.HeightField.read(tmp_path / "map.csv", pixel_size=1e-6, unit="um")
+    assert matrix.grid.lengths == pytest.approx((7e-6, 5e-6), rel=1e-15)            # 5 * 1e-6 in float64
+    np.testing.assert_allclose(matrix.heights, MAP_UM * 1e-6, rtol=1e-15)
+
+
+def test_text_layout_is_detected_or_refused_with_a_remedy(tmp_path):
+    three_wide = np.random.default_rng(1).standard_normal((6, 3))               # a map 3 pixels wide
+    np.savetxt(tmp_path / "narrow.txt", three_wide)
+    with pytest.raises(ValueError, match=r"3 columns that are not an x-y-z .*pass layout='matrix'"):
+        surfaces.HeightField.read(tmp_path / "narrow.txt", lengths=(1e-3, 0.5e-3))
+    narrow = surfaces.HeightField.read(tmp_path / "narrow.txt", lengths=(1e-3, 0.5e-3), layout="matrix")
+    assert narrow.grid.shape == (6, 3)
+    path = tmp_path / "scan.xyz"
+    path.write_text(xyz_lines(MAP_UM, 0.25, 0.4))
+    with pytest.raises(ValueError, match="column export, which fixes the pixel size"):
+        surfaces.HeightField.read(path, lengths=1e-3)
+    with pytest.raises(ValueError, match=r"y column is not on a regular lattice"):
+        (tmp_path / "off.xyz").write_text(xyz_lines(MAP_UM, 0.25, 0.4).replace("\n0.0 0.4 ", "\n0.0 0.5 ", 1))
+        surfaces.HeightField.read(tmp_path / "off.xyz", layout="columns")
+    (tmp_path / "twice.xyz").write_text(xyz_lines(MAP_UM, 0.25, 0.4) + "0.0 0.0 1.0\n")
+    with pytest.raises(ValueError, match=r"point \(x index 0, y index 0\) is given 2 times"):
+        surfaces.HeightField.read(tmp_path / "twice.xyz", layout="columns")
+
+
+def test_missing_points_are_refused_or_filled(tmp_path):
+    """An export without two points, and a matrix with a NaN: refused by default, filled on request; the
+    harmonic fill reproduces a discretely harmonic surface (a + bx + cy + e xy + f(x² − y²)) exactly."""
+    x, y = np.meshgrid(np.arange(7) * 0.25, np.arange(5) * 0.4, indexing="ij")
+    harmonic_um = 0.3 + 0.2 * x - 0.1 * y + 0.05 * x * y + 0.07 * (x ** 2 - y ** 2)
+    path = tmp_path / "holes.xyz"
+    path.write_text(xyz_lines(harmonic_um, 0.25, 0.4, skip={(3, 2), (4, 2)}))
+    with pytest.raises(ValueError, match=r"2 missing heights .* of 35, the first at index \[3, 2\].*harmonic"):
+        surfaces.HeightField.read(path, unit="um")
+    filled = surfaces.HeightField.read(path, unit="um", missing="harmonic")
+    # the five-point Laplacian of the surface is zero, so the fill is exact to round-off (heights ~1e-6 m)
+    np.testing.assert_allclose(filled.heights, harmonic_um * 1e-6, rtol=0, atol=1e-20)
+    assert filled.metadata["missing_points"] == 2
+    holed = harmonic_um.copy()
+    holed[2, 1] = np.nan
+    np.savetxt(tmp_path / "holed.txt", holed)
+    with pytest.raises(ValueError, match="1 missing heights"):
+        surfaces.HeightField.read(tmp_path / "holed.txt", pixel_size=(0.25e-6, 0.4e-6), unit="um")
+    matrix = surfaces.HeightField.read(tmp_path / "holed.txt", pixel_size=(0.25e-6, 0.4e-6), unit="um",
+                                       missing="harmonic")
+    np.testing.assert_allclose(matrix.heights, harmonic_um * 1e-6, rtol=0, atol=1e-20)
+    with pytest.raises(ValueError, match="every height is missing"):
+        surfaces.heightfield.harmonic_fill(np.zeros((3, 3)), np.ones((3, 3), bool), (1.0, 1.0))
+
+
+def test_binary_and_malformed_files_are_named_clearly(tmp_path):
+    import zipfile
+    with zipfile.ZipFile(tmp_path / "scan.x3p", "w") as archive:
+        archive.writestr("main.xml", "<x/>")
+    with pytest.raises(ValueError, match=r"scan.x3p is a zip container.*read_topography"):
+        surfaces.HeightField.read(tmp_path / "scan.x3p", lengths=L)
+    (tmp_path / "scan.sur").write_bytes(b"DIGITAL SURF\xff\xfe\x00\x01")
+    with pytest.raises(ValueError, match=r"scan.sur is not UTF-8 text \(byte 12"):
+        surfaces.HeightField.read(tmp_path / "scan.sur", lengths=L)
+    (tmp_path / "header.csv").write_text("x,y,z\n0,0,1\n1,0,2\n")
+    with pytest.raises(ValueError, match=r"header.csv, line 1: 'x,y,z' is not a row of numbers .*skiprows"):
+        surfaces.HeightField.read(tmp_path / "header.csv")
+    assert surfaces.HeightField.read(tmp_path / "header.csv", skiprows=1, unit="mm").grid.lengths == (2e-3, 1e-3)
+    (tmp_path / "ragged.txt").write_text("1 2 3 4\n1 2 3\n")
+    with pytest.raises(ValueError, match="line 2: 3 columns, but the first data row has 4"):
+        surfaces.HeightField.read(tmp_path / "ragged.txt", lengths=L)
+    with pytest.raises(ValueError, match="'inch' is not a known length unit"):
+        surfaces.HeightField.read(tmp_path / "ragged.txt", lengths=L, unit="inch")
+    with pytest.raises(ValueError, match="rows = 'z' is not valid"):
+        surfaces.HeightField.read(tmp_path / "ragged.txt", lengths=L, rows="z")
+
+
+def test_plane_detrend_removes_exactly_the_tilt():
+    """A tilted plane plus a field orthogonal to {1, x, y} on the grid (a product of zero-sum cosines): the
+    plane fit returns the field itself and the slopes; a mean detrend would leave the tilt."""
+    grid = surfaces.Grid((12, 8), (L, 0.5 * L), periodic=False)
+    x, y = grid.meshgrid()
+    bumps = 1e-6 * np.cos(2 * np.pi * np.arange(12) / 12)[:, None] * np.cos(2 * np.pi * np.arange(8) / 8)[None, :]
+    tilted = surfaces.HeightField(grid, bumps + 3e-6 + 2e-3 * x - 5e-3 * y)
+    levelled = tilted.detrended("plane")
+    np.testing.assert_allclose(levelled.heights, bumps, rtol=0, atol=1e-20)          # round-off of ~1e-5 m terms
+    assert levelled.metadata["slopes"] == pytest.approx([2e-3, -5e-3], rel=1e-12)
+    assert np.abs(tilted.detrended().heights - bumps).max() > 1e-6
+    profile = surfaces.HeightField.from_array(4e-3 * np.arange(9.0) * 1e-4, 9e-4)
+    np.testing.assert_allclose(profile.detrended("plane").heights, 0, atol=1e-20)
+    with pytest.raises(ValueError, match="a tilted plane is not periodic"):
+        surfaces.HeightField(GRID, np.zeros(GRID.shape)).detrended("plane")
+
+
+def test_mirrored_window_is_periodic_without_edge_steps():
+    window = surfaces.self_affine(surfaces.Grid((6, 5), (L, 0.8 * L), periodic=False), hurst=0.8, rms_height=1e-6,
+                                  rng=3)
+    mirrored = window.mirrored()
+    assert mirrored.grid == surfaces.Grid((12, 10), (2 * L, 1.6 * L), periodic=True)
+    h = mirrored.heights
+    assert np.array_equal(h[:6, :5], window.heights) and np.array_equal(h[::-1, ::-1][:6, :5], window.heights)
+    # the periodic repeat joins each edge pixel to itself: zero height step across both wrap-arounds
+    assert np.array_equal(h[0], h[-1]) and np.array_equal(h[:, 0], h[:, -1])
+    profile = surfaces.HeightField.from_array(np.arange(4.0) * 1e-6, 4e-6).mirrored()
+    assert profile.grid.shape == (8, 1) and profile.heights[:, 0].tolist() == [0, 1e-6, 2e-6, 3e-6, 3e-6, 2e-6, 1e-6, 0]
+    with pytest.raises(ValueError, match="already periodic"):
+        mirrored.mirrored()
