@@ -266,7 +266,7 @@ class HeightField:
             raise ValueError(f"kind = 'plane' on a grid with periodic = {self.grid.periodic}: a tilted plane is not "
                              "periodic; remove the tilt before declaring the field periodic, or use kind='mean'")
         coordinates = [c - c.mean() for c in self.grid.meshgrid()]
-        basis = np.stack([np.ones(self.shape)] + [coordinates[axis] for axis in axes], axis=-1).reshape(-1, 1 + len(axes))
+        basis = np.stack([np.ones(self.grid.size)] + [coordinates[axis].ravel() for axis in axes], axis=-1)
         coefficients = np.linalg.lstsq(basis, self.heights.ravel(), rcond=None)[0]
         slopes = [0.0, 0.0]
         for axis, slope in zip(axes, coefficients[1:]):

@@ -1,9 +1,11 @@
 """Measured topographies: one scan in three file formats (ISO 25178-72 x3p, an x-y-z text export, a
 SurfaceTopography NetCDF) reaches the same HeightField, units, sizes and axes included; the bridge both ways."""
 import hashlib
+import re
 import subprocess
 import sys
 import zipfile
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -55,7 +57,8 @@ def write_xyz(path, order="y outer"):
     """An x-y-z export in micrometres, comma-separated with a comment header, one point per line."""
     points = zip(X_UM.ravel(), Y_UM.ravel(), HEIGHTS_UM.ravel()) if order == "x outer" else \
         zip(X_UM.T.ravel(), Y_UM.T.ravel(), HEIGHTS_UM.T.ravel())
-    path.write_text("# x [um], y [um], z [um]\n" + "".join(f"{float(x)!r},{float(y)!r},{float(z)!r}\n" for x, y, z in points))
+    lines = (f"{float(x)!r},{float(y)!r},{float(z)!r}\n" for x, y, z in points)
+    path.write_text("# x [um], y [um], z [um]\n" + "".join(lines))
     return path
 
 
@@ -180,3 +183,20 @@ def test_surface_topography_is_imported_lazily_and_its_absence_explained(monkeyp
     monkeypatch.setitem(sys.modules, "SurfaceTopography", None)                 # as if not installed
     with pytest.raises(ImportError, match=r"pip install 'roughcontact\[topography\]'"):
         to_topography(REFERENCE)
+
+
+def test_measured_topographies_section_of_the_docs_runs(capsys):
+    """The Python block of docs/surfaces.md §7 runs and prints the shape it read from the x-y-z export."""
+    text = (Path(__file__).resolve().parents[2] / "docs" / "surfaces.md").read_text()
+    section = text[text.index("## 7. Measured topographies"):]
+    blocks = re.findall(r"^```python\n(.*?)^```", section, re.MULTILINE | re.DOTALL)
+    assert blocks
+    namespace = {}
+    for number, code in enumerate(blocks, 1):
+        exec(compile(code, f"docs/surfaces.md §7, python block {number}", "exec"), namespace)
+    grid = namespace["from_text"].grid          # sizes through µm text and back: a few ulp
+    assert grid.shape == (64, 48) and grid.periodic == (False, False)
+    assert grid.lengths == pytest.approx((0.2e-3, 0.15e-3), rel=1e-12)
+    # the plane fit is linear: the scan's slopes minus the window's own are the added tilt, to round-off
+    assert namespace["tilt"] == pytest.approx([0.02, 0.0], abs=1e-12)
+    assert capsys.readouterr().out.startswith("(64, 48) [")
