@@ -143,11 +143,16 @@ def grid_from_columns(columns: np.ndarray) -> tuple:
     (dy None for a profile). ``ValueError`` if the points are off a lattice or a point is given twice."""
     if columns.ndim != 2 or columns.shape[1] not in (2, 3):
         raise ValueError(f"a column export has 2 (x z) or 3 (x y z) columns, got shape {columns.shape}")
+    coordinates = columns[:, :-1]
+    if not np.isfinite(coordinates).all():
+        row, column = np.argwhere(~np.isfinite(coordinates))[0]
+        raise ValueError(f"the {'xy'[column]} column holds {float(coordinates[row, column])!r} in data row "
+                         f"{row + 1}; coordinates must be finite (a missing height goes in the z column as NaN)")
     x_index, dx, nx = _lattice_indices("x", columns[:, 0])
     y_index, dy, ny = (_lattice_indices("y", columns[:, 1]) if columns.shape[1] == 3
                        else (np.zeros(len(columns), dtype=np.intp), None, 1))
     if dx is None:
-        raise ValueError(f"the x column holds a single value ({columns[0, 0]!r}); a column export needs x to vary")
+        raise ValueError(f"the x column holds a single value ({float(columns[0, 0])!r}); a column export needs x to vary")
     heights = np.full((nx, ny), np.nan)
     counts = np.zeros((nx, ny), dtype=np.intp)
     np.add.at(counts, (x_index, y_index), 1)

@@ -312,6 +312,9 @@ def test_text_layout_is_detected_or_refused_with_a_remedy(tmp_path):
     with pytest.raises(ValueError, match=r"y column is not on a regular lattice"):
         (tmp_path / "off.xyz").write_text(xyz_lines(MAP_UM, 0.25, 0.4).replace("\n0.0 0.4 ", "\n0.0 0.5 ", 1))
         surfaces.HeightField.read(tmp_path / "off.xyz", layout="columns")
+    (tmp_path / "nan.xyz").write_text(xyz_lines(MAP_UM, 0.25, 0.4) + "nan 0.0 1.0\n")
+    with pytest.raises(ValueError, match=r"the x column holds nan in data row 36; coordinates must be finite"):
+        surfaces.HeightField.read(tmp_path / "nan.xyz", layout="columns")
     (tmp_path / "twice.xyz").write_text(xyz_lines(MAP_UM, 0.25, 0.4) + "0.0 0.0 1.0\n")
     with pytest.raises(ValueError, match=r"point \(x index 0, y index 0\) is given 2 times"):
         surfaces.HeightField.read(tmp_path / "twice.xyz", layout="columns")
