@@ -152,7 +152,8 @@ def grid_from_columns(columns: np.ndarray) -> tuple:
     y_index, dy, ny = (_lattice_indices("y", columns[:, 1]) if columns.shape[1] == 3
                        else (np.zeros(len(columns), dtype=np.intp), None, 1))
     if dx is None:
-        raise ValueError(f"the x column holds a single value ({float(columns[0, 0])!r}); a column export needs x to vary")
+        raise ValueError(f"the x column holds a single value ({float(columns[0, 0])!r}); a column export needs x "
+                         "to vary")
     heights = np.full((nx, ny), np.nan)
     counts = np.zeros((nx, ny), dtype=np.intp)
     np.add.at(counts, (x_index, y_index), 1)
