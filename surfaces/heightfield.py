@@ -134,8 +134,9 @@ class HeightField:
         lattice; ``layout="auto"`` takes 2 or 3 columns whose first columns lie on a regular lattice as a
         column export, refuses 2 or 3 columns that do not, and reads anything else as a matrix.
 
-        * ``unit``: metres per stored height, a factor or a name (``"um"``, ``"nm"``, … :data:`surfaces.io.
-          LENGTH_UNITS`); ``lateral_unit`` (column exports) the same for x and y, default ``unit``.
+        * ``unit``: metres per stored height, a factor or a name (``"um"``, ``"nm"``, …: the keys of
+          :data:`surfaces.io.LENGTH_UNITS`); ``lateral_unit`` (column exports) the same for x and y, default
+          ``unit``.
         * Matrix and ``.npy``: the size as ``lengths`` [m] or ``pixel_size`` [m] (see :meth:`from_array`);
           ``rows="x"``: row i holds the heights at x_i (numpy's layout of :attr:`heights`, what
           ``numpy.savetxt(path, field.heights)`` writes); ``rows="y"``: row j holds the heights along x at y_j

@@ -5,6 +5,7 @@ sweep results in ``roughcontact``), so provenance is stored the same way everywh
 """
 from __future__ import annotations
 
+import io
 import json
 from pathlib import Path
 
@@ -101,22 +102,29 @@ def read_text_table(path, delimiter=None, skiprows: int = 0) -> np.ndarray:
     if delimiter is None:
         first = data_lines[0].split("#", 1)[0]
         delimiter = ";" if ";" in first else "," if "," in first else None
-    rows = []
+    try:
+        return np.loadtxt(io.StringIO(text), delimiter=delimiter, skiprows=skiprows, ndmin=2, dtype=np.float64)
+    except ValueError:
+        raise ValueError(_first_unreadable_line(path, lines, skiprows, delimiter)) from None
+
+
+def _first_unreadable_line(path, lines, skiprows: int, delimiter) -> str:
+    """The message naming the first line of ``lines`` that is not a row of numbers like the first data row."""
+    width = None
     for number, line in enumerate(lines[skiprows:], start=skiprows + 1):
         content = line.split("#", 1)[0].strip()
         if not content:
             continue
-        fields = content.split(delimiter)
         try:
-            rows.append([float(value) for value in fields])
+            row = [float(value) for value in content.split(delimiter)]
         except ValueError:
-            raise ValueError(f"{path}, line {number}: {content[:60]!r} is not a row of numbers separated by "
-                             f"{'white space' if delimiter is None else repr(delimiter)}; pass delimiter= or "
-                             "skiprows= (header lines), or start comment lines with '#'") from None
-        if len(rows[-1]) != len(rows[0]):
-            raise ValueError(f"{path}, line {number}: {len(rows[-1])} columns, but the first data row has "
-                             f"{len(rows[0])}")
-    return np.array(rows, dtype=np.float64)
+            return (f"{path}, line {number}: {content[:60]!r} is not a row of numbers separated by "
+                    f"{'white space' if delimiter is None else repr(delimiter)}; pass delimiter= or skiprows= "
+                    "(header lines), or start comment lines with '#'")
+        width = len(row) if width is None else width
+        if len(row) != width:
+            return f"{path}, line {number}: {len(row)} columns, but the first data row has {width}"
+    return f"{path} is not a table of numbers separated by {delimiter!r}"
 
 
 def _lattice_indices(name: str, values: np.ndarray) -> tuple:
