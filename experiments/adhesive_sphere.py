@@ -6,7 +6,7 @@
 A paraboloid h = −r²/(2R) (R = 1 m, E* = 1 Pa, w = 1e-3 J/m²: the units are arbitrary) in a periodic cell of side
 ``--cell`` (6.6 JKR zero-load contact radii by default), the Dugdale law (``MaugisDugdale``) with σ0 set by
 Maugis' λ. Each solve starts from the zero-load equilibrium and retracts in steps of 0.1 π w R until the sphere
-detaches (``roughcontact.paths.pull_off``). The pull-off load P̄ = F/(π w R) is compared with Maugis' (1992)
+detaches (``roughcontact.solvers.pull_off``). The pull-off load P̄ = F/(π w R) is compared with Maugis' (1992)
 analytic curve (``roughcontact.reference.maugis_dugdale_pull_off``); the error falls to first order in the
 pixel size, so the last two grids also give a Richardson extrapolation. Writes ``adhesive_sphere.csv`` (with
 its provenance) into ``--output``.
@@ -19,9 +19,9 @@ import numpy as np
 
 from surfaces import Grid, HeightField
 from roughcontact import ContactProblem, ElasticHalfSpace, MaugisDugdale
-from roughcontact.paths import pull_off
-from roughcontact.provenance import output_directory, parse_arguments, write_csv
+from roughcontact.io import output_directory, parse_arguments, write_csv
 from roughcontact.reference import maugis_cohesive_stress, maugis_dugdale_pull_off
+from roughcontact.solvers import pull_off
 
 RADIUS, E_STAR, WORK = 1.0, 1.0, 1e-3          # R [m], E* [Pa], w [J/m²]
 COLUMNS = ("maugis_lambda", "n", "cell", "pixel", "pull_off", "pull_off_maugis", "relative_error",

@@ -46,8 +46,8 @@ import numpy as np
 import scipy.fft
 
 from roughcontact import ElasticHalfSpace, load_path, solve_contact
-from roughcontact.benchmarks import E_STAR, LENGTH, PRESSURE, SWEEP_STEPS, rough_surface, sweep_pressures
-from roughcontact.provenance import output_directory, parse_arguments, write_csv
+from roughcontact.io import output_directory, parse_arguments, write_csv
+from roughcontact.reference.benchmark import E_STAR, LENGTH, PRESSURE, SWEEP_STEPS, rough_surface, sweep_pressures
 
 PAIRS_PER_SAMPLE = 12    # FFT floors: best of --repeat means over this many consecutive pairs (a multiple of 6)
 COLUMNS = ("section", "solver", "n", "time_s", "iterations", "fft_pairs_per_iteration",
@@ -96,9 +96,9 @@ SWEEP_VARIANTS = (("cold start", {"warm_start": False}),                     # e
                   ("cold start (pk)", {"warm_start": False, "cold_start": "pk"}),
                   ("warm start", {}))                                       # load_path's secant predictor
 PROFILE_GROUPS = {"transforms": ("fft.py", ("forward", "backward")),
-                  "multiplier passes": ("elastic.py", ("_apply_multiplier", "_apply_inverse_multiplier",
+                  "multiplier passes": ("elastic.py", ("apply_multiplier", "apply_inverse_multiplier",
                                                         "_apply_multiplier_quadratic")),
-                  "pointwise passes": ("contact.py", None)}      # None: every numba kernel (name "_...")
+                  "pointwise passes": ("polonsky_keer.py", None)}      # None: every numba kernel (name "_...")
 
 
 def time_decomposition(surface, half, pressure, tol) -> tuple:

@@ -33,8 +33,8 @@ import numpy as np
 
 import surfaces
 from roughcontact import ElasticHalfSpace, load_path
-from roughcontact.benchmarks import contact_patches
-from roughcontact.provenance import output_directory, parse_arguments, save_figure, write_csv
+from roughcontact.io import output_directory, parse_arguments, save_figure, write_csv
+from roughcontact.reference.benchmark import contact_patches
 
 LENGTH = 1e-3            # periodic square window L [m]
 E_STAR = 1e6             # contact modulus [Pa] (κ depends only on p̄/(E* h'))

@@ -2,7 +2,7 @@
 versus CPU cost, the Pareto front, and the measured table behind the presets (``docs/presets.md``).
 
     python experiments/preset_pareto.py --output /tmp/pareto-out            # the table of docs/presets.md
-    python experiments/preset_pareto.py --output /tmp/pareto-out --library   # also roughcontact/preset_errors.csv
+    python experiments/preset_pareto.py --output /tmp/pareto-out --library   # also roughcontact/study/preset_errors.csv
     python experiments/preset_pareto.py --fast --output out                 # 32² patches, seconds
 
 Scenes: the default scene (the presets are chosen on it) and two variants that are not used to choose them,
@@ -14,7 +14,7 @@ the coupled scales at the grids below, and the first 1 ... 8 realisations of eac
 
 Error of a setting on a scene: the largest relative difference of its realisation mean from the reference
 mean, over the four points for d_eq and A_R/A0 and over the two loads for F_T at 200 V (the seed's friction
-law fed with the study's d_eq,R and A_R, ``roughcontact.report.bottom_up_friction``); ``error`` is the largest
+law fed with the study's d_eq,R and A_R, ``roughcontact.study.bottom_up_friction``); ``error`` is the largest
 of the three. Realisation r has the rng seed scene seed + r in every setting, so the first R realisations of a
 setting share their roughness with the reference's: the error holds the discretisation error plus the
 difference between the mean of R and of 8 realisations; the reference's own sampling half-width (95 %) is
@@ -42,11 +42,13 @@ os.environ.setdefault("ROUGHCONTACT_FFT_THREADS", "1")            # CPU seconds 
 
 import numpy as np
 
-from roughcontact.presets import SETTING_KEYS, TABLE_PATH, write_table
-from roughcontact.provenance import output_directory, parse_arguments, save_figure, write_atomic, write_csv
-from roughcontact.report import bottom_up_friction
-from roughcontact.scene import load_scene
-from roughcontact.study import PointResult, StudyResult, patch_body, run_study
+from roughcontact.io import output_directory, parse_arguments, save_figure, write_atomic, write_csv
+from roughcontact.study.friction import bottom_up_friction
+from roughcontact.study.patch import patch_body
+from roughcontact.study.presets import SETTING_KEYS, TABLE_PATH, write_table
+from roughcontact.study.records import PointResult
+from roughcontact.study.run import StudyResult, run_study
+from roughcontact.study.scene import load_scene
 
 NORMAL_FORCES = (0.5, 2.0)            # N
 VOLTAGES = (0.0, 200.0)               # V
@@ -70,7 +72,7 @@ FLOAT32 = ((128, 1e-5),)
 COLD = ((128, 1e-6), (256, 1e-6))
 #: Two pixels per short cut-off at the grids that raise it (64², 128²: the cut-off 14 and 7 µm instead of 28, 14).
 COARSE_CUTOFF = ((64, 1e-6), (128, 1e-6))
-#: The coupled scale path (roughcontact.coupling: an interface law per realisation and voltage), one realisation:
+#: The coupled scale path (roughcontact.study.coupled: an interface law per realisation and voltage), one realisation:
 #: its laws cost about 100 resolved 128² studies, far off the front.
 COUPLED = ((128, 1e-6, 1),)
 #: --fast: 32² patches against a 48² reference, two realisations.

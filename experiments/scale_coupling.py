@@ -1,11 +1,11 @@
-"""The coupled path (roughcontact.coupling) against the fully resolved patches of the fingerpad study (a script).
+"""The coupled path (roughcontact.study.coupled) against the fully resolved patches of the fingerpad study (a script).
 
     python experiments/scale_coupling.py --preset standard --realisations 3     # docs/equivalent_gap.md
     python experiments/scale_coupling.py --fast                                  # 32² patches, 100 V, seconds
 
 (from the repository root after ``pip install -e .``). The default scene at 0.5 and 2 N and the voltages given,
 for each realisation r and voltage U: the resolved task (``roughcontact.study.solve_chain``: ridges and
-micro-roughness in one grid) and the coupled path (``roughcontact.coupling``): an interface law of ``--nodes``
+micro-roughness in one grid) and the coupled path (``roughcontact.study.coupled``): an interface law of ``--nodes``
 separations built from the same realisation's micro-roughness, and every other node of it, each acting on the
 ridges alone on grids of ``--ridge-pixels`` pixels per period (``ridge_chain``). ``--shared-law`` adds one law
 per voltage from a micro patch of two periods (another rng seed) acting for every realisation.
@@ -24,11 +24,12 @@ import time
 
 import numpy as np
 
-from roughcontact.coupling import LAW_NODES, RIDGE_PIXELS_PER_PERIOD, interface_law, ridge_chain
-from roughcontact.provenance import output_directory, parse_arguments, write_csv
-from roughcontact.scene import load_scene
-from roughcontact.study import (_lengths, confidence_interval, patch_body, patch_grid, roughness_heights,
-                                solve_chain)
+from roughcontact.io import output_directory, parse_arguments, write_csv
+from roughcontact.study.coupled import LAW_NODES, RIDGE_PIXELS_PER_PERIOD, interface_law, ridge_chain
+from roughcontact.study.patch import closing_lengths, patch_body, patch_grid, roughness_heights
+from roughcontact.study.records import confidence_interval
+from roughcontact.study.resolved import solve_chain
+from roughcontact.study.scene import load_scene
 
 FAST = "[presets.draft]\ngrid = 32\nrealisations = 2\npixels_per_cutoff = 3.0\n[roughness]\nlong_cutoff = 1.5e-4\n"
 #: The compared quantities: (record field, CSV name); A_R/A0 at the scene's coarse-graining length.
@@ -61,7 +62,7 @@ def _shared_laws(scene, nodes):
     for voltage in scene.loads.voltages:
         start = time.process_time()
         law = interface_law(micro, body, scene.screen.stack(), voltage, nodes=nodes, tol=scene.preset.tolerance,
-                            coarse_graining=_lengths(scene))
+                            coarse_graining=closing_lengths(scene))
         laws[voltage] = law, time.process_time() - start
     return laws
 
@@ -81,7 +82,7 @@ def compare(scene, nodes: int, ridge_pixels, shared: bool) -> list:
             resolved_seconds = time.process_time() - start
             start = time.process_time()
             law = interface_law(micro, body, scene.screen.stack(), voltage, nodes=nodes,
-                                tol=scene.preset.tolerance, coarse_graining=_lengths(scene))
+                                tol=scene.preset.tolerance, coarse_graining=closing_lengths(scene))
             law_seconds = time.process_time() - start
             variants = [("own", law, law_seconds, n) for n in ridge_pixels]
             variants.append(("own", _thinned(law), law_seconds * len(law.separations[::2]) / nodes,

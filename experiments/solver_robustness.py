@@ -4,7 +4,7 @@
     python experiments/solver_robustness.py --sizes 1024 --seeds 2
     python experiments/solver_robustness.py --fast                # 128², 1 seed, 4 loads (the CI smoke run)
 
-On seeded self-affine surfaces like the benchmark's (``roughcontact.benchmarks.rough_surface``: H = 0.8, rms
+On seeded self-affine surfaces like the benchmark's (``roughcontact.reference.benchmark.rough_surface``: H = 0.8, rms
 slope 0.1, short cutoff 4 px; seeds 0 … ``--seeds`` − 1) every load p̄ = 0.0005 … 0.01 E* is solved by each variant:
 
 * ``nested`` — the defaults (periodic, preconditioned, nested cold start, float64): the reference;
@@ -28,8 +28,8 @@ import numpy as np
 from tqdm import tqdm
 
 from roughcontact import ElasticHalfSpace, load_path, solve_contact
-from roughcontact.benchmarks import E_STAR, PRESSURE, SWEEP_STEPS, rough_surface, sweep_pressures
-from roughcontact.provenance import output_directory, parse_arguments, write_csv
+from roughcontact.io import output_directory, parse_arguments, write_csv
+from roughcontact.reference.benchmark import E_STAR, PRESSURE, SWEEP_STEPS, rough_surface, sweep_pressures
 
 FLOAT32_TOL = 1e-5
 VARIANTS = ("nested", "pk", "plain", "warm", "float32", "displacement", "free")

@@ -17,7 +17,7 @@ import argparse
 import numpy as np
 
 import surfaces
-from roughcontact.provenance import output_directory, parse_arguments, save_figure, write_csv
+from roughcontact.io import output_directory, parse_arguments, save_figure, write_csv
 from surfaces.plotting import plot_map, plot_profile, plot_psd
 from surfaces.ridges import PATTERNS, PORE_DENSITY, RIDGE_PERIOD
 

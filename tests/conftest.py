@@ -41,7 +41,7 @@ def fast_run(load_experiment, tmp_path_factory):
 @pytest.fixture(scope="session")
 def read_csv():
     """``read_csv(path)``: the rows of a CSV file as dicts of strings, after checking its provenance line."""
-    from roughcontact.provenance import read_csv as read_rows
+    from roughcontact.io import read_csv as read_rows
 
     def read(path):
         with open(path) as stream:

@@ -1,8 +1,8 @@
 """The tiny study scene and its in-process result, shared by the study and execution tests."""
 import pytest
 
-from roughcontact.scene import load_scene
-from roughcontact.study import run_study
+from roughcontact.study.run import run_study
+from roughcontact.study.scene import load_scene
 from study_scenes import TINY
 
 

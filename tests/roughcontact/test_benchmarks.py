@@ -1,8 +1,8 @@
-"""The benchmark problem shared by the solver studies (roughcontact.benchmarks)."""
+"""The benchmark problem shared by the solver studies (roughcontact.reference.benchmark)."""
 import numpy as np
 import pytest
 
-from roughcontact.benchmarks import CUTOFF_PIXELS, LENGTH, contact_patches, rough_surface, sweep_pressures
+from roughcontact.reference.benchmark import CUTOFF_PIXELS, LENGTH, contact_patches, rough_surface, sweep_pressures
 
 
 def test_rough_surface_is_seeded_and_keeps_its_heights_on_a_free_grid():

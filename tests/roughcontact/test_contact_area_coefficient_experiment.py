@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from roughcontact.contact import PERIMETER_CORRECTION
+from roughcontact.solvers import PERIMETER_CORRECTION
 
 
 @pytest.fixture(scope="module")

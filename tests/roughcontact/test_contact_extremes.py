@@ -7,7 +7,7 @@ import pytest
 from roughcontact import ElasticHalfSpace, load_path, solve_contact
 from roughcontact import reference as ref
 from roughcontact.interactions import HardWall, Interaction
-from roughcontact.results import ConvergenceWarning
+from roughcontact.io import ConvergenceWarning
 from surfaces import Grid, HeightField
 
 from contact_checks import check_contact_state

@@ -5,8 +5,9 @@ import numpy as np
 import pytest
 
 from roughcontact import ContactResult, ElasticHalfSpace, load_path, solve_contact
-from roughcontact.benchmarks import rough_surface
-from roughcontact.contact import PERIMETER_CORRECTION, STALL_STEPS, boundary_edges
+from roughcontact.reference.benchmark import rough_surface
+from roughcontact.solvers import PERIMETER_CORRECTION, boundary_edges
+from roughcontact.solvers.polonsky_keer import STALL_STEPS
 from surfaces import Grid, rms_slope, self_affine
 
 from contact_checks import check_contact_state

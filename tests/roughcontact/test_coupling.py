@@ -9,9 +9,11 @@ import pytest
 
 from study_scenes import TINY
 
-from roughcontact.coupling import LAW_NODES, coupled_chain, interface_law, ridge_chain
-from roughcontact.scene import load_scene
-from roughcontact.study import _lengths, patch_body, roughness_heights, run_study, solve_chain
+from roughcontact.study.coupled import LAW_NODES, coupled_chain, interface_law, ridge_chain
+from roughcontact.study.patch import closing_lengths, patch_body, roughness_heights
+from roughcontact.study.resolved import solve_chain
+from roughcontact.study.run import run_study
+from roughcontact.study.scene import load_scene
 
 # Largest relative differences coupled/resolved allowed on the tiny scene (32² patches, one realisation, 150 V,
 # 0.5 and 2 N; measured: d_eq +3 % and +15 %, real contact −4 % and −16 %, A_R +5 % and −19 %): the few
@@ -35,7 +37,7 @@ def scene():
 @pytest.fixture(scope="module")
 def law(scene):
     return interface_law(roughness_heights(scene, 0), patch_body(scene), scene.screen.stack(), 150.0,
-                         tol=scene.preset.tolerance, coarse_graining=_lengths(scene))
+                         tol=scene.preset.tolerance, coarse_graining=closing_lengths(scene))
 
 
 @pytest.fixture(scope="module")
@@ -55,7 +57,7 @@ def test_interface_law_is_consistent(scene, law):
         assert method(last * (1 + 1e-9)) == pytest.approx(method(last * (1 - 1e-9)), rel=1e-6, abs=1e-12)
     assert law.contact_fraction(last * 2) == 0.0 and law.ridge_area_fraction(last * 2, 1) == 0.0
     assert law.tractions[-1] < 0 < law.tractions[0]             # attraction far away, contact pressure near
-    assert law.coarse_graining == _lengths(scene) and len(law.separations) == LAW_NODES
+    assert law.coarse_graining == closing_lengths(scene) and len(law.separations) == LAW_NODES
     for closed in law.ridge_area_fractions:                    # a closing only adds to the contact set
         assert (np.array(closed) >= np.array(law.contact_fractions)).all()
     small, large = np.array(law.ridge_area_fractions)           # the larger disc closes more
@@ -72,18 +74,18 @@ def test_interface_law_is_consistent(scene, law):
 def test_an_unconverged_law_node_marks_the_law_and_its_records(scene, law, monkeypatch):
     # every node of the tiny scene's law converged; one micro-patch solve that misses its tolerance marks the law
     # and, through it, every record of the ridge chain as not converged (not hidden behind the ridge solves)
-    import roughcontact.contact
+    import roughcontact.study.coupled as coupled
     assert law.converged and all(record.converged for record in ridge_chain(scene, law))
-    solve, calls = roughcontact.contact.solve_contact, []
+    solve, calls = coupled.solve_contact, []
 
     def one_unconverged(*arguments, **keywords):
         result = solve(*arguments, **keywords)
         calls.append(None)
         return dataclasses.replace(result, converged=False) if len(calls) == 5 else result
 
-    monkeypatch.setattr(roughcontact.contact, "solve_contact", one_unconverged)
+    monkeypatch.setattr(coupled, "solve_contact", one_unconverged)
     failed = interface_law(roughness_heights(scene, 0), patch_body(scene), scene.screen.stack(), 150.0,
-                           tol=scene.preset.tolerance, coarse_graining=_lengths(scene))
+                           tol=scene.preset.tolerance, coarse_graining=closing_lengths(scene))
     monkeypatch.undo()
     assert not failed.converged and failed.tractions == law.tractions
     assert not any(record.converged for record in ridge_chain(scene, failed))

@@ -6,7 +6,7 @@ import pytest
 from scipy import integrate
 
 from roughcontact import ElasticHalfSpace, solve_contact
-from roughcontact.elastic import BOTTOMS, love_pixel_displacement
+from roughcontact.body import BOTTOMS, love_pixel_displacement
 from surfaces import Grid, self_affine
 
 E_STAR = 2.0e6

@@ -14,8 +14,10 @@ from pathlib import Path
 
 import pytest
 
-from roughcontact.scene import load_scene
-from roughcontact.study import TaskStore, run_study, solve_chain
+from roughcontact.study.execution import TaskStore
+from roughcontact.study.resolved import solve_chain
+from roughcontact.study.run import run_study
+from roughcontact.study.scene import load_scene
 from study_scenes import TINY
 
 
@@ -77,8 +79,8 @@ def test_the_pool_ends_with_a_killed_client(tmp_path):
         import sys
         sys.path[:0] = [{str(Path(__file__).parents[2])!r}, {str(Path(__file__).parent)!r}]
         from study_scenes import TINY
-        from roughcontact.scene import load_scene
-        from roughcontact.study import run_study
+        from roughcontact.study.run import run_study
+        from roughcontact.study.scene import load_scene
         if __name__ == "__main__":
             scene = load_scene(text=TINY.replace("realisations = 2", "realisations = 500"), preset="draft")
             run_study(scene, {str(tmp_path / "out")!r}, workers=2)
@@ -162,8 +164,8 @@ def test_a_script_without_the_main_guard_gets_a_clear_error(tmp_path):
         import sys
         sys.path.insert(0, {str(Path(__file__).parent)!r})
         from study_scenes import TINY
-        from roughcontact.scene import load_scene
-        from roughcontact.study import run_study
+        from roughcontact.study.run import run_study
+        from roughcontact.study.scene import load_scene
         run_study(load_scene(text=TINY, preset="draft"), workers=2)
     """))
     done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=300)

@@ -1,13 +1,13 @@
-"""The fingertip cap on the layered skin (roughcontact.fingertip): Hertz in the half-space limit, the wiring of
+"""The fingertip cap on the layered skin (roughcontact.study.fingertip): Hertz in the half-space limit, the wiring of
 the layer and the tissue, the window's growth, the default skin's effect and bad input."""
 import dataclasses
 
 import numpy as np
 import pytest
 
-from roughcontact.fingertip import FingertipContact, fingertip_contact
-from roughcontact.scene import load_scene
-from roughcontact.study import apparent_contact
+from roughcontact.study.apparent import apparent_contact
+from roughcontact.study.fingertip import FingertipContact, fingertip_contact
+from roughcontact.study.scene import load_scene
 
 SCENE = load_scene()
 FINGERPAD = dataclasses.replace(SCENE.fingerpad, model="fingertip")     # R = 1 cm, E* = 47.4 kPa

@@ -6,12 +6,14 @@ compute. Each case below runs a small solve and reduces its result to a record: 
 strings; wall-clock times and the library version are left out. ``golden.json`` beside this file holds the
 records; the test compares them field by field, so a failure names the case and the field that changed.
 
-The FFT plans are pinned (``tests/conftest.py``: ``ROUGHCONTACT_FFTW_PLANNER=FFTW_ESTIMATE``, one FFT thread)
-and the numba kernels are serial, so the records are reproducible on one machine and library stack. A change
-of numpy, pyFFTW, numba or the CPU may change the last bits legitimately: regenerate the records on the
-reference stack with
+The cases run in a fresh interpreter with the FFT plans pinned (``ROUGHCONTACT_FFTW_PLANNER=FFTW_ESTIMATE``, one
+FFT thread; the numba kernels are serial): in the test process, FFTW would reuse the wisdom of measured plans
+that other tests made (``test_fft.py``), and an estimated plan can then differ from a fresh one in the last
+bits. So the records are reproducible on one machine and library stack, whatever ran before. A change of numpy,
+pyFFTW, numba or the CPU may change the last bits legitimately: regenerate the records on the reference stack
+with
 
-    ROUGHCONTACT_UPDATE_GOLDEN=1 python -m pytest -q tests/roughcontact/test_golden.py
+    python tests/roughcontact/test_golden.py --update
 
 and review the diff of ``golden.json`` (only records that should change may change). A physics change that is
 meant to change answers regenerates them the same way, in its own commit.
@@ -20,6 +22,8 @@ import dataclasses
 import hashlib
 import json
 import os
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -29,13 +33,16 @@ from surfaces import Grid, HeightField, self_affine
 from roughcontact import (ContactProblem, ElasticHalfSpace, ElectrostaticInteraction, ExponentialAdhesion,
                           MaugisDugdale, load_path, solve_contact)
 from roughcontact.electrostatics import DielectricStack
-from roughcontact.paths import load_cycle, pull_off
-from roughcontact.scene import load_scene
-from roughcontact.study import _lengths, patch_body, roughness_heights, solve_chain
-from roughcontact.coupling import interface_law
+from roughcontact.solvers import load_cycle, pull_off
+from roughcontact.study.coupled import interface_law
+from roughcontact.study.patch import closing_lengths, patch_body, roughness_heights
+from roughcontact.study.resolved import solve_chain
+from roughcontact.study.scene import load_scene
 
 GOLDEN = Path(__file__).with_name("golden.json")
-UPDATE = os.environ.get("ROUGHCONTACT_UPDATE_GOLDEN") == "1"
+ROOT = Path(__file__).resolve().parents[2]
+PINNED = {"ROUGHCONTACT_FFTW_PLANNER": "FFTW_ESTIMATE", "ROUGHCONTACT_FFT_THREADS": "1", "NUMBA_NUM_THREADS": "1",
+          "OMP_NUM_THREADS": "1"}
 SKIPPED = {"wall_time", "seconds", "version"}            # clocks and the release string: not answers
 STACK = DielectricStack()
 
@@ -167,7 +174,7 @@ def study_records_zero_volt():
 def interface_law_tiny():
     scene = tiny_scene()
     return interface_law(roughness_heights(scene, 0), patch_body(scene, threads=1), scene.screen.stack(), 150.0,
-                         tol=scene.preset.tolerance, coarse_graining=_lengths(scene))
+                         tol=scene.preset.tolerance, coarse_graining=closing_lengths(scene))
 
 
 CASES = [hard_wall_periodic, hard_wall_pk_unpreconditioned, hard_wall_warm_start, hard_wall_free_surface,
@@ -186,22 +193,25 @@ def _differences(expected, actual, path=""):
     return [] if expected == actual else [f"{path}: {expected!r} -> {actual!r}"]
 
 
+def records() -> dict:
+    """Every case's record, computed in a fresh interpreter with the FFT plans pinned (module docstring)."""
+    environment = {**os.environ, **PINNED,
+                   "PYTHONPATH": os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")]))}
+    run = subprocess.run([sys.executable, __file__, "--print"], capture_output=True, text=True, env=environment,
+                         check=True)
+    return json.loads(run.stdout)
+
+
 @pytest.fixture(scope="module")
-def golden():
-    records = json.loads(GOLDEN.read_text()) if GOLDEN.exists() else {}
-    yield records
-    if UPDATE:
-        GOLDEN.write_text(json.dumps(records, indent=1, sort_keys=True) + "\n")
+def computed():
+    return records()
 
 
 @pytest.mark.parametrize("case", CASES, ids=[case.__name__ for case in CASES])
-def test_golden(case, golden):
-    record = digest(case())
-    if UPDATE:
-        golden[case.__name__] = record
-        return
-    assert case.__name__ in golden, f"no golden record for {case.__name__}: run with ROUGHCONTACT_UPDATE_GOLDEN=1"
-    differences = _differences(golden[case.__name__], record)
+def test_golden(case, computed):
+    golden = json.loads(GOLDEN.read_text())
+    assert case.__name__ in golden, f"no golden record for {case.__name__}: python {__file__} --update"
+    differences = _differences(golden[case.__name__], computed[case.__name__])
     assert not differences, f"{case.__name__} changed:\n" + "\n".join(differences[:20])
 
 
@@ -212,3 +222,12 @@ def test_digest_sees_one_bit():
     pressure.flat[7] = np.nextafter(pressure.flat[7], np.inf)
     changed = dataclasses.replace(result, pressure=pressure, iterations=result.iterations + 1)
     assert {d.split(":")[0] for d in _differences(digest(result), digest(changed))} == {".pressure", ".iterations"}
+
+
+if __name__ == "__main__":                 # --print: the records as JSON; --update: rewrite golden.json
+    if "--print" in sys.argv:
+        print(json.dumps({case.__name__: digest(case()) for case in CASES}))
+    elif "--update" in sys.argv:
+        GOLDEN.write_text(json.dumps(records(), indent=1, sort_keys=True) + "\n")
+    else:
+        sys.exit(f"usage: python {sys.argv[0]} --update")

@@ -1,4 +1,4 @@
-"""Interaction laws and the contact solver for smooth laws with the wall (roughcontact.gap_solver).
+"""Interaction laws and the contact solver for smooth laws with the wall (roughcontact.solvers.energy_cg).
 
 References: finite differences of the laws; the hard wall (Polonsky–Keer) at a vanishing law; parallel plates;
 Johnson's (1995) adhesive sinusoid in the JKR limit; force balance, complementarity and u = K p recomputed
@@ -38,9 +38,9 @@ def test_law_traction_and_stiffness_are_derivatives(law, gaps):
                                  ElectrostaticInteraction(DielectricStack(eps_a=2.0), -150.0),
                                  ExponentialAdhesion(0.05, 2e-7), MaugisDugdale(0.05, 2e-7)])
 def test_solver_kernel_evaluates_the_laws_as_their_methods(law):
-    # the solver evaluates the built-in laws in a numba kernel (gap_solver._law_at), a second writing of the
+    # the solver evaluates the built-in laws in a numba kernel (energy_cg._law_at), a second writing of the
     # formulas of roughcontact.interactions: the two must agree to round-off
-    from roughcontact.gap_solver import _evaluate, _law_at, _law_code
+    from roughcontact.solvers.energy_cg import _evaluate, _law_at, _law_code
 
     gaps = np.concatenate([[0.0, 1.999e-7, 2.001e-7], np.random.default_rng(0).uniform(0, 5e-6, 50)])
     code = _law_code(law)
@@ -181,7 +181,7 @@ def test_no_tunnelling_into_contact(monkeypatch):
     law = johnson_law(0.5, np.sqrt(1 / n))
     res = solve_contact(surface, half, mean_pressure=0.0, interaction=law)
     assert res.converged and 0.2 < np.count_nonzero(res.contact) / n / 2 < 0.2515    # measured 0.2363
-    monkeypatch.setattr("roughcontact.gap_solver.APPROACH", np.inf)
+    monkeypatch.setattr("roughcontact.solvers.energy_cg.APPROACH", np.inf)
     assert solve_contact(surface, half, mean_pressure=0.0, interaction=law).contact_fraction == 1.0
 
 
@@ -233,7 +233,7 @@ def test_step_curvature_is_the_energy_second_difference():
     # (gap_solver._step_curvature); it must be Π's second derivative along that step. The central second
     # difference over Δg ~ 2.5 nm at gaps ≥ 0.2 µm differs by the law's fourth-order term: measured 8.3e-5,
     # 1.3e-3 at 10 nm, falling 4× per halving of Δg.
-    from roughcontact.gap_solver import _Energy, _evaluate, _law_code, _step_curvature
+    from roughcontact.solvers.energy_cg import _Energy, _evaluate, _law_code, _step_curvature
     surface, half = rough_patch()
     law = ElectrostaticInteraction(STACK, 100.0)
     h = surface.heights.reshape(-1)
@@ -352,8 +352,8 @@ def test_free_surface_smooth_solve():
 
 def test_free_surface_sphere_pull_off():
     # an isolated Dugdale sphere (no periodic images), Maugis λ = 0.3: measured +1.3 % at 64², +0.52 % at 128²
-    from roughcontact.paths import pull_off
     from roughcontact.reference import maugis_cohesive_stress, maugis_dugdale_pull_off
+    from roughcontact.solvers import pull_off
 
     n, window, radius, E_star, work = 64, 0.8, 1.0, 1.0, 1e-3
     grid = Grid((n, n), (window, window), periodic=False)
@@ -372,7 +372,7 @@ def test_approach_retract_cycle_hysteresis_and_jumps():
     # α = 0.2: the JKR branch ends at p̄ ≈ 0.55 p*, so the approach jumps to full contact at 0.6 p*; unloading
     # stays in full contact at 0.3 p*, where the approach had a partial contact (hysteresis), and pulling
     # hard enough detaches the profile
-    from roughcontact.paths import load_cycle
+    from roughcontact.solvers import load_cycle
 
     n = 1024
     surface, half = sinusoid(n)
@@ -405,8 +405,9 @@ def test_float32_on_the_layered_skin_at_200_volts():
     # float32 reaches tol 1e-6 (it stalled at 1.0e-5 while the line search took float32's round-off of the energy
     # for a rise) with float64's contact set and d_eq to 3e-8 (measured; bound 1e-6, float32's resolution of the
     # gap against its 1 µm scale)
-    from roughcontact.scene import load_scene
-    from roughcontact.study import apparent_contact, patch_body, patch_surface
+    from roughcontact.study.apparent import apparent_contact
+    from roughcontact.study.patch import patch_body, patch_surface
+    from roughcontact.study.scene import load_scene
     results = {}
     for dtype in ("float64", "float32"):
         scene = load_scene(text=f'[presets.standard]\ngrid = 256\ndtype = "{dtype}"\n', preset="standard")
@@ -421,7 +422,7 @@ def test_float32_on_the_layered_skin_at_200_volts():
 
 def test_paths_save_and_load_with_their_results(tmp_path):
     # a LoadPath keeps its ContactResults and a PullOff its last attached equilibrium: both round-trip whole
-    from roughcontact.paths import LoadPath, PullOff, load_cycle, pull_off
+    from roughcontact.solvers import LoadPath, PullOff, load_cycle, pull_off
 
     n = 256
     surface, half = sinusoid(n)

@@ -7,9 +7,9 @@ from scipy import integrate, signal
 
 from roughcontact import ElasticHalfSpace, solve_contact
 from roughcontact import reference as ref
-from roughcontact.elastic import love_pixel_displacement
-from roughcontact.layered import (THICK_X, free_surface_correction, layer_on_half_space_compliance,
-                                  layer_on_rigid_base_compliance)
+from roughcontact.body import love_pixel_displacement
+from roughcontact.body import (THICK_X, free_surface_correction, layer_on_half_space_compliance,
+                               layer_on_rigid_base_compliance)
 from surfaces import Grid, HeightField
 
 

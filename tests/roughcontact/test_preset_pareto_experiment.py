@@ -1,13 +1,13 @@
 """The speed-accuracy experiment (experiments/preset_pareto.py) runs in fast mode: the reference has error 0,
 the errors are the relative differences of the realisation means, the cost adds up over realisations, a re-run
-solves nothing again, and its per-setting table feeds roughcontact.presets."""
+solves nothing again, and its per-setting table feeds roughcontact.study.presets."""
 import json
 
 import numpy as np
 import pytest
 
-from roughcontact.presets import choose, read_table, write_table
-from roughcontact.provenance import Provenance
+from roughcontact.io import Provenance
+from roughcontact.study.presets import choose, read_table, write_table
 
 
 @pytest.fixture(scope="module")

@@ -1,4 +1,4 @@
-"""roughcontact.presets: the measured table, the cheapest setting for a target error, the auto scene, and the
+"""roughcontact.study.presets: the measured table, the cheapest setting for a target error, the auto scene, and the
 shipped measurement of the default presets (issue 14's bar: draft >= 10x cheaper than standard, standard >= 5x
 cheaper than reference, each within the error docs/presets.md states for it on every measured scene)."""
 import dataclasses
@@ -6,9 +6,9 @@ import dataclasses
 import pytest
 
 from roughcontact.cli import main
-from roughcontact.presets import (Measurement, SCENES, auto_scene, choose, describe, measured, parse_target,
-                                  read_table, run_scene)
-from roughcontact.scene import load_scene
+from roughcontact.study.presets import (Measurement, SCENES, auto_scene, choose, describe, measured, parse_target,
+                                        read_table, run_scene)
+from roughcontact.study.scene import load_scene
 
 
 def entry(grid, realisations, cpu_seconds, error, **knobs):

@@ -1,4 +1,4 @@
-"""The one writer of provenance-carrying outputs (roughcontact.provenance)."""
+"""The one writer of provenance-carrying outputs (roughcontact.io.provenance)."""
 import json
 
 import numpy as np
@@ -7,8 +7,8 @@ from matplotlib.figure import Figure
 from PIL import Image
 
 from roughcontact import __version__
-from roughcontact.provenance import (OutputPathError, Provenance, output_directory, read_csv, save_figure,
-                                     write_atomic, write_columns, write_csv)
+from roughcontact.io import (OutputPathError, Provenance, output_directory, read_csv, save_figure, write_atomic,
+                             write_columns, write_csv)
 
 PROVENANCE = Provenance.of_command("python experiments/study.py", ["--output", "a b"], {"output": "a b", "n": 3})
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from roughcontact import __version__
-from roughcontact.results import SavableResult
+from roughcontact.io import SavableResult
 from surfaces import Grid
 from surfaces.io import load_npz
 

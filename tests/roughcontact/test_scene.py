@@ -4,7 +4,7 @@ import dataclasses
 import pytest
 
 from roughcontact.cli import main
-from roughcontact.scene import DEFAULT_SCENE_TOML, PRESETS, Ridges, load_scene
+from roughcontact.study.scene import DEFAULT_SCENE_TOML, PRESETS, Ridges, load_scene
 
 
 def test_default_scene_round_trips_through_toml():

@@ -6,16 +6,23 @@ import os
 import numpy as np
 import pytest
 
-import roughcontact.contact
-import roughcontact.gap_solver  # noqa: F401  (imported before a test patches contact.solve_contact, which it binds)
-import roughcontact.interactions
+import roughcontact.study.apparent as apparent
+import roughcontact.study.resolved as resolved
 from roughcontact.cli import main
-from roughcontact.provenance import read_csv
-from roughcontact.report import TabulatedArea, bottom_up_friction, report_text
-from roughcontact.scene import Fingerpad, load_scene
-from roughcontact.study import (DirectoryInUse, SceneMismatch, TaskStore, apparent_contact, apparent_scale,
-                                confidence_interval, patch_body, patch_surface, realisation_count,
-                                ridge_area_fraction, ridge_equivalent_gap, ridge_heights, run_study, solve_chain)
+from roughcontact.interactions import ElectrostaticInteraction
+from roughcontact.io import read_csv
+from roughcontact.macro import TabulatedArea
+from roughcontact.solvers import solve_contact
+from roughcontact.study.apparent import apparent_contact, apparent_scale
+from roughcontact.study.execution import DirectoryInUse, SceneMismatch, TaskStore
+from roughcontact.study.friction import bottom_up_friction
+from roughcontact.study.patch import (patch_body, patch_surface, realisation_count, ridge_area_fraction,
+                                      ridge_equivalent_gap, ridge_heights)
+from roughcontact.study.records import confidence_interval
+from roughcontact.study.report import report_text
+from roughcontact.study.resolved import solve_chain
+from roughcontact.study.run import run_study
+from roughcontact.study.scene import Fingerpad, load_scene
 from study_scenes import TINY
 
 
@@ -28,8 +35,7 @@ def test_zero_volt_study_is_the_hard_wall_chain():
         heights, previous = patch_surface(scene, r), None
         for i, force in enumerate(scene.loads.normal_forces):
             area, (pressure,) = apparent_contact(scene.fingerpad, force, 1)
-            previous = roughcontact.contact.solve_contact(heights, body, mean_pressure=pressure, tol=1e-6,
-                                                          x0=previous, warn=False)
+            previous = solve_contact(heights, body, mean_pressure=pressure, tol=1e-6, x0=previous, warn=False)
             assert result.points[i][0].equivalent_gap[r] == stack.equivalent_gap(previous.gap)
             assert result.points[i][0].contact_fraction[r] == previous.contact_fraction
             assert result.points[i][0].electrostatic_pressure[r] == 0.0
@@ -41,13 +47,13 @@ def test_records_count_the_unstable_steps_of_their_solves(tiny, tiny_result):
     # the 150 V chain solved again by hand: each record's count is the sum over its solves (measured 4-12 at
     # 150 V, where the attraction snaps regions in), and the 0 V hard wall has none
     stack, body = tiny.screen.stack(), patch_body(tiny)
-    law = roughcontact.interactions.ElectrostaticInteraction(stack, 150.0)
+    law = ElectrostaticInteraction(stack, 150.0)
     for r in range(2):
         heights, previous = patch_surface(tiny, r), None
         for i, force in enumerate(tiny.loads.normal_forces):
             _, (pressure,) = apparent_contact(tiny.fingerpad, force, 1)
-            previous = roughcontact.contact.solve_contact(heights, body, mean_pressure=pressure, interaction=law,
-                                                          tol=1e-6, x0=previous, warn=False)
+            previous = solve_contact(heights, body, mean_pressure=pressure, interaction=law, tol=1e-6,
+                                     x0=previous, warn=False)
             assert tiny_result.points[i][1].unstable_steps[r] == previous.unstable_steps > 0
             assert tiny_result.points[i][0].unstable_steps[r] == 0
     assert "4 of 8 patch results came from solves that crossed an instability (concave steps, from 150 V on)" \
@@ -91,11 +97,10 @@ def test_apparent_contact_models():
 def test_layered_fingertip_is_solved_once_for_all_tasks(monkeypatch):
     # fingerpad.layer: the apparent scale is the cap solved on the layered skin (fingertip_contact), computed once
     # per load by run_study, not per (realisation, voltage) task, and every task is solved at its ring pressures
-    import roughcontact.fingertip as fingertip
     scene = load_scene(text=TINY + '[fingerpad]\nmodel = "fingertip"\nlayer = true\nlayer_grid = 32\n',
                        preset="draft")
-    original, loads = fingertip.fingertip_contact, []
-    monkeypatch.setattr(fingertip, "fingertip_contact",
+    original, loads = apparent.fingertip_contact, []
+    monkeypatch.setattr(apparent, "fingertip_contact",
                         lambda *arguments, **keywords: loads.append(arguments[2]) or original(*arguments, **keywords))
     result = run_study(scene, workers=1)
     assert loads == [0.5, 2.0]
@@ -158,15 +163,15 @@ def test_confidence_interval_leaves_out_nan():
 
 def test_failed_warm_start_is_retried_cold_and_failures_leave_the_means(tiny, monkeypatch):
     import dataclasses
-    solve = roughcontact.contact.solve_contact
+    solve = resolved.solve_contact
 
     def warm_fails(*args, x0=None, **kwargs):
         result = solve(*args, x0=x0, **kwargs)
         return dataclasses.replace(result, converged=False) if x0 is not None else result
 
-    monkeypatch.setattr(roughcontact.contact, "solve_contact", warm_fails)
+    monkeypatch.setattr(resolved, "solve_contact", warm_fails)
     retried = run_study(tiny, workers=1)
-    monkeypatch.setattr(roughcontact.contact, "solve_contact", lambda *args, **kwargs: dataclasses.replace(
+    monkeypatch.setattr(resolved, "solve_contact", lambda *args, **kwargs: dataclasses.replace(
         solve(*args, **kwargs), converged=kwargs.get("interaction") is None))
     failing = run_study(tiny, workers=1)
     monkeypatch.undo()
@@ -195,7 +200,7 @@ def test_tabulated_area_and_bottom_up_friction(tiny_result):
 
 
 def test_resume_after_interruption_recomputes_nothing_done(tiny, tmp_path, monkeypatch):
-    solve = roughcontact.contact.solve_contact
+    solve = resolved.solve_contact
     calls = []
 
     def interrupted(*args, **kwargs):
@@ -204,12 +209,12 @@ def test_resume_after_interruption_recomputes_nothing_done(tiny, tmp_path, monke
         calls.append(1)
         return solve(*args, **kwargs)
 
-    monkeypatch.setattr(roughcontact.contact, "solve_contact", interrupted)
+    monkeypatch.setattr(resolved, "solve_contact", interrupted)
     with pytest.raises(KeyboardInterrupt):
         run_study(tiny, tmp_path / "run", workers=1)
     done = sorted(path.name for path in (tmp_path / "run" / "tasks").glob("*.json"))
     assert done == ["R000_U000.json", "R001_U000.json"]               # 2 tasks of 2 loads = 4 solves
-    monkeypatch.setattr(roughcontact.contact, "solve_contact", solve)
+    monkeypatch.setattr(resolved, "solve_contact", solve)
     resumed = run_study(tiny, tmp_path / "run", workers=1)
     assert resumed.computed == 2 and resumed.solves == 4
     again = run_study(tiny, tmp_path / "run", workers=1)
@@ -298,7 +303,7 @@ def test_the_preset_chooses_cold_starts_and_the_dtype():
     records = solve_chain(cold, 0, 0, 1)
     body = patch_body(cold)
     for record, force in zip(records, cold.loads.normal_forces):       # each load solved from the solver's start
-        result = roughcontact.contact.solve_contact(patch_surface(cold, 0), body, tol=1e-6, warn=False,
-                                                    mean_pressure=apparent_contact(cold.fingerpad, force, 1)[1][0])
+        result = solve_contact(patch_surface(cold, 0), body, tol=1e-6, warn=False,
+                               mean_pressure=apparent_contact(cold.fingerpad, force, 1)[1][0])
         assert record.solves == 1 and record.iterations == result.iterations
         assert record.contact_fraction == result.contact_fraction

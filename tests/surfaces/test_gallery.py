@@ -5,7 +5,7 @@ from pathlib import Path
 
 import pytest
 
-from roughcontact.provenance import read_csv
+from roughcontact.io import read_csv
 
 SCRIPT = Path(__file__).parents[2] / "experiments" / "surface_gallery.py"
 

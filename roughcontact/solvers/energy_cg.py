@@ -43,12 +43,14 @@ from numba import njit
 
 from surfaces.validation import check_integer, check_real
 
-from ._version import __version__
-from .contact import ContactResult, SolverState, _heights, solve_contact
-from .elastic import _apply_inverse_multiplier, _apply_multiplier
-from .electrostatics import EPSILON_0
-from .interactions import ElectrostaticInteraction, ExponentialAdhesion, MaugisDugdale
-from .results import ConvergenceWarning
+from .._version import __version__
+from ..body.elastic import apply_inverse_multiplier, apply_multiplier
+from ..electrostatics import EPSILON_0
+from ..interactions import ElectrostaticInteraction, ExponentialAdhesion, MaugisDugdale
+from ..io.results import ConvergenceWarning
+from .inputs import _heights
+from .polonsky_keer import solve_hard_wall
+from .result import ContactResult, SolverState
 
 METHOD = "projected-cg-gap"
 ARMIJO = 1e-4             # sufficient-decrease constant of the projected line search
@@ -368,13 +370,13 @@ class _PaddedBody:
 
     def _displacement_into(self, pressure, out):
         self._fft.forward(pressure)
-        _apply_multiplier(self._fft.spectrum, self._multiplier)
+        apply_multiplier(self._fft.spectrum, self._multiplier)
         self._fft.backward(out)
         return out
 
     def stiffness_into(self, displacement, out):
         self._fft.forward(displacement)
-        _apply_inverse_multiplier(self._fft.spectrum, self._multiplier, self._size ** 2, 0.0)
+        apply_inverse_multiplier(self._fft.spectrum, self._multiplier, self._size ** 2, 0.0)
         self._fft.backward(out)
         return out
 
@@ -391,10 +393,11 @@ def _start(heights, half, load, flat_position, x0, tol, maxiter):
                         f"{type(x0).__name__}")
     h_max = float(heights.max())
     if load is not None and load > 0:
-        start = solve_contact(heights, half, mean_pressure=load, tol=max(tol, START_TOL), maxiter=maxiter, warn=False)
+        start = solve_hard_wall(heights, half, mean_pressure=load, tol=max(tol, START_TOL), maxiter=maxiter,
+                                warn=False)
     elif flat_position is not None and flat_position < h_max:
-        start = solve_contact(heights, half, penetration=h_max - flat_position, tol=max(tol, START_TOL),
-                              maxiter=maxiter, warn=False)
+        start = solve_hard_wall(heights, half, penetration=h_max - flat_position, tol=max(tol, START_TOL),
+                                maxiter=maxiter, warn=False)
     else:
         return None, "rigid", 0.0
     return start, "hard wall", start.params["fft_pairs"]
@@ -404,7 +407,7 @@ def solve_smooth(height_field, half, law, *, mean_pressure=None, total_force=Non
                  maxiter=10000, x0=None, callback=None, warn=True) -> ContactResult:
     """Solve the contact of ``height_field`` with the flat under the smooth ``law`` (module docstring).
 
-    Called by :func:`~roughcontact.contact.solve_contact` for a smooth interaction: ``mean_pressure`` [Pa] or
+    Called by :func:`~roughcontact.solvers.dispatch.solve_contact` for a smooth interaction: ``mean_pressure`` [Pa] or
     ``total_force`` [N] of any sign (external load control), or ``penetration`` δ = max(h) − s [m] of any sign.
     ``x0``: a previous result, whose gap starts the solve.
     """

@@ -1,7 +1,7 @@
 """Measured errors and costs of the study's settings, and the cheapest setting for a target error.
 
 ``preset_errors.csv`` beside this module is written by ``experiments/preset_pareto.py --library``: one row per
-measured setting (the :class:`~roughcontact.scene.Preset` keys :data:`SETTING_KEYS` and ``realisations``), its
+measured setting (the :class:`~roughcontact.study.scene.Preset` keys :data:`SETTING_KEYS` and ``realisations``), its
 CPU seconds on the default scene's four points (F_N = 0.5, 2 N; U = 0, 200 V; one FFT thread) and its error on
 each scene of the experiment, the largest relative difference of d_eq, A_R/A0 and F_T at 200 V from the
 reference setting (``docs/presets.md``). :func:`measured` looks a preset up in it, so that a run's report quotes
@@ -15,7 +15,8 @@ from pathlib import Path
 
 from surfaces.validation import check_real
 
-from .scene import AUTO, Preset, Scene
+from ..io.provenance import read_csv, write_csv
+from .scene import AUTO, Preset, Scene, load_scene
 
 #: The measured table (package data).
 TABLE_PATH = Path(__file__).with_name("preset_errors.csv")
@@ -48,7 +49,6 @@ class Measurement:
 
 def read_table(path=TABLE_PATH) -> tuple:
     """The measured settings of the CSV table ``path`` (default: the library's), by increasing cost."""
-    from .provenance import read_csv
     rows = read_csv(path)
     table = [Measurement(setting={key: _TYPES[key](row[key]) for key in (*SETTING_KEYS, "realisations")},
                          cpu_seconds=float(row["cpu_seconds"]),
@@ -60,7 +60,6 @@ def read_table(path=TABLE_PATH) -> tuple:
 def write_table(entries, provenance, path=TABLE_PATH) -> Path:
     """Write the per-setting ``entries`` (dicts with the :data:`SETTING_KEYS`, ``realisations``,
     ``cpu_seconds``, ``error_<scene>`` for each of :data:`SCENES` and ``error``) as the table ``path``."""
-    from .provenance import write_csv
     columns = (*SETTING_KEYS, "realisations", "cpu_seconds", *(f"error_{scene}" for scene in SCENES), "error")
     return write_csv(path, entries, provenance, columns)
 
@@ -121,7 +120,6 @@ def run_scene(path=None, preset: str | None = None, target_error=None, table=Non
     """The scene of ``roughcontact run``: the scene file ``path`` (None: the default scene) at ``preset``, or,
     with ``preset`` "auto", at the cheapest measured setting whose error meets ``target_error`` (a fraction or
     a percentage such as ``"2%"``); ``target_error`` goes with "auto" only."""
-    from .scene import load_scene
     if (preset == AUTO) != (target_error is not None):
         raise ValueError(f"--preset auto and --target-error go together (got preset {preset!r}, target error "
                          f"{target_error!r})")

@@ -6,7 +6,7 @@ coarse-graining length and the accuracy preset. Values are SI (m, Pa, N, V). The
 :data:`DEFAULT_SCENE_TOML` (each value with its source in ``docs/references.md``); a user's file overrides any
 subset of them::
 
-    from roughcontact.scene import load_scene
+    from roughcontact.study.scene import load_scene
     scene = load_scene("my_scene.toml", preset="draft")     # or load_scene() for the default scene
     print(scene.to_toml())
 
@@ -23,7 +23,10 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from surfaces.ridges import ridge_fraction
 from surfaces.validation import check_integer, check_real
+
+from ..electrostatics import DielectricStack
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -31,7 +34,7 @@ else:                                    # pragma: no cover - exercised on Pytho
     import tomli as tomllib
 
 PRESETS = ("draft", "standard", "reference")
-#: The preset name of a setting chosen from the measured table for a target error (``roughcontact.presets``);
+#: The preset name of a setting chosen from the measured table for a target error (``roughcontact.study.presets``);
 #: a scene at it carries the chosen setting as ``[presets.auto]``.
 AUTO = "auto"
 #: Floating-point types of the solves (``Preset.dtype``) and the scale paths (``Preset.scales``).
@@ -48,7 +51,7 @@ DEFAULT_SCENE_TOML = """\
 # al. 2017, references.md §0.5) with uniform nominal pressure F_N/A0, or "fingertip": a Hertzian cap of
 # radius and E_star (seed R* = 1 cm, E* = 47.4 kPa, references.md §1.1), Hertz pressure over the disc.
 # layer = true (fingertip only): the cap is pressed onto the [skin] layer bonded on tissue of E_star, solved on
-# a free grid of layer_grid x layer_grid pixels (roughcontact.fingertip; docs/equivalent_gap.md, "The apparent
+# a free grid of layer_grid x layer_grid pixels (roughcontact.study.fingertip; docs/equivalent_gap.md, "The apparent
 # scale on the layered skin": A0 2.5-4.2 % smaller, the outer ring's pressure 10-18 % higher at 0.5-2 N).
 model = "power_law"
 area_prefactor = 9.19e-05      # m^2 N^-area_exponent (91.9 mm^2)
@@ -279,7 +282,6 @@ class Ridges(_Section):
 
     def __post_init__(self):
         super().__post_init__()
-        from surfaces.ridges import ridge_fraction
         width = ridge_fraction(self.width_ratio) * self.period
         if self.pore_diameter > width:
             raise ValueError(f"ridges.pore_diameter = {self.pore_diameter!r} m is wider than a ridge ({width:g} m at "
@@ -325,7 +327,6 @@ class Screen(_Section):
     eps_a: float = _field(_Real(0.0, low_open=True))
 
     def stack(self):
-        from .electrostatics import DielectricStack
         return DielectricStack(**dataclasses.asdict(self))
 
 
@@ -398,7 +399,7 @@ class Scene:
         """The same scene at preset ``name`` (one of its ``presets``)."""
         if name not in self.presets:
             raise ValueError(f"preset = {name!r} is not one of the scene's presets: {', '.join(self.presets)}"
-                             + (" (choose the auto setting with roughcontact.presets.auto_scene)" if name == AUTO else ""))
+                             + (" (choose the auto setting with roughcontact.study.presets.auto_scene)" if name == AUTO else ""))
         return dataclasses.replace(self, study=dataclasses.replace(self.study, preset=name))
 
     def with_setting(self, preset: Preset) -> Scene:

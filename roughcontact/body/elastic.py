@@ -9,12 +9,12 @@ Fourier multipliers Φ(q) [m/Pa] with ũ(q) = Φ(q) p̃(q) (u positive into the 
   displacement of a uniform pressure on one rectangular pixel (Love 1929, Phil. Trans. A 228:377):
   u(x, y) = 1/(π E*) Σ± F(x ± dx/2, y ± dy/2), F(X, Y) = X asinh(Y/|X|) + Y asinh(X/|Y|)
   (DC-FFT, Liu, Wang & Liu 2000, Wear 243:101; Hockney 1970) — the linear, not circular, convolution;
-* a layer of thickness t on a rigid base or on a softer half-space: Φ(q) from :mod:`roughcontact.layered`.
+* a layer of thickness t on a rigid base or on a softer half-space: Φ(q) from :mod:`roughcontact.body.kernels`.
   Periodic: on a rigid base the uniform (q = 0) mode is the uniaxial-strain compression t/M (see
   :attr:`ElasticHalfSpace.uniform_compliance`), so <u> = <p> t/M; on a half-space it is set to 0. A layer much
   thicker than the window is the half-space (docs/layered.md, "A layer much thicker than the window").
   Free surface: Love's coefficients of the layer's half-space plus the real-space correction of
-  :func:`roughcontact.layered.free_surface_correction` (docs/layered.md, "The free-surface kernel"), zero-padded
+  :func:`roughcontact.body.influence.free_surface_correction` (docs/layered.md, "The free-surface kernel"), zero-padded
   like the half-space (wider, with a tapered continuation, where 2n would not give a positive multiplier).
 
 Periodicity comes from the grid and is never changed: a 2-D grid must be periodic on both axes or on none
@@ -31,9 +31,9 @@ from numba import njit
 from surfaces import Grid
 from surfaces.validation import check_choice, check_finite_array, check_positive, check_real
 
-from .fft import make_backend
-
-BOTTOMS = ("bonded", "frictionless")
+from ..fft import make_backend
+from .influence import free_surface_correction, love_pixel_displacement
+from .kernels import BOTTOMS, layer_on_half_space_compliance, layer_on_rigid_base_compliance
 
 # A rigid base's uniform column t/M is kept while it is at most 1/sqrt(ε) ≈ 6.7e7 times the compliance of the
 # longest wavelength of the window; beyond that the layer takes the half-space convention for q = 0
@@ -41,39 +41,8 @@ BOTTOMS = ("bonded", "frictionless")
 _COLUMN_LIMIT = 1.0 / np.sqrt(np.finfo(np.float64).eps)
 
 
-def pixel_potential(x, y, dx, dy, height=0.0):
-    """∫∫ dA'/√(|r − r'|² + c²) [m] over the pixel |x'| ≤ dx/2, |y'| ≤ dy/2, at (x, y) [m] and height c ≥ 0 [m].
-
-    Closed form: Σ± G(x ± dx/2, y ± dy/2) with G(X, Y) = X asinh(Y/√(X² + c²)) + Y asinh(X/√(Y² + c²))
-    − c atan(XY/(c √(X² + Y² + c²))), whose ∂²G/∂X∂Y is the integrand (the X ln√(X² + c²) and Y ln√(Y² + c²)
-    terms of the antiderivative cancel in the sum). ``x``, ``y`` broadcast; overflow-free for any finite c.
-    """
-    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
-    c = float(height)
-
-    def antiderivative(X, Y):
-        rx, ry = np.hypot(X, c), np.hypot(Y, c)
-        value = (np.where(rx > 0, X * np.arcsinh(Y / np.where(rx > 0, rx, 1.0)), 0.0)
-                 + np.where(ry > 0, Y * np.arcsinh(X / np.where(ry > 0, ry, 1.0)), 0.0))
-        if c > 0:
-            value = value - c * np.arctan2(X * Y / c, np.hypot(np.hypot(X, Y), c))
-        return value
-
-    a, b = dx / 2, dy / 2
-    return (antiderivative(x + a, y + b) - antiderivative(x + a, y - b)
-            - antiderivative(x - a, y + b) + antiderivative(x - a, y - b))
-
-
-def love_pixel_displacement(x, y, dx, dy, E_star):
-    """Displacement u(x, y) [m per Pa] of a half-space under unit pressure on the pixel |x'| ≤ dx/2, |y'| ≤ dy/2.
-
-    Love (1929): u = 1/(π E*) ∫∫ dA'/|r − r'| (:func:`pixel_potential` at height 0). ``x``, ``y`` [m] broadcast.
-    """
-    return pixel_potential(x, y, dx, dy) / (np.pi * E_star)
-
-
 @njit(cache=True)
-def _apply_multiplier(spectrum, multiplier):
+def apply_multiplier(spectrum, multiplier):
     """spectrum ← spectrum · Φ (complex times real, in place, no temporary)."""
     for i in range(spectrum.shape[0]):
         for j in range(spectrum.shape[1]):
@@ -81,7 +50,7 @@ def _apply_multiplier(spectrum, multiplier):
 
 
 @njit(cache=True)
-def _apply_inverse_multiplier(spectrum, multiplier, scale, zero_mode_stiffness):
+def apply_inverse_multiplier(spectrum, multiplier, scale, zero_mode_stiffness):
     """spectrum ← spectrum / (scale · Φ) in place, and · ``zero_mode_stiffness`` where Φ = 0 (no stored 1/Φ)."""
     for i in range(spectrum.shape[0]):
         for j in range(spectrum.shape[1]):
@@ -226,7 +195,6 @@ class ElasticHalfSpace:
     def _uniform_mode(self, thickness, poisson, bottom) -> str:
         """``"column"`` (⟨u⟩ = ⟨p⟩ t/M) or ``"half-space"`` (⟨u⟩ = 0) for a layer on a rigid base: the column is
         dropped when it exceeds the compliance of the window's longest wavelength by more than _COLUMN_LIMIT."""
-        from .layered import layer_on_rigid_base_compliance
         window = max(length for length, n in zip(self.grid.lengths, self.grid.shape) if n > 1) \
             if self.grid.size > 1 else max(self.grid.lengths)
         longest = layer_on_rigid_base_compliance(2 * np.pi / window, self.E_star, poisson, thickness, bottom=bottom)
@@ -238,12 +206,11 @@ class ElasticHalfSpace:
         q = np.asarray(q, dtype=float)
         if self.layer is None:
             return 2.0 / (self.E_star * q)
-        from . import layered
         layer = self.layer
         if layer["kind"] == "layer on rigid base":
-            return layered.layer_on_rigid_base_compliance(q, self.E_star, layer["poisson"], layer["thickness"],
+            return layer_on_rigid_base_compliance(q, self.E_star, layer["poisson"], layer["thickness"],
                                                           bottom=layer["bottom"])
-        return layered.layer_on_half_space_compliance(q, self.E_star, layer["poisson"], layer["thickness"],
+        return layer_on_half_space_compliance(q, self.E_star, layer["poisson"], layer["thickness"],
                                                       layer["substrate_E_star"], layer["substrate_poisson"])
 
     def _fourier_multiplier(self, layered_spectrum=None) -> np.ndarray:
@@ -273,7 +240,6 @@ class ElasticHalfSpace:
         ``docs/layered.md``, "A layer much thicker than the window")."""
         if self.layer is None or self.layer.get("uniform_mode") != "column":
             return 0.0
-        from .layered import layer_on_rigid_base_compliance
         # the uniaxial column is the q → 0 limit of the *bonded* layer (no lateral strain at the base)
         return float(layer_on_rigid_base_compliance(0.0, self.E_star, self.layer["poisson"], self.layer["thickness"],
                                                     bottom="bonded"))
@@ -282,7 +248,7 @@ class ElasticHalfSpace:
     def _zero_mode_stiffness(self) -> float:
         """Multiplier of the preconditioner K⁻¹ on modes with Φ = 0: the smallest stiffness of the others (with
         the 1/N of the FFT pair), so that the preconditioner is positive definite. 1/Φ itself is not stored:
-        :func:`_apply_inverse_multiplier` divides."""
+        :func:`apply_inverse_multiplier` divides."""
         n_total = self._transform_size
         largest = float(self._multiplier.max())
         return 1.0 / (largest * n_total * n_total) if largest > 0 else 1.0 / n_total
@@ -303,7 +269,7 @@ class ElasticHalfSpace:
     def _layered_free_surface_spectrum(self) -> tuple:
         """``(spectrum, transform_shape)`` of a layered body on a free surface (``docs/layered.md``, "The
         free-surface kernel"): Love's coefficients of the layer's half-space plus
-        :func:`roughcontact.layered.free_surface_correction` (b = 2/E0* − 2/E* on a half-space E0*, −2/E* on a
+        :func:`roughcontact.body.influence.free_surface_correction` (b = 2/E0* − 2/E* on a half-space E0*, −2/E* on a
         rigid base), laid out for the linear convolution and transformed in float64. The window needs the offsets
         up to n − 1 pixels only; if the 2n padding's spectrum is not positive (a stiff layer far stiffer than its
         substrate on a coarse grid: the truncated 1/r tail of the substrate's response outweighs the layer's small
@@ -311,7 +277,6 @@ class ElasticHalfSpace:
         tapered to zero by a raised cosine, until it is; ``ValueError`` if it never is."""
         from scipy import fft
 
-        from .layered import free_surface_correction
         on_substrate = self.layer["kind"] == "layer on half-space"
         slope = 2.0 / self.layer["substrate_E_star"] - 2.0 / self.E_star if on_substrate else -2.0 / self.E_star
         (nx, ny), (dx, dy) = self.grid.shape, self.grid.spacing
@@ -393,7 +358,7 @@ class ElasticHalfSpace:
     def _displacement_into(self, pressure, out):
         """:meth:`displacement_into` without its checks: the solvers' inner loop, whose arrays are its own."""
         self._forward(pressure)
-        _apply_multiplier(self._fft.spectrum, self._multiplier)
+        apply_multiplier(self._fft.spectrum, self._multiplier)
         return self._backward_into(out)
 
     def stiffness_into(self, displacement: np.ndarray, out: np.ndarray) -> np.ndarray:
@@ -404,7 +369,7 @@ class ElasticHalfSpace:
         conjugate-gradient preconditioner; ``out`` may be ``displacement``.
         """
         self._forward(displacement)
-        _apply_inverse_multiplier(self._fft.spectrum, self._multiplier, float(self._transform_size) ** 2,
+        apply_inverse_multiplier(self._fft.spectrum, self._multiplier, float(self._transform_size) ** 2,
                                   self._zero_mode_stiffness)
         return self._backward_into(out)
 

@@ -20,8 +20,8 @@ import numpy as np
 from surfaces import Grid, fingertip
 from surfaces.validation import check_integer, check_positive
 
-from .contact import solve_contact
-from .elastic import ElasticHalfSpace
+from ..body import ElasticHalfSpace
+from ..solvers import solve_contact
 
 #: The window's half side over the Hertz contact radius of the tissue: the contact's diameter spans 80 % of it.
 WINDOW_MARGIN = 1.25
@@ -57,7 +57,7 @@ class FingertipContact:
 def skin_body(grid: Grid, skin, tissue_E_star: float, **options) -> ElasticHalfSpace:
     """The skin on ``grid``: the scene's layer bonded on tissue of ``tissue_E_star`` [Pa], or that tissue's
     half-space when ``skin.layer_thickness`` is 0; ``options`` (``threads``, ``dtype``, …) go to
-    :class:`~roughcontact.elastic.ElasticHalfSpace`."""
+    :class:`~roughcontact.body.ElasticHalfSpace`."""
     if skin.layer_thickness == 0:
         return ElasticHalfSpace(grid, E_star=tissue_E_star, **options)
     return ElasticHalfSpace(grid, E_star=skin.layer_E_star, thickness=skin.layer_thickness, poisson=skin.poisson,
@@ -81,8 +81,8 @@ def fingertip_contact(fingerpad, skin, normal_force: float, rings: int, grid_poi
                       tissue_E_star: float | None = None, tol: float = TOLERANCE) -> FingertipContact:
     """Press the fingertip cap (``fingerpad.radius``) with ``normal_force`` F_N [N] onto the layered ``skin``.
 
-    ``fingerpad``, ``skin``: the scene's :class:`~roughcontact.scene.Fingerpad` and
-    :class:`~roughcontact.scene.Skin` sections (or any objects with their fields). The square free-surface window of
+    ``fingerpad``, ``skin``: the scene's :class:`~roughcontact.study.scene.Fingerpad` and
+    :class:`~roughcontact.study.scene.Skin` sections (or any objects with their fields). The square free-surface window of
     ``grid_points``² pixels has the half side ``WINDOW_MARGIN`` times the Hertz radius a = (3 F R/(4 E*))^⅓ of the
     tissue; if the contact reaches the window's border the window is doubled and the solve repeated.
     ``tissue_E_star`` [Pa]: the modulus under the layer (default ``fingerpad.E_star``). Returns a

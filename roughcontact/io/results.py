@@ -17,7 +17,7 @@ import numpy as np
 from surfaces import Grid
 from surfaces.io import load_npz, save_npz
 
-from ._version import __version__
+from .._version import __version__
 
 _GRID_TAG = "__surfaces.Grid__"
 
@@ -35,17 +35,22 @@ def _encode(value):
     return value
 
 
-def _dataclass_types() -> dict:
-    """The dataclasses a result may hold as a field, by name (the interaction laws and the dielectric stack)."""
-    from .electrostatics import DielectricStack
-    from .interactions import LAWS
-    return {**LAWS, "DielectricStack": DielectricStack}
+#: The dataclasses a result may hold as a field, by qualified name: registered by the module that defines the
+#: result's field types (:mod:`roughcontact.interactions` registers its laws and the dielectric stack), so that
+#: this module imports nothing above it.
+FIELD_TYPES: dict = {}
+
+
+def savable_field(kind: type) -> type:
+    """Register the dataclass ``kind`` as one a result may hold as a field (saved by its qualified name)."""
+    FIELD_TYPES[kind.__qualname__] = kind
+    return kind
 
 
 def _decode(value):
     if isinstance(value, dict) and _GRID_TAG in value:
         return Grid.from_dict(value[_GRID_TAG])
-    if isinstance(value, dict) and (kind := _dataclass_types().get(value.get("__dataclass__"))) is not None:
+    if isinstance(value, dict) and (kind := FIELD_TYPES.get(value.get("__dataclass__"))) is not None:
         return kind(**{k: _decode(v) for k, v in value.items() if k != "__dataclass__"})
     if isinstance(value, dict):
         return {k: _decode(v) for k, v in value.items()}

@@ -16,8 +16,9 @@ import numpy as np
 
 from surfaces.validation import check_positive, check_real
 
-from .contact import ContactProblem, ContactResult
-from .results import SavableResult
+from ..io.results import SavableResult
+from .problem import ContactProblem
+from .result import ContactResult
 
 #: Default jump threshold: a step that changes the contact fraction by more than this is a jump.
 JUMP_AREA = 0.02
@@ -29,10 +30,10 @@ class LoadPath(SavableResult):
 
     Per step: ``contact_fraction``, ``mean_gap`` [m], ``flat_position`` s [m], ``converged``, ``detached``
     (a tensile load beyond pull-off: no equilibrium) and ``unstable_steps`` (the solve's steps along which the
-    energy was concave: it crossed an instability, :class:`~roughcontact.contact.ContactResult`). ``jumps``:
+    energy was concave: it crossed an instability, :class:`~roughcontact.solvers.ContactResult`). ``jumps``:
     (step index, kind) for each step that left the branch being followed — "jump into contact" (the contact
     fraction rose by more than ``jump_area``), "jump to full contact", "jump out of contact" (fell by more),
-    "detachment". ``results``: the :class:`~roughcontact.contact.ContactResult` of each step when kept.
+    "detachment". ``results``: the :class:`~roughcontact.solvers.ContactResult` of each step when kept.
     """
 
     loads: np.ndarray

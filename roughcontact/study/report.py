@@ -1,99 +1,27 @@
-"""Results of a fingerpad study on disk: the seed's friction law fed bottom-up, netCDF, CSV, PNG and report.md.
+"""Results of a fingerpad study on disk: netCDF, CSV, PNG and report.md, with the seed's friction law fed
+bottom-up (:mod:`.friction`).
 
-:func:`bottom_up_friction` puts the study's d_eq,R(F_N, U) (:class:`~roughcontact.macro.TabulatedGap`) and
-A_R(F_N, w) (:class:`TabulatedArea`) into :class:`~roughcontact.macro.SlidingFrictionModel` with the seed's
-μ0 and c₂; :func:`write_results` writes ``results.nc`` (xarray + h5netcdf, the ``io`` dependencies; skipped
+:func:`write_results` writes ``results.nc`` (xarray + h5netcdf, the ``io`` dependencies; skipped
 with a message when missing), the CSV tables, the PNG figures and ``report.md`` into a results directory.
 """
 from __future__ import annotations
 
 import importlib.util
-from dataclasses import dataclass
 
 import numpy as np
 
-from surfaces.validation import check_broadcast, check_finite_array
-
-from .macro import LinearGap, PowerLawGap, SlidingFrictionModel, TabulatedGap
-from .macro.gap import locate, table_axis
+from .._version import __version__
+from ..io.provenance import save_figure, write_csv
+from ..macro import LinearGap, PowerLawGap, SlidingFrictionModel
+from .friction import HOLDS_WITHIN, assumption_errors, bottom_up_friction
 from .presets import describe
-from .provenance import save_figure, write_csv
-from .study import CONFIDENCE, StudyResult
+from .records import CONFIDENCE
+from .run import StudyResult
 
 MICRO = 1e6          # m -> µm in tables and figures
 MM2 = 1e6            # m² -> mm²
 #: Modules that writing results.nc needs (the ``io`` dependencies).
 NETCDF_MODULES = ("xarray", "h5netcdf", "h5py")
-#: Relative error of the electrostatic force within which the report counts the equivalent-gap assumption as held.
-HOLDS_WITHIN = 0.10
-
-
-@dataclass(frozen=True)
-class TabulatedArea:
-    """Ridge area A_R(F_N, w) [m²] from a table, the role of seed Eq. 9 in the friction law.
-
-    ``normal_forces`` [N] (strictly increasing, >= 2), ``works`` w [J/m²] and ``areas`` [m²] of shape
-    (len(normal_forces), k), ``works`` non-decreasing along each row (w grows with the voltage at a fixed load).
-    Linear in w within a row (clamped at the row's ends) and linear in F_N between rows; F_N outside the table
-    raises ``ValueError``.
-    """
-
-    normal_forces: np.ndarray
-    works: np.ndarray
-    areas: np.ndarray
-
-    def __post_init__(self):
-        forces = table_axis("normal_forces", self.normal_forces, 2)
-        works = check_finite_array("works", self.works, nonnegative=True)
-        areas = check_finite_array("areas", self.areas, nonnegative=True)
-        if works.shape != areas.shape or works.shape[0] != forces.size or works.ndim != 2:
-            raise ValueError(f"works {works.shape} and areas {areas.shape} must both have shape "
-                             f"(len(normal_forces), k) = ({forces.size}, k)")
-        if (np.diff(works, axis=1) < 0).any():
-            raise ValueError("works must be non-decreasing along each row (increasing voltage)")
-        for name, value in (("normal_forces", forces), ("works", works), ("areas", areas)):
-            object.__setattr__(self, name, value)
-
-    def area(self, normal_force, work_of_adhesion) -> np.ndarray:
-        force, w = check_broadcast(normal_force=normal_force, work_of_adhesion=work_of_adhesion)
-        index, u = locate("normal_force", self.normal_forces, force)     # the gap table's rule
-        rows = np.array([np.interp(w, self.works[i], self.areas[i]) for i in range(self.normal_forces.size)])
-        low = np.take_along_axis(rows, index[None], 0)[0]
-        high = np.take_along_axis(rows, (index + 1)[None], 0)[0]
-        return (1 - u) * low + u * high
-
-
-def bottom_up_friction(result: StudyResult, c2: float | None = None) -> SlidingFrictionModel:
-    """The seed's friction law (μ0 and, unless ``c2`` [m⁴/N²] is given, c₂ of Table 1) with the study's mean
-    d_eq,R and A_R = (A_R/A0) A0."""
-    forces, voltages = result.normal_forces, result.voltages
-    stack = result.scene.screen.stack()
-    gaps = result.summary("ridge_equivalent_gap")[0]
-    areas = result.summary("ridge_area_fractions")[0][:, :, 0] * result.array("apparent_area")
-    works = stack.work_of_adhesion(gaps, voltages[None, :])
-    seed = SlidingFrictionModel.paper_table1()
-    return SlidingFrictionModel(mu0=seed.mu0, c2=seed.c2 if c2 is None else c2, stack=stack,
-                                gap_model=TabulatedGap(forces, voltages, gaps),
-                                contact=TabulatedArea(forces, np.maximum.accumulate(works, axis=1), areas))
-
-
-# ---------------------------------------------------------------------------------------------------------
-# Derived numbers
-# ---------------------------------------------------------------------------------------------------------
-def assumption_errors(result: StudyResult) -> dict:
-    """Relative errors of the electrostatic force σ̄_el A0 (shape loads × voltages, realisation means; NaN at
-    0 V): ``constant_gap``: the d_eq of the lowest voltage (0 V in the default scene) used at every voltage (the
-    seed's voltage-independent gap); ``mean_gap``: the arithmetic mean gap used instead of Eq. 25."""
-    stack = result.scene.screen.stack()
-    voltages = result.voltages[None, :]
-    sigma = result.summary("electrostatic_pressure")[0]
-    d_eq = result.summary("equivalent_gap")[0]
-    mean_gap = result.summary("mean_gap")[0]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        constant = stack.pressure(d_eq[:, :1], voltages) / sigma - 1
-        naive = stack.pressure(mean_gap, voltages) / sigma - 1
-    on = result.voltages > 0
-    return {"constant_gap": np.where(on[None, :], constant, np.nan), "mean_gap": np.where(on[None, :], naive, np.nan)}
 
 
 def _friction_rows(result: StudyResult) -> list:
@@ -184,8 +112,6 @@ def dataset(result: StudyResult):
     """The study as an ``xarray.Dataset`` (SI units in every variable's ``units``; scene, preset, seed and
     version in the attributes)."""
     import xarray as xr
-
-    from ._version import __version__
     scene = result.scene
     coords = {"normal_force": ("normal_force", result.normal_forces, {"units": "N"}),
               "voltage": ("voltage", result.voltages, {"units": "V"}),
@@ -317,7 +243,6 @@ def _unstable_sentence(result: StudyResult) -> str:
 def report_text(result: StudyResult, nc_written: bool, seconds: float | None = None) -> str:
     """The Markdown report: what was computed, tables with intervals, and where the equivalent-gap
     assumption holds and where it fails, with numbers."""
-    from ._version import __version__
     scene, preset = result.scene, result.scene.preset
     forces, voltages = result.normal_forces, result.voltages
     d_mean, d_half = result.summary("equivalent_gap")

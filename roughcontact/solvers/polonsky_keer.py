@@ -1,7 +1,7 @@
 """Frictionless normal contact of a rough elastic body with a rigid flat: Polonsky–Keer constrained CG.
 
 Unknown: the contact pressure p ≥ 0 [Pa] on the grid; the gap g = s − h + u(p) ≥ 0 [m] with u = K p from
-:class:`~roughcontact.elastic.ElasticHalfSpace` and p g = 0 (``docs/conventions.md``). Load control fixes
+:class:`~roughcontact.body.ElasticHalfSpace` and p g = 0 (``docs/conventions.md``). Load control fixes
 <p> (the flat position s is the Lagrange multiplier); displacement control fixes s = max(h) − δ.
 
 Algorithm: Polonsky & Keer (1999), Wear 231:206, steps (a)–(h), restricted conjugate gradients on the
@@ -23,23 +23,23 @@ the load constraint being satisfied exactly by construction. See ``docs/solver.m
 from __future__ import annotations
 
 import dataclasses
-import functools
 import math
 import time
 import warnings
-from dataclasses import dataclass, field
 
 import numpy as np
 from numba import njit
 
 from surfaces import HeightField
 from surfaces.validation import (check_bool, check_choice, check_finite_array, check_integer, check_positive,
-                              check_real)
+                                 check_real)
 
-from ._version import __version__
-from .elastic import ElasticHalfSpace
-from .interactions import HardWall, Interaction
-from .results import ConvergenceWarning, SavableResult
+from .._version import __version__
+from ..body import ElasticHalfSpace
+from ..interactions import Interaction
+from ..io.results import ConvergenceWarning
+from .inputs import _check_body, _checked_interaction, _heights, default_tolerance
+from .result import ContactResult, SolverState
 
 METHOD = "polonsky-keer"
 _REFRESH = 50          # exact recomputation of u at least every _REFRESH CG steps (round-off drift)
@@ -215,133 +215,6 @@ def _finalise_gap(u, h, p, shift, gap, contact):
 # Counting contact pixels over-estimates the true area by a perimeter term that falls as Δx/λ_s; Yastrebov,
 # Anciaux & Molinari (2017, Tribol. Int. 114:161) remove it by subtracting this fraction of a pixel per edge
 # between a contact and a non-contact pixel (docs/contact_area.md measures it: κ flat from 4 to 64 px).
-PERIMETER_CORRECTION = (math.pi - 1 + math.log(2)) / 24
-
-
-def boundary_edges(contact: np.ndarray, periodic=(True, True)) -> int:
-    """Number M of pixel edges between a contact and a non-contact pixel; across the window's border only on
-    the ``periodic`` axes."""
-    edges = 0
-    for axis, wraps in enumerate(periodic):
-        edges += int(np.count_nonzero(np.diff(contact, axis=axis)))          # boolean diff: neighbours differ
-        if wraps:
-            edges += int(np.count_nonzero(contact.take(0, axis) != contact.take(-1, axis)))
-    return edges
-
-
-@dataclass(frozen=True, eq=False)
-class ContactResult(SavableResult):
-    """Solution of one contact problem. Fields in SI units; see ``docs/conventions.md`` for signs.
-
-    Tractions [Pa], positive compressive: ``pressure`` p, the total normal traction that deforms the body
-    (u = K p), = ``contact_pressure`` (the wall's multiplier: ≥ 0, non-zero on the contact set only) +
-    ``interaction_traction`` p_int(g) of the ``interaction`` law (everywhere; −σ_el(g) for electroadhesion, 0
-    for the hard wall). ``mean_pressure`` <p> [Pa] is the external load (any sign; ``total_force`` [N]).
-    Geometry [m]: ``displacement`` u, ``gap`` g (≥ 0, 0 on the contact set), ``flat_position`` s, with
-    g = s − h + u, ``penetration`` δ = max(h) − s, ``mean_gap``; ``contact`` (bool mask), ``contact_fraction``
-    A/A0. Energies [J]: ``elastic_energy`` ½∫p u dA, ``interaction_energy`` ∫V(g) dA. Convergence:
-    ``iterations``, ``residuals`` (history of the relative error), ``converged``, ``message``, ``wall_time``
-    [s]. ``control`` ("mean_pressure", "total_force" or "penetration") and ``requested`` say what was fixed;
-    ``params`` the solver's settings and diagnostics. ``unstable_steps``: steps of a smooth law's solve along
-    which the energy was concave (the attraction out-softened the elastic stiffness): the solve crossed an
-    instability (a snap-in), so the equilibrium it reached may depend on the path to it (0 for the hard wall;
-    ``docs/interactions.md``, "Several equilibria").
-    """
-
-    pressure: np.ndarray
-    displacement: np.ndarray
-    gap: np.ndarray
-    contact: np.ndarray
-    contact_fraction: float
-    mean_pressure: float
-    mean_gap: float
-    penetration: float
-    elastic_energy: float
-    iterations: int
-    residuals: np.ndarray
-    converged: bool
-    message: str
-    wall_time: float
-    params: dict = field(default_factory=dict)
-    contact_pressure: np.ndarray | None = None
-    interaction_traction: np.ndarray | None = None
-    flat_position: float = math.nan
-    interaction_energy: float = 0.0
-    interaction: Interaction = HardWall()
-    control: str = ""
-    requested: float = math.nan
-    unstable_steps: int = 0
-
-    @functools.cached_property
-    def perimeter_edges(self) -> int:
-        """Number M of pixel edges between a contact and a non-contact pixel (:func:`boundary_edges`, across the
-        window's border on the grid's periodic axes)."""
-        return boundary_edges(self.contact, self.params["grid"].periodic)
-
-    @property
-    def corrected_contact_fraction(self) -> float:
-        """A/A0 with the pixel-perimeter correction (N − c M)/N_total, c = (π − 1 + ln 2)/24 per contact edge
-        (Yastrebov et al. 2017; derived for square pixels)."""
-        return (np.count_nonzero(self.contact) - PERIMETER_CORRECTION * self.perimeter_edges) / self.contact.size
-
-    @property
-    def total_force(self) -> float:
-        """Total normal force F = <p> Lx Ly [N]: the external load, positive pushing the bodies together."""
-        return self.mean_pressure * self.params["grid"].area
-
-    @property
-    def total_energy(self) -> float:
-        """Elastic plus interaction energy [J] (the external load's work not included)."""
-        return self.elastic_energy + self.interaction_energy
-
-    @property
-    def electrostatic_force(self) -> float:
-        """Total electrostatic attraction F_el = ∫σ_el(g) dA [N] (≥ 0) of an electrostatic solve."""
-        stack, voltage = self._electrostatics()
-        return float(np.sum(stack.pressure(self.gap, voltage), dtype=np.float64)) * self.params["grid"].pixel_area
-
-    @property
-    def equivalent_gap(self) -> float:
-        """Equivalent air gap d_eq of seed Eq. 25 over the solved window (contact points included) [m]:
-        ``DielectricStack.equivalent_gap`` of ``gap``."""
-        stack, _ = self._electrostatics()
-        return stack.equivalent_gap(self.gap)
-
-    def _electrostatics(self):
-        from .interactions import ElectrostaticInteraction
-        if not isinstance(self.interaction, ElectrostaticInteraction):
-            raise ValueError(f"the result's interaction is {type(self.interaction).__name__}, not an "
-                             "ElectrostaticInteraction; use DielectricStack.equivalent_gap(result.gap) for another stack")
-        return self.interaction.stack, self.interaction.voltage
-
-    def __repr__(self):
-        return (f"ContactResult(contact_fraction={self.contact_fraction:.6g}, mean_pressure={self.mean_pressure:.6g} "
-                f"Pa, mean_gap={self.mean_gap:.6g} m, converged={self.converged}, iterations={self.iterations})")
-
-
-@dataclass(frozen=True)
-class SolverState:
-    """What a ``callback`` sees after each CG step: iteration, relative rms gap error, contact fraction."""
-
-    iteration: int
-    residual: float
-    contact_fraction: float
-
-
-# -- solver ---------------------------------------------------------------------------------------------------
-def _heights(height_field, half) -> np.ndarray:
-    if isinstance(height_field, HeightField):
-        if height_field.grid != half.grid:
-            raise ValueError(f"height_field.grid {height_field.grid} differs from the half-space grid {half.grid}")
-        heights = height_field.heights
-    else:
-        heights = check_finite_array("height_field", height_field)
-        if heights.shape != half.grid.shape:
-            raise ValueError(f"height_field has shape {heights.shape}, but the half-space grid has shape "
-                             f"{half.grid.shape}")
-    return np.ascontiguousarray(heights, dtype=half.dtype)
-
-
 def _warm_pressure(x0, shape):
     """The warm-start pressure [Pa] of ``x0`` (a ContactResult or a pressure array), checked; None without
     ``x0`` or when it is zero everywhere (no information: the cold start applies)."""
@@ -380,8 +253,8 @@ def _nested_start(surface, half, mean_pressure, flat_position, tol, maxiter, pre
         control = {"penetration": float(coarse.heights.max()) - flat_position}
         if control["penetration"] <= 0:
             return None, []
-    result = solve_contact(coarse, half.coarsened(), **control, tol=max(tol, NESTED_TOL), maxiter=maxiter,
-                           preconditioned=preconditioned, warn=False)
+    result = solve_hard_wall(coarse, half.coarsened(), **control, tol=max(tol, NESTED_TOL), maxiter=maxiter,
+                             preconditioned=preconditioned, warn=False)
     if not result.pressure.any():
         return None, []
     return result.pressure, result.params["nested_iterations"] + [result.iterations]
@@ -401,15 +274,6 @@ def _restart(p, t, z_in, index, been_in_contact) -> int:
     return _contact_index(p, index, been_in_contact)
 
 
-def default_tolerance(dtype, interaction=None) -> float:
-    """The default relative tolerance of a solve in ``dtype``: 1e-8 in float64; in float32 1e-6 for the hard wall
-    (its round-off floor is near 1e-7) and 1e-5 with a smooth law (the energy's round-off stops the line search
-    near 4e-6)."""
-    if np.dtype(dtype) == np.float64:
-        return 1e-8
-    return 1e-5 if interaction is not None and interaction.smooth and not interaction.vanishes else 1e-6
-
-
 def _full_contact(h, half, mean_pressure, pressure, displacement):
     """The exact full-contact state under load control on a periodic body into the flat arrays ``pressure`` and
     ``displacement`` (from ``half.empty()``): p = p̄ + K⁻¹(h − ⟨h⟩), u = h − ⟨h⟩ + Φ(0) p̄ (one FFT pair). Returns
@@ -425,70 +289,15 @@ def _full_contact(h, half, mean_pressure, pressure, displacement):
     return h_mean - half.uniform_compliance * mean_pressure
 
 
-def _checked_interaction(interaction) -> Interaction:
-    """The law to solve with (HardWall() for None), checked."""
-    if interaction is None:
-        return HardWall()
-    if not isinstance(interaction, Interaction):
-        raise TypeError(f"interaction must be an Interaction (roughcontact.interactions), got "
-                        f"{type(interaction).__name__}")
-    if type(interaction) is Interaction:
-        raise ValueError("interaction = Interaction() is the abstract base class; pass a law such as HardWall(), "
-                         "ElectrostaticInteraction(stack, voltage) or a subclass that implements energy, traction "
-                         "and stiffness")
-    return interaction
-
-
-def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, total_force=None,
-                  penetration=None, tol=None, maxiter=10000, x0=None, cold_start="nested", callback=None,
-                  preconditioned=True, interaction: Interaction | None = None, warn=True) -> ContactResult:
-    """Press ``height_field`` onto a rigid flat and solve for pressure, displacement and gap.
-
-    Parameters
-    ----------
-    height_field : surfaces.HeightField or array
-        Topography h [m] on ``half.grid`` (peaks positive, towards the flat).
-    half : ElasticHalfSpace
-        The elastic body (kernel, FFT backend, dtype).
-    mean_pressure, total_force, penetration
-        Exactly one: the external load <p> [Pa] or F = <p> Lx Ly [N] (> 0 for the hard wall; any sign with a
-        smooth interaction, where a tensile load beyond pull-off is reported as no equilibrium), or the
-        penetration δ = max(h) − s [m] (displacement control; any sign).
-    tol : float, optional
-        Relative tolerance of the convergence criterion (module docstring), in (0, 1); by default
-        :func:`default_tolerance` of the body's dtype (1e-8 in float64, 1e-6 in float32).
-    maxiter : int
-        Maximum number of CG steps.
-    x0 : ContactResult or array, optional
-        Warm start: a previous result or a pressure field [Pa] (rescaled to the requested load); one that is
-        zero everywhere carries no information and gets the cold start.
-    cold_start : {"nested", "pk"}
-        Initial guess without ``x0``. ``"nested"``: the pressure of the same problem on the grid coarsened
-        2 × 2, recursively (:func:`_nested_start`; fewer fine steps on rough surfaces, ``docs/solver.md``);
-        grids that do not halve down to 2 × ``NESTED_MIN`` pixels fall back to ``"pk"``: Polonsky and
-        Keer's uniform p̄ (load control) or the rigid overlap (displacement control).
-    callback : callable, optional
-        ``callback(SolverState)`` after every step; raising ``StopIteration`` halts (``converged=False``).
-    preconditioned : bool
-        Precondition the conjugate gradients with the inverse kernel K⁻¹: one more FFT pair per step, fewer
-        steps (``docs/solver.md``).
-    interaction : Interaction, optional
-        Surface interaction law (:mod:`roughcontact.interactions`): :class:`~roughcontact.interactions.HardWall`
-        (the default; Polonsky–Keer, this module) or a smooth law acting with the wall
-        (:mod:`roughcontact.gap_solver`; ``x0`` then a previous result, ``cold_start`` and ``preconditioned`` do
-        not apply). A law that vanishes (0 V) is solved as the hard wall.
-    warn : bool
-        Emit a :class:`~roughcontact.results.ConvergenceWarning` when not converged.
-    """
+def solve_hard_wall(height_field, half: ElasticHalfSpace, *, mean_pressure=None, total_force=None,
+                    penetration=None, tol=None, maxiter=10000, x0=None, cold_start="nested", callback=None,
+                    preconditioned=True, interaction: Interaction | None = None, warn=True) -> ContactResult:
+    """Polonsky–Keer's solve (module docstring) of :func:`~roughcontact.solvers.dispatch.solve_contact` for the
+    hard wall, or a law that vanishes (0 V); same arguments."""
     start = time.perf_counter()
-    if not isinstance(half, ElasticHalfSpace):
-        raise TypeError(f"half must be an ElasticHalfSpace, got {type(half).__name__}")
+    _check_body(half)
     interaction = _checked_interaction(interaction)
     tol = default_tolerance(half.dtype, interaction) if tol is None else tol
-    if interaction.smooth and not interaction.vanishes:    # (a law that vanishes, e.g. at 0 V, is the hard wall)
-        from .gap_solver import solve_smooth
-        return solve_smooth(height_field, half, interaction, mean_pressure=mean_pressure, total_force=total_force,
-                            penetration=penetration, tol=tol, maxiter=maxiter, x0=x0, callback=callback, warn=warn)
     given = {name: value for name, value in (("mean_pressure", mean_pressure), ("total_force", total_force),
                                              ("penetration", penetration)) if value is not None}
     if len(given) != 1:
@@ -683,10 +492,10 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
             transforms, exact, since_exact = transforms + recompute_displacement(), True, 0
     if stalled and warm_started:                           # a warm start can lead PK into a cycle that the cold
         del p, u, t, r, z_in, index, been_in_contact        # start avoids: solve again from it
-        retry = solve_contact(height_field, half, mean_pressure=mean_pressure if total_force is None else None,
-                              total_force=total_force, penetration=penetration, tol=tol, maxiter=maxiter,
-                              cold_start=cold_start, callback=callback, preconditioned=preconditioned,
-                              interaction=interaction, warn=warn)
+        retry = solve_hard_wall(height_field, half, mean_pressure=mean_pressure if total_force is None else None,
+                                total_force=total_force, penetration=penetration, tol=tol, maxiter=maxiter,
+                                cold_start=cold_start, callback=callback, preconditioned=preconditioned,
+                                interaction=interaction, warn=warn)
         return dataclasses.replace(retry, params={**retry.params, "warm_start_stalled_at": iterations})
     if not exact:
         transforms += recompute_displacement()
@@ -717,103 +526,3 @@ def _result(p, u, h, shift, half, interaction, params, iterations, residuals, co
         message=message, wall_time=time.perf_counter() - start, params=params,
         contact_pressure=pressure, interaction_traction=np.broadcast_to(np.zeros((), half.dtype), grid.shape),
         flat_position=float(shift), interaction=interaction, control=params["control"], requested=params["requested"])
-
-
-@dataclass(frozen=True)
-class ContactProblem:
-    """What to solve: the topography ``surface`` h [m], the elastic ``body`` and the ``interaction`` law.
-
-    ``problem.solve(mean_pressure=…)`` (or ``total_force=`` [N], ``penetration=`` [m]; solver options as in
-    :func:`solve_contact`) returns a :class:`ContactResult`; ``problem.load_path(loads)`` sweeps the load.
-    """
-
-    surface: HeightField
-    body: ElasticHalfSpace
-    interaction: Interaction = HardWall()
-
-    def __post_init__(self):
-        if not isinstance(self.body, ElasticHalfSpace):
-            raise TypeError(f"body must be an ElasticHalfSpace, got {type(self.body).__name__}")
-        if not isinstance(self.surface, HeightField):
-            object.__setattr__(self, "surface", HeightField(self.body.grid, _heights(self.surface, self.body)))
-        elif self.surface.grid != self.body.grid:
-            raise ValueError(f"surface.grid {self.surface.grid} differs from the body's grid {self.body.grid}")
-        object.__setattr__(self, "interaction", _checked_interaction(self.interaction))
-
-    def solve(self, **control_and_options) -> ContactResult:
-        return solve_contact(self.surface, self.body, interaction=self.interaction, **control_and_options)
-
-    def load_path(self, mean_pressures, **options):
-        return load_path(self.surface, self.body, mean_pressures, interaction=self.interaction, **options)
-
-
-PREDICTORS = ("secant", "previous")
-
-
-def _secant_prediction(last, before, load):
-    """Pressure field [Pa] at mean pressure ``load`` [Pa] extrapolated linearly in load from the two previous
-    results, clipped at 0: p_k + w (p_k − p_{k−1}), w = (P − P_k)/(P_k − P_{k−1}) with P their mean pressures
-    (the last field if the two loads coincide)."""
-    if last.mean_pressure == before.mean_pressure:
-        return last.pressure
-    weight = (load - last.mean_pressure) / (last.mean_pressure - before.mean_pressure)
-    prediction = np.subtract(last.pressure, before.pressure)
-    prediction *= weight
-    prediction += last.pressure
-    return np.maximum(prediction, 0.0, out=prediction)
-
-
-def _start_results(start) -> list:
-    """The results a resumed sweep starts from: none, the last one, or the last two in order."""
-    if start is None:
-        return []
-    starts = [start] if isinstance(start, ContactResult) else list(start) if isinstance(start, (list, tuple)) else []
-    if not 1 <= len(starts) <= 2 or not all(isinstance(result, ContactResult) for result in starts):
-        raise TypeError(f"start must be a ContactResult or a list of the last two, got {start!r:.60}")
-    return starts
-
-
-def load_path(height_field, half: ElasticHalfSpace, mean_pressures, warm_start=True, start=None, progress=False,
-              predictor="secant", **solver_options):
-    """Yield :func:`solve_contact` results for each of ``mean_pressures`` [Pa] in order.
-
-    With ``warm_start`` each solve starts from a prediction of its pressure field, which the solver rescales
-    to the new load: ``predictor="secant"`` (default) extrapolates linearly in load from the two previous
-    results (:func:`_secant_prediction`; exact where p is linear in load, e.g. in full contact), ``"previous"``
-    takes the last field as it is; the first warm step has only one result and takes it. ``start`` warm-starts
-    the first step, so a sweep resumes where it stopped: a ``ContactResult`` (e.g. the last one saved by an
-    interrupted sweep) or the last two in order, with which the secant predictor continues exactly as if
-    uninterrupted. ``progress`` shows a tqdm bar with the contact fraction and iterations of the
-    last step. ``solver_options`` go to :func:`solve_contact`. (docs/solver.md, "Warm start", measures the
-    predictors and lists the variants that did not shorten warm solves.)
-    """
-    if "x0" in solver_options:
-        raise ValueError("load_path sets x0 itself; pass warm_start=False to start every step cold, or start= "
-                         "to warm-start the first step")
-    starts = _start_results(start)
-    if start is not None and not warm_start:
-        raise ValueError("start= warm-starts the first step; it contradicts warm_start=False")
-    check_choice("predictor", predictor, PREDICTORS)
-    if isinstance(mean_pressures, (str, bytes)) or not np.iterable(mean_pressures):
-        raise TypeError(f"mean_pressures must be a sequence of mean pressures [Pa], got {mean_pressures!r:.60}")
-    smooth = _checked_interaction(solver_options.get("interaction")).smooth   # (its warm start is the last gap)
-    return _load_steps(height_field, half, mean_pressures, warm_start, starts, progress, predictor, smooth,
-                       solver_options)
-
-
-def _load_steps(height_field, half, mean_pressures, warm_start, starts, progress, predictor, smooth, solver_options):
-    """The generator behind :func:`load_path` (its arguments checked before the first step)."""
-    from tqdm.auto import tqdm
-
-    previous = starts[-1] if starts else None
-    before = starts[0] if len(starts) == 2 else None
-    steps = tqdm(mean_pressures, desc="load path", unit="step", disable=not progress)
-    for mean_pressure in steps:
-        x0 = previous if warm_start else None
-        if warm_start and predictor == "secant" and before is not None and not smooth:
-            x0 = _secant_prediction(previous, before, mean_pressure)
-        result = solve_contact(height_field, half, mean_pressure=mean_pressure, x0=x0, **solver_options)
-        previous, before = result, previous
-        steps.set_postfix(contact_fraction=f"{result.contact_fraction:.4g}", iterations=result.iterations,
-                          refresh=False)
-        yield result

@@ -28,7 +28,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .interactions import Interaction
+from surfaces import Grid
+
+from ..interactions import ElectrostaticInteraction, Interaction
+from ..solvers import solve_contact
+from .apparent import apparent_scale, ring_count
+from .patch import (closing_lengths, gap_slope, patch_body, patch_grid, ridge_area_fraction, ridge_equivalent_gap,
+                    ridge_heights, roughness_heights)
+from .records import PatchRecord
 
 #: Pixels per ridge period of the ridge-scale grid of :func:`coupled_chain`.
 RIDGE_PIXELS_PER_PERIOD = 64
@@ -137,9 +144,6 @@ def interface_law(heights, body, stack, voltage: float, nodes: int = LAW_NODES, 
     ``nodes`` mean separations from 2 % of the rms height to the highest summit plus two rms heights, solved
     from far to near (displacement control, each from the last); closed contact fractions for each diameter of
     ``coarse_graining`` [m]."""
-    from .contact import solve_contact
-    from .interactions import ElectrostaticInteraction
-    from .study import _gap_slope, ridge_area_fraction
     if not isinstance(nodes, (int, np.integer)) or nodes < 3:
         raise ValueError(f"nodes = {nodes!r}; it must be an integer >= 3")
     heights = np.asarray(heights, float)
@@ -155,7 +159,7 @@ def interface_law(heights, body, stack, voltage: float, nodes: int = LAW_NODES, 
                                x0=previous, warn=False)
         gap, contact = np.asarray(result.gap), np.asarray(result.contact)
         rows.append((result.mean_pressure, stack.equivalent_gap(gap), result.contact_fraction,
-                     _gap_slope(gap, (offset + gap) ** -2.0, spacing) ** 2,
+                     gap_slope(gap, (offset + gap) ** -2.0, spacing) ** 2,
                      *(ridge_area_fraction(contact, spacing[0], length) for length in coarse_graining)))
         previous, converged = result, converged and bool(result.converged)
     columns = [tuple(float(v) for v in column[::-1]) for column in zip(*rows)]
@@ -188,13 +192,11 @@ class CoupledPoint:
 def coupled_point(ridges, body, law: InterfaceLaw, pressure: float, tol: float = 1e-7, x0=None) -> tuple:
     """Solve the ridge heights ``ridges`` [m] on ``body`` at the nominal ``pressure`` [Pa] with ``law`` acting;
     returns ``(CoupledPoint, ContactResult)`` (the result to warm-start the next solve)."""
-    from .contact import solve_contact
-    from .study import _gap_slope
     result = solve_contact(ridges, body, mean_pressure=pressure, interaction=law, tol=tol, x0=x0, warn=False)
     separation = np.asarray(result.gap)
     gaps = law.equivalent_gap(separation)
     weights = (law.stack.eps_a * law.stack.dielectric_offset + gaps) ** -2.0   # the micro patch's mean weight
-    slope = np.sqrt(_gap_slope(separation, weights, body.grid.spacing) ** 2
+    slope = np.sqrt(gap_slope(separation, weights, body.grid.spacing) ** 2
                     + np.sum(weights * law.slope_squared(separation)) / np.sum(weights))
     point = CoupledPoint(
         pressure=float(pressure), voltage=law.voltage, equivalent_gap=law.stack.equivalent_gap(gaps),
@@ -210,8 +212,6 @@ def coupled_point(ridges, body, law: InterfaceLaw, pressure: float, tol: float =
 def ridge_grid(scene):
     """The ridge-scale grid of :func:`coupled_chain`: the patch at :data:`RIDGE_PIXELS_PER_PERIOD` pixels per
     ridge period, or the patch grid where that is coarser."""
-    from surfaces import Grid
-    from .study import patch_grid
     grid = patch_grid(scene)
     pixels = min(grid.shape[0], RIDGE_PIXELS_PER_PERIOD * scene.preset.periods)
     return Grid((pixels, pixels), grid.lengths, periodic=True)
@@ -226,7 +226,6 @@ def coupled_chain(scene, realisation: int, voltage_index: int, threads: int | No
     :class:`~roughcontact.study.PatchRecord` per load; the law's solves and seconds are counted in the first
     load's record. ``threads`` FFT threads (default: ``roughcontact.fft.default_threads``); ``apparent``, the
     scene's :func:`~roughcontact.study.apparent_scale` (computed when not given)."""
-    from .study import _lengths, patch_body, roughness_heights
     if not scene.roughness.enabled:
         raise ValueError("presets.*.scales = 'coupled' needs micro-roughness (roughness.enabled = true): without "
                          "it there is no interface law; use scales = 'resolved'")
@@ -236,7 +235,7 @@ def coupled_chain(scene, realisation: int, voltage_index: int, threads: int | No
     start = time.perf_counter()
     law = interface_law(roughness_heights(scene, realisation), patch_body(scene, threads=threads),
                         scene.screen.stack(), scene.loads.voltages[voltage_index], tol=scene.preset.tolerance,
-                        coarse_graining=_lengths(scene))
+                        coarse_graining=closing_lengths(scene))
     return ridge_chain(scene, law, threads, spent=(len(law.separations), time.perf_counter() - start),
                        apparent=apparent)
 
@@ -247,11 +246,10 @@ def ridge_chain(scene, law: InterfaceLaw, threads: int | None = None, grid=None,
     under every load in order, each ring's solve (:func:`coupled_point`) warm-started from its result at the
     previous load. Returns one :class:`~roughcontact.study.PatchRecord` per load, averaged over the rings as
     the resolved chain does; ``spent`` (solves, seconds) taken before, counted in the first record."""
-    from .study import PatchRecord, _rings, apparent_scale, patch_body, ridge_equivalent_gap, ridge_heights
     grid = ridge_grid(scene) if grid is None else grid
     stack = law.stack
     ridges, body = ridge_heights(scene, grid), patch_body(scene, grid, threads=threads)
-    previous = [None] * _rings(scene)                       # each ring's result at the previous load
+    previous = [None] * ring_count(scene)                       # each ring's result at the previous load
     records, (solves, seconds) = [], spent
     for _, pressures in apparent_scale(scene) if apparent is None else apparent:
         start, points = time.perf_counter(), []

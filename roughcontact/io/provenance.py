@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 from datetime import datetime, timezone
 from pathlib import Path
 
-from ._version import __version__
+from .._version import __version__
 
 #: Resolution of the PNG figures [dots per inch].
 FIGURE_DPI = 120
