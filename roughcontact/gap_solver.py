@@ -57,6 +57,9 @@ MAX_HALVINGS = 40         # line-search step halvings before the direction is gi
 APPROACH = 2.0            # a stable point closes by at most this times (gap + law length) in one step
 ENERGY_ROUND_OFF = 1e-12  # relative round-off of the energy sums (float64), below which a rise is not a rise
 START_TOL = 1e-2          # tolerance of the hard-wall solve that starts a cold solve (a guess, not the answer)
+FIELD_TOL_FACTOR = 0.1   # the layered field's solves to this times the solve's relative residual,
+FIELD_TOL_FLOOR = 1e-12  # but no tighter than this
+FIELD_TOL_CEILING = 1e-4 # and no looser
 _REFRESH = 50             # exact recomputation of p_el at least every _REFRESH incremental steps
 
 # built-in laws evaluated inside the kernels: (kind, a, b, c)
@@ -521,9 +524,10 @@ class _Solver:
         from the accepted gap's flux; returns Σ V."""
         shape, inside = self.pel_field.shape, self.window_view
         traction, stiffness, flux = (array.reshape(shape) for array in arrays)
-        start = self.law_now[2].reshape(shape)[inside] if self.field.evaluations else None
+        start = (self.g.reshape(shape)[inside], self.law_now[2].reshape(shape)[inside]) \
+            if self.field.evaluations else None
         energy_sum = self.field.evaluate(gap.reshape(shape)[inside], traction[inside], stiffness[inside],
-                                         flux[inside], initial=start)
+                                         flux[inside], start=start)
         return energy_sum
 
     def run(self, tol, maxiter, callback, warn, half, heights, control, requested, start_kind, start):
@@ -548,6 +552,8 @@ class _Solver:
                 _, zz, rz, prz = _mask_shift(z, free, -sum_z / n_free, r, self.r_prev)
             residual = math.sqrt(zz / n) / self.gap_scale
             residuals.append(residual)
+            if self.field is not None:                  # the field solves as accurate as the step needs
+                self.field.tol = min(FIELD_TOL_CEILING, max(FIELD_TOL_FLOOR, FIELD_TOL_FACTOR * residual))
             if callback is not None and iterations:
                 try:
                     callback(SolverState(iterations, residual, at_wall / heights.size))

@@ -34,6 +34,7 @@ import warnings
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 
 from surfaces import Grid, HeightField
 from surfaces.validation import check_choice, check_finite_array, check_integer, check_real
@@ -123,28 +124,65 @@ class StackField:
             return 1.0 / (self.stack.dielectric_offset / EPSILON_0 + column), 0, 0.0
         inverse_diagonal = 1.0 / (self._diagonal + column)
         flux = inverse_diagonal.copy() if initial is None else np.array(initial, dtype=float)
-        product = np.empty_like(flux)
-        residual = 1.0 - (self.apply_elastance(flux, product) + column * flux)
-        scale = np.sqrt(gap.size)
-        z = inverse_diagonal * residual
-        direction = z.copy()
-        rz = float(np.vdot(residual, z))
-        norm = float(np.linalg.norm(residual)) / scale
+        product, residual, z, direction = (np.empty_like(flux) for _ in range(4))
+        self.apply_elastance(flux, product)
+        rz, rr = _cg_start(flux.reshape(-1), product.reshape(-1), column.reshape(-1), inverse_diagonal.reshape(-1),
+                           residual.reshape(-1), z.reshape(-1), direction.reshape(-1))
+        target = (tol * tol) * gap.size
         iterations = 0
-        while norm > tol and iterations < maxiter:
+        while rr > target and iterations < maxiter:
             self.apply_elastance(direction, product)
-            product += column * direction
-            step = rz / float(np.vdot(direction, product))
-            flux += step * direction
-            residual -= step * product
-            z = inverse_diagonal * residual
-            rz, rz_old = float(np.vdot(residual, z)), rz
-            direction *= rz / rz_old
-            direction += z
-            norm = float(np.linalg.norm(residual)) / scale
+            step = rz / _cg_curvature(direction.reshape(-1), product.reshape(-1), column.reshape(-1))
+            rz_old = rz
+            rz, rr = _cg_update(step, direction.reshape(-1), product.reshape(-1), flux.reshape(-1),
+                                residual.reshape(-1), z.reshape(-1), inverse_diagonal.reshape(-1))
+            _cg_direction(direction.reshape(-1), z.reshape(-1), rz / rz_old)
             iterations += 1
         self.residual = residual
-        return flux, iterations, norm
+        return flux, iterations, float(np.sqrt(rr / gap.size))
+
+
+@njit(cache=True)
+def _cg_start(flux, product, column, inverse_diagonal, residual, z, direction):
+    """residual ← 1 − (M D + R D) (``product`` holds M D), z = direction ← P⁻¹ residual; returns (r·z, r·r)."""
+    rz, rr = 0.0, 0.0
+    for i in range(flux.size):
+        value = 1.0 - product[i] - column[i] * flux[i]
+        residual[i] = value
+        z[i] = direction[i] = inverse_diagonal[i] * value
+        rz += value * z[i]
+        rr += value * value
+    return rz, rr
+
+
+@njit(cache=True)
+def _cg_curvature(direction, product, column):
+    """product ← M p + R p (``product`` holds M p); returns p·(M + R) p."""
+    total = 0.0
+    for i in range(direction.size):
+        product[i] += column[i] * direction[i]
+        total += direction[i] * product[i]
+    return total
+
+
+@njit(cache=True)
+def _cg_update(step, direction, product, flux, residual, z, inverse_diagonal):
+    """D += α p, r −= α (M + R) p, z ← P⁻¹ r; returns (r·z, r·r)."""
+    rz, rr = 0.0, 0.0
+    for i in range(flux.size):
+        flux[i] += step * direction[i]
+        value = residual[i] - step * product[i]
+        residual[i] = value
+        z[i] = inverse_diagonal[i] * value
+        rz += value * z[i]
+        rr += value * value
+    return rz, rr
+
+
+@njit(cache=True)
+def _cg_direction(direction, z, beta):
+    for i in range(direction.size):
+        direction[i] = z[i] + beta * direction[i]
 
 
 @dataclass(frozen=True)
@@ -258,8 +296,18 @@ class FieldLaw:
         self.fft_pairs = 0                     # over all evaluations: one per CG iteration and per start
         self.evaluations = 0
 
-    def evaluate(self, gap, traction, stiffness, flux, initial=None) -> float:
-        """traction, stiffness, flux (grid-shaped) ← the law at ``gap``; returns Σ V [J/m² per pixel, summed]."""
+    def evaluate(self, gap, traction, stiffness, flux, start=None) -> float:
+        """traction, stiffness, flux (grid-shaped) ← the law at ``gap``; returns Σ V [J/m² per pixel, summed].
+
+        ``start``: (gap, flux) of a nearby evaluation, whose flux starts the field solve."""
+        if start is not None:
+            # the start's flux, each column updated to first order: δD ≈ −δR D / (M_ii + R_ii) (exact for an
+            # isolated open pixel)
+            start_gap, start_flux = start
+            initial = start_flux * (self.field.pixel_elastance + self.field.column_elastance(start_gap)) / (
+                self.field.pixel_elastance + self.field.column_elastance(gap))
+        else:
+            initial = None
         unit_flux, iterations, residual = self.field.solve(gap, initial=initial, tol=self.tol)
         if residual > self.tol:
             raise FloatingPointError(f"the field solve stalled at relative residual {residual:.3g} "
