@@ -211,10 +211,6 @@ def _finalise_gap(u, h, p, shift, gap, contact):
         gap[i] = 0.0 if (contact[i] or g < 0) else g
 
 
-# -- result -----------------------------------------------------------------------------------------------------
-# Counting contact pixels over-estimates the true area by a perimeter term that falls as Δx/λ_s; Yastrebov,
-# Anciaux & Molinari (2017, Tribol. Int. 114:161) remove it by subtracting this fraction of a pixel per edge
-# between a contact and a non-contact pixel (docs/contact_area.md measures it: κ flat from 4 to 64 px).
 def _warm_pressure(x0, shape):
     """The warm-start pressure [Pa] of ``x0`` (a ContactResult or a pressure array), checked; None without
     ``x0`` or when it is zero everywhere (no information: the cold start applies)."""

@@ -137,6 +137,11 @@ def electrostatic_float32():
                          interaction=ElectrostaticInteraction(STACK, 30.0))
 
 
+def electrostatic_layered_field():
+    return solve_contact(*rough(), mean_pressure=1e3,
+                         interaction=ElectrostaticInteraction(STACK, 100.0, field="layered"))
+
+
 def exponential_position_control():
     surface, body = rough()
     return solve_contact(surface, body, penetration=3e-6, interaction=ExponentialAdhesion(1e-3, 2e-7))
@@ -179,9 +184,9 @@ def interface_law_tiny():
 
 CASES = [hard_wall_periodic, hard_wall_pk_unpreconditioned, hard_wall_warm_start, hard_wall_free_surface,
          hard_wall_layer_on_rigid_base, hard_wall_layer_on_half_space_free, hard_wall_float32,
-         electrostatic_load_control, electrostatic_float32, exponential_position_control,
-         maugis_dugdale_free_surface, load_path_hard_wall, load_cycle_adhesive, pull_off_adhesive, study_records,
-         study_records_zero_volt, interface_law_tiny]
+         electrostatic_load_control, electrostatic_float32, electrostatic_layered_field,
+         exponential_position_control, maugis_dugdale_free_surface, load_path_hard_wall, load_cycle_adhesive,
+         pull_off_adhesive, study_records, study_records_zero_volt, interface_law_tiny]
 
 
 def _differences(expected, actual, path=""):
