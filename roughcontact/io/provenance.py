@@ -1,4 +1,5 @@
-"""Output files that say where they came from: the one writer of ``roughcontact figures`` and the experiments.
+"""Output files that say where they came from: the one writer of ``roughcontact figures``, ``roughcontact run``
+and the scripts in ``studies/``.
 
 Every CSV written here starts with one comment line, and every PNG carries the same line in its metadata
 (PNG text chunks ``Comment`` and ``Software``)::
@@ -49,7 +50,7 @@ class Provenance:
 
     @classmethod
     def of_command(cls, program: str, argv, parameters: dict) -> Provenance:
-        """The provenance of ``program`` (a command line, e.g. ``python experiments/x.py``) run with the
+        """The provenance of ``program`` (a command line, e.g. ``python studies/x.py``) run with the
         arguments ``argv`` (a list, shell-quoted here)."""
         return cls(command=" ".join([program, shlex.join(map(str, argv))]).strip(), parameters=dict(parameters))
 

@@ -1,4 +1,4 @@
-"""The benchmark problem of the solver studies in ``experiments/`` (docs/benchmarks.md), and a contact-set count.
+"""The benchmark problem of the solver studies in ``studies/`` (docs/benchmarks.md), and a contact-set count.
 
 The benchmark surface is a seeded self-affine patch on a periodic 1 mm × 1 mm window whose short-wavelength
 cutoff is :data:`CUTOFF_PIXELS` pixels of each grid: every grid resolves its roughness with the same number of

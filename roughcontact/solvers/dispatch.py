@@ -36,9 +36,9 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
         zero everywhere carries no information and gets the cold start.
     cold_start : {"nested", "pk"}
         Initial guess without ``x0``. ``"nested"``: the pressure of the same problem on the grid coarsened
-        2 × 2, recursively (:func:`~.polonsky_keer._nested_start`; fewer fine steps on rough surfaces, ``docs/solver.md``);
-        grids that do not halve down to 2 × ``NESTED_MIN`` pixels fall back to ``"pk"``: Polonsky and
-        Keer's uniform p̄ (load control) or the rigid overlap (displacement control).
+        2 × 2, recursively (:func:`~.polonsky_keer._nested_start`; fewer fine steps on rough surfaces,
+        ``docs/solver.md``); grids that do not halve down to 2 × ``NESTED_MIN`` pixels fall back to ``"pk"``:
+        Polonsky and Keer's uniform p̄ (load control) or the rigid overlap (displacement control).
     callback : callable, optional
         ``callback(SolverState)`` after every step; raising ``StopIteration`` halts (``converged=False``).
     preconditioned : bool

@@ -82,8 +82,8 @@ def fingertip_contact(fingerpad, skin, normal_force: float, rings: int, grid_poi
     """Press the fingertip cap (``fingerpad.radius``) with ``normal_force`` F_N [N] onto the layered ``skin``.
 
     ``fingerpad``, ``skin``: the scene's :class:`~roughcontact.study.scene.Fingerpad` and
-    :class:`~roughcontact.study.scene.Skin` sections (or any objects with their fields). The square free-surface window of
-    ``grid_points``² pixels has the half side ``WINDOW_MARGIN`` times the Hertz radius a = (3 F R/(4 E*))^⅓ of the
+    :class:`~roughcontact.study.scene.Skin` sections (or any objects with their fields). The square free-surface
+    window of ``grid_points``² pixels has the half side ``WINDOW_MARGIN`` times the Hertz radius a = (3 F R/(4 E*))^⅓ of the
     tissue; if the contact reaches the window's border the window is doubled and the solve repeated.
     ``tissue_E_star`` [Pa]: the modulus under the layer (default ``fingerpad.E_star``). Returns a
     :class:`FingertipContact`; a solve that misses ``tol`` warns and reports ``converged`` = False.

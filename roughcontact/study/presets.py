@@ -1,6 +1,6 @@
 """Measured errors and costs of the study's settings, and the cheapest setting for a target error.
 
-``preset_errors.csv`` beside this module is written by ``experiments/preset_pareto.py --library``: one row per
+``preset_errors.csv`` beside this module is written by ``studies/preset_pareto.py --library``: one row per
 measured setting (the :class:`~roughcontact.study.scene.Preset` keys :data:`SETTING_KEYS` and ``realisations``), its
 CPU seconds on the default scene's four points (F_N = 0.5, 2 N; U = 0, 200 V; one FFT thread) and its error on
 each scene of the experiment, the largest relative difference of d_eq, A_R/A0 and F_T at 200 V from the

@@ -2,33 +2,35 @@
 
 For each normal force F_N and voltage U:
 
-1. **Apparent scale** (:func:`~.apparent.apparent_contact`): the apparent area A0 and the nominal pressures over it — one
-   uniform pressure F_N/A0 for the power law of seed Eq. 27, or the Hertz pressure averaged over ``rings`` rings
-   of equal area for a fingertip cap.
-2. **Ridge and roughness scales** (:func:`~.patch.patch_surface`, :func:`~.patch.patch_body`): a periodic patch of ``periods``
-   ridge periods with the ridges and the self-affine micro-roughness resolved in one grid, pressed at each
-   nominal pressure with the electrostatic attraction acting (``roughcontact.solve_contact``; 0 V is the hard
-   wall). A scene without roughness is solved for one realisation only (the others would be identical).
+1. **Apparent scale** (:func:`~.apparent.apparent_contact`): the apparent area A0 and the nominal pressures over
+   it — one uniform pressure F_N/A0 for the power law of seed Eq. 27, or the Hertz pressure averaged over
+   ``rings`` rings of equal area for a fingertip cap.
+2. **Ridge and roughness scales** (:func:`~.patch.patch_surface`, :func:`~.patch.patch_body`): a periodic patch of
+   ``periods`` ridge periods with the ridges and the self-affine micro-roughness resolved in one grid, pressed at
+   each nominal pressure with the electrostatic attraction acting (``roughcontact.solve_contact``; 0 V is the
+   hard wall). A scene without roughness is solved for one realisation only (the others would be identical).
 3. **Averages over the apparent area** (rings of equal area weigh equally): d_eq by seed Eq. 25
    (``DielectricStack.equivalent_gap`` of all gaps), the arithmetic mean gap, the real contact fraction, the
-   ridge contact fraction A_R/A0 (:func:`~.patch.ridge_area_fraction`: the real contact closed morphologically with a
-   disc of diameter ℓ, at ℓ and at the scene's sensitivity factors on it), the mean attraction σ̄_el and the
-   ridge-area equivalent gap d_eq,R with σ_el(d_eq,R) A_R = σ̄_el A0 (the gap that the seed's friction law,
+   ridge contact fraction A_R/A0 (:func:`~.patch.ridge_area_fraction`: the real contact closed morphologically
+   with a disc of diameter ℓ, at ℓ and at the scene's sensitivity factors on it), the mean attraction σ̄_el and
+   the ridge-area equivalent gap d_eq,R with σ_el(d_eq,R) A_R = σ̄_el A0 (the gap that the seed's friction law,
    which applies σ_el on A_R, needs).
 4. **Realisations**: ``realisations`` rough patches (rng seed + r); every reported number is a mean with a 95 %
-   Student-t confidence interval (:func:`~.records.confidence_interval`) over the realisations whose solves converged (a
-   solve that fails from its warm start is repeated from the solver's own start first).
+   Student-t confidence interval (:func:`~.records.confidence_interval`) over the realisations whose solves
+   converged (a solve that fails from its warm start is repeated from the solver's own start first).
 
 **Tasks.** The sweep is split into independent, deterministic tasks, one per (realisation r, voltage index j)
-(:func:`~.resolved.solve_chain`): every load in order, each solve warm-started from the previous load's result (``x0=``;
-cold solves with the preset's ``warm_start`` false). A task takes the scene, r, j and its FFT thread count and
-returns one :class:`~.records.PatchRecord` per load; nothing passes between tasks, so a point's numbers do not depend on
-where its tasks ran or in which order they finished. :func:`run_study` runs them in this process, in a local
-process pool or on a dask.distributed cluster through one loop (submit, consume as completed, store), and
-assembles the :class:`~.records.PointResult` of each (F_N, U) from the records of its realisations.
+(:func:`~.resolved.solve_chain`): every load in order, each solve warm-started from the previous load's result
+(``x0=``; cold solves with the preset's ``warm_start`` false). A task takes the scene, r, j and its FFT thread
+count and returns one :class:`~.records.PatchRecord` per load; nothing passes between tasks, so a point's numbers
+do not depend on where its tasks ran or in which order they finished. :func:`run_study` runs them in this
+process, in a local process pool or on a dask.distributed cluster through one loop (submit, consume as
+completed, store), and assembles the :class:`~.records.PointResult` of each (F_N, U) from the records of its
+realisations.
 
-Finished tasks are stored as they arrive in a :class:`~.execution.TaskStore` directory, so an interrupted run resumes
-without recomputing finished tasks; a different scene in the same directory is refused (:class:`~.execution.SceneMismatch`).
+Finished tasks are stored as they arrive in a :class:`~.execution.TaskStore` directory, so an interrupted run
+resumes without recomputing finished tasks; a different scene in the same directory is refused
+(:class:`~.execution.SceneMismatch`).
 """
 from __future__ import annotations
 
@@ -116,7 +118,7 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
         bar = tqdm(total=len(todo) * len(forces) / count, desc="roughcontact run", unit="point",
                    bar_format="{l_bar}{bar}| {n:.4g}/{total:.4g} [{elapsed}<{remaining}]")
     task = solve_chain
-    if scene.preset.scales == "coupled":            # the micro-roughness as an interface law (roughcontact.study.coupled)
+    if scene.preset.scales == "coupled":            # the micro-roughness as an interface law (.coupled)
         task = coupled_chain
     apparent = apparent_scale(scene)                # once, for every task
     try:

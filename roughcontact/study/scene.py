@@ -399,7 +399,8 @@ class Scene:
         """The same scene at preset ``name`` (one of its ``presets``)."""
         if name not in self.presets:
             raise ValueError(f"preset = {name!r} is not one of the scene's presets: {', '.join(self.presets)}"
-                             + (" (choose the auto setting with roughcontact.study.presets.auto_scene)" if name == AUTO else ""))
+                             + (" (choose the auto setting with roughcontact.study.presets.auto_scene)"
+                                if name == AUTO else ""))
         return dataclasses.replace(self, study=dataclasses.replace(self.study, preset=name))
 
     def with_setting(self, preset: Preset) -> Scene:

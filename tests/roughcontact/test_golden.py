@@ -22,6 +22,7 @@ import dataclasses
 import hashlib
 import json
 import os
+import runpy
 import subprocess
 import sys
 from pathlib import Path
@@ -92,8 +93,8 @@ def sinusoid(n=256):
 
 
 def tiny_scene():
-    from study_scenes import TINY
-    return load_scene(text=TINY.replace("realisations = 2", "realisations = 1"), preset="draft")
+    tiny = runpy.run_path(str(Path(__file__).with_name("study") / "study_scenes.py"))["TINY"]
+    return load_scene(text=tiny.replace("realisations = 2", "realisations = 1"), preset="draft")
 
 
 def hard_wall_periodic():

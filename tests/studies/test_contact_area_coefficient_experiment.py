@@ -1,4 +1,4 @@
-"""The κ study (experiments/contact_area_coefficient.py) runs in fast mode and writes sane, self-consistent files."""
+"""The κ study (studies/contact_area_coefficient.py) runs in fast mode and writes sane, self-consistent files."""
 import numpy as np
 import pytest
 from PIL import Image
@@ -21,7 +21,7 @@ def test_files_written_with_provenance(output):
         assert (output / name).read_text().startswith("# roughcontact ")
     with Image.open(output / "contact_area_coefficient.png") as image:
         assert image.format == "PNG"
-        assert "command: python experiments/contact_area_coefficient.py --fast" in image.text["Comment"]
+        assert "command: python studies/contact_area_coefficient.py --fast" in image.text["Comment"]
 
 
 def test_rows_consistent(study, output, read_csv):

@@ -1,8 +1,8 @@
 """Cost of electroadhesive contact against the hard wall, and of a voltage continuation against cold solves.
 
-    python experiments/bench_interactions.py                     # 256² and 512², the table of docs/interactions.md
-    python experiments/bench_interactions.py --sizes 1024 --output out
-    python experiments/bench_interactions.py --fast              # 64², seconds
+    python studies/bench_interactions.py                     # 256² and 512², the table of docs/interactions.md
+    python studies/bench_interactions.py --sizes 1024 --output out
+    python studies/bench_interactions.py --fast              # 64², seconds
 
 The scene is the electrostatic bar's rough patch: 1 mm square, 3 µm rms self-affine heights (H = 0.8, short
 cut-off 8 px), contact modulus E* (``--E-star``, default 1 MPa), external load p̄ (``--pressure``, default
@@ -188,7 +188,7 @@ def main(argv=None):
                         help="ContactMechanics' L-BFGS-B projected-gradient tolerance [N per pixel]")
     parser.add_argument("--fast", action="store_true", help="64² and two voltages: a test that the script runs")
     parser.add_argument("--output", default="out", help="directory for bench_interactions.csv")
-    args, provenance = parse_arguments(parser, argv, "experiments/bench_interactions.py")
+    args, provenance = parse_arguments(parser, argv, "studies/bench_interactions.py")
     if args.fast:
         args.sizes, args.voltages = [64], [10.0, 30.0]
     if args.peers:

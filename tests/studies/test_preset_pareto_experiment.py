@@ -1,4 +1,4 @@
-"""The speed-accuracy experiment (experiments/preset_pareto.py) runs in fast mode: the reference has error 0,
+"""The speed-accuracy experiment (studies/preset_pareto.py) runs in fast mode: the reference has error 0,
 the errors are the relative differences of the realisation means, the cost adds up over realisations, a re-run
 solves nothing again, and its per-setting table feeds roughcontact.study.presets."""
 import json

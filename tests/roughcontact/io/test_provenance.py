@@ -10,13 +10,13 @@ from roughcontact import __version__
 from roughcontact.io import (OutputPathError, Provenance, output_directory, read_csv, save_figure, write_atomic,
                              write_columns, write_csv)
 
-PROVENANCE = Provenance.of_command("python experiments/study.py", ["--output", "a b"], {"output": "a b", "n": 3})
+PROVENANCE = Provenance.of_command("python studies/study.py", ["--output", "a b"], {"output": "a b", "n": 3})
 
 
 def test_line_names_version_date_command_and_parameters():
     line = PROVENANCE.line
     assert line.startswith(f"roughcontact {__version__}, {PROVENANCE.date}, ")
-    assert "command: python experiments/study.py --output 'a b', parameters: " in line   # shell-quoted arguments
+    assert "command: python studies/study.py --output 'a b', parameters: " in line   # shell-quoted arguments
     assert json.loads(line.split("parameters: ")[1]) == {"output": "a b", "n": 3}
 
 

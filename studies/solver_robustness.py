@@ -1,8 +1,8 @@
 """Does the contact solver converge wherever a study may take it? (a script; docs/solver.md, "Robustness")
 
-    python experiments/solver_robustness.py                       # 256², 512²; 4 seeds; 20 loads; minutes
-    python experiments/solver_robustness.py --sizes 1024 --seeds 2
-    python experiments/solver_robustness.py --fast                # 128², 1 seed, 4 loads (the CI smoke run)
+    python studies/solver_robustness.py                       # 256², 512²; 4 seeds; 20 loads; minutes
+    python studies/solver_robustness.py --sizes 1024 --seeds 2
+    python studies/solver_robustness.py --fast                # 128², 1 seed, 4 loads (the CI smoke run)
 
 On seeded self-affine surfaces like the benchmark's (``roughcontact.reference.benchmark.rough_surface``: H = 0.8, rms
 slope 0.1, short cutoff 4 px; seeds 0 … ``--seeds`` − 1) every load p̄ = 0.0005 … 0.01 E* is solved by each variant:
@@ -96,7 +96,7 @@ def main(argv=None):
     parser.add_argument("--maxiter", type=int, default=2000, help="iteration cap of every solve")
     parser.add_argument("--output", default="out", help="output directory (its parent must exist)")
     parser.add_argument("--fast", action="store_true", help="128², one seed, four loads: a smoke run")
-    args, provenance = parse_arguments(parser, argv, "python experiments/solver_robustness.py")
+    args, provenance = parse_arguments(parser, argv, "python studies/solver_robustness.py")
     output = output_directory(args.output)
     if args.fast:
         args.sizes, args.seeds, args.loads = [128], 1, 4

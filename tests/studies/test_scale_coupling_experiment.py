@@ -1,4 +1,4 @@
-"""The scale-coupling experiment (experiments/scale_coupling.py) runs in fast mode: one row per variant,
+"""The scale-coupling experiment (studies/scale_coupling.py) runs in fast mode: one row per variant,
 realisation and load with finite differences of d_eq, real contact and A_R within a loose bound, the
 differences are those of the written values, and the summary names every variant."""
 import numpy as np

@@ -1,8 +1,8 @@
 """Small-load contact-area coefficient κ = (A/A0) / (p̄/(E* h'_rms)) of self-affine roughness: how it depends on
 the resolution of the short cutoff λ_s/Δx, the spectral breadth λ_r/λ_s, the load and the seed (a script).
 
-    python experiments/contact_area_coefficient.py                 # the study of docs/contact_area.md, into out/
-    python experiments/contact_area_coefficient.py --fast          # tiny grids, seconds
+    python studies/contact_area_coefficient.py                 # the study of docs/contact_area.md, into out/
+    python studies/contact_area_coefficient.py --fast          # tiny grids, seconds
 
 (from the repository root after ``pip install -e .``). H = 0.8, rms slope h' = 0.1
 (spectral, i.e. the continuum value), periodic L × L window, λ_L = L, plateau between L and λ_r, hard-wall
@@ -223,7 +223,7 @@ def main(argv=None):
     parser.add_argument("--seeds", type=int, default=4, help="seeds per case (full mode)")
     parser.add_argument("--tol", type=float, default=TOL, help="solver tolerance")
     parser.add_argument("--series", nargs="+", choices=SERIES, default=list(SERIES), help="series to run")
-    args, provenance = parse_arguments(parser, argv, "python experiments/contact_area_coefficient.py")
+    args, provenance = parse_arguments(parser, argv, "python studies/contact_area_coefficient.py")
     output = output_directory(args.output)
     import matplotlib
     matplotlib.use("Agg")

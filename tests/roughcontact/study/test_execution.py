@@ -72,12 +72,13 @@ def test_interrupted_pool_keeps_finished_tasks_and_resume_solves_the_rest(tiny, 
     assert numbers(resumed) == numbers(tiny_result)
 
 
+@pytest.mark.slow
 def test_the_pool_ends_with_a_killed_client(tmp_path):
     psutil = pytest.importorskip("psutil")
     script = tmp_path / "study.py"
     script.write_text(textwrap.dedent(f"""\
         import sys
-        sys.path[:0] = [{str(Path(__file__).parents[2])!r}, {str(Path(__file__).parent)!r}]
+        sys.path[:0] = [{str(Path(__file__).parents[3])!r}, {str(Path(__file__).parent)!r}]
         from study_scenes import TINY
         from roughcontact.study.run import run_study
         from roughcontact.study.scene import load_scene

@@ -1,7 +1,7 @@
 """The coupled path (roughcontact.study.coupled) against the fully resolved patches of the fingerpad study (a script).
 
-    python experiments/scale_coupling.py --preset standard --realisations 3     # docs/equivalent_gap.md
-    python experiments/scale_coupling.py --fast                                  # 32² patches, 100 V, seconds
+    python studies/scale_coupling.py --preset standard --realisations 3     # docs/equivalent_gap.md
+    python studies/scale_coupling.py --fast                                  # 32² patches, 100 V, seconds
 
 (from the repository root after ``pip install -e .``). The default scene at 0.5 and 2 N and the voltages given,
 for each realisation r and voltage U: the resolved task (``roughcontact.study.solve_chain``: ridges and
@@ -152,7 +152,7 @@ def main(argv=None):
     parser.add_argument("--shared-law", action="store_true",
                         help="also one law per voltage from a two-period micro patch, for every realisation")
     parser.add_argument("--output", default="out", help="output directory (its parent must exist)")
-    args, provenance = parse_arguments(parser, argv, "python experiments/scale_coupling.py")
+    args, provenance = parse_arguments(parser, argv, "python studies/scale_coupling.py")
     output = output_directory(args.output)
     voltages = args.voltages or ([100.0] if args.fast else [0.0, 100.0, 200.0])   # a 0 V law costs most
     voltages = ", ".join(str(v) for v in voltages)

@@ -1,4 +1,4 @@
-"""The robustness study (experiments/solver_robustness.py) runs in fast mode; every variant converges and
+"""The robustness study (studies/solver_robustness.py) runs in fast mode; every variant converges and
 agrees with the reference solve."""
 import pytest
 

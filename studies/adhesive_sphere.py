@@ -1,7 +1,7 @@
 """Pull-off of an adhesive sphere under load control against Maugis–Dugdale, across the DMT–JKR transition.
 
-    python experiments/adhesive_sphere.py                        # λ = 0.1 … 3 on 128², 256², 512²
-    python experiments/adhesive_sphere.py --fast                 # λ = 0.3 on 64², 128²: seconds
+    python studies/adhesive_sphere.py                        # λ = 0.1 … 3 on 128², 256², 512²
+    python studies/adhesive_sphere.py --fast                 # λ = 0.3 on 64², 128²: seconds
 
 A paraboloid h = −r²/(2R) (R = 1 m, E* = 1 Pa, w = 1e-3 J/m²: the units are arbitrary) in a periodic cell of side
 ``--cell`` (6.6 JKR zero-load contact radii by default), the Dugdale law (``MaugisDugdale``) with σ0 set by
@@ -73,7 +73,7 @@ def main(argv=None):
     parser.add_argument("--cell", type=float, default=1.6, help="cell side [m] (R = 1 m)")
     parser.add_argument("--fast", action="store_true", help="λ = 0.3 on 64² and 128² (the test's case)")
     parser.add_argument("--output", default="out", help="directory for adhesive_sphere.csv")
-    args, provenance = parse_arguments(parser, argv, "experiments/adhesive_sphere.py")
+    args, provenance = parse_arguments(parser, argv, "studies/adhesive_sphere.py")
     if args.fast:
         args.lambdas, args.sizes = [0.3], [64, 128]
     table = rows(args.lambdas, args.sizes, args.cell)

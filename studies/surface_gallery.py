@@ -1,7 +1,7 @@
 """Gallery of synthetic surfaces: the five fingerprint classes and self-affine roughness at several Hurst
 exponents, each with its PSD (PNG), plus their measured statistics (CSV).
 
-    python experiments/surface_gallery.py [--fast] [--output DIR]   # after pip install -e .
+    python studies/surface_gallery.py [--fast] [--output DIR]   # after pip install -e .
 
 Writes ``fingerprint_classes.png`` (height maps with cores ● and deltas ▲, and PSDs with the requested
 ridge wavenumber), ``fingerprint_detail.png`` (a 3 mm zoom: minutiae, pores, a cross-section),
@@ -132,7 +132,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--fast", action="store_true", help="small grids (seconds)")
     parser.add_argument("--output", default="out", help="output directory (its parent must exist)")
-    args, provenance = parse_arguments(parser, argv, "python experiments/surface_gallery.py")
+    args, provenance = parse_arguments(parser, argv, "python studies/surface_gallery.py")
     output = output_directory(args.output)
     import matplotlib
     matplotlib.use("Agg")

@@ -1,7 +1,7 @@
 """Benchmark of the surface generators: wall time and peak memory (a script, not a test).
 
-    python experiments/bench_surfaces.py            # self-affine 4096², fingerprint 2048²
-    python experiments/bench_surfaces.py --fast     # 512² (a quick check that the script runs)
+    python studies/bench_surfaces.py            # self-affine 4096², fingerprint 2048²
+    python studies/bench_surfaces.py --fast     # 512² (a quick check that the script runs)
 
 (run from the repository root after ``pip install -e .``).
 

@@ -23,10 +23,11 @@ def rough():
     return field, half, solve_contact(field, half, mean_pressure=0.02 * E_STAR * SLOPE, tol=1e-9)
 
 
+@pytest.mark.slow
 def test_small_load_area_coefficient():
     """A/A0 = κ p̄/(E* h'_rms) at small load with κ in issue 4's band [1.6, 2.3] (Hyun et al. 2004: κ ≈ 2).
 
-    docs/contact_area.md (experiments/contact_area_coefficient.py): pixel counting adds a perimeter term that
+    docs/contact_area.md (studies/contact_area_coefficient.py): pixel counting adds a perimeter term that
     falls as Δx/λ_s (Yastrebov et al. 2017), κ falls slowly with the breadth λ_r/λ_s, and one surface with 16
     roll-off cells scatters by ±0.11 (16 seeds), so a resolved, broad case averaged over seeds is tested:
     λ_s = 16 px, λ_r = 16 λ_s = L/4, p̄ = 0.01 E* h', seeds 0–3: κ = 2.40, 2.26, 2.29, 1.99, mean 2.24
@@ -75,8 +76,12 @@ def test_area_coefficient_falls_with_resolution_of_short_cutoff():
 def test_physics_consistency(rough):
     field, half, result = rough
     assert result.converged and result.mean_pressure == pytest.approx(0.02 * E_STAR * SLOPE, rel=1e-12)
-    assert (result.pressure >= 0).all() and (result.gap >= 0).all()
-    assert np.all(result.pressure * result.gap == 0) and np.all(result.gap[result.contact] == 0)
+    # complementarity on the raw gap s − h + u (result.gap is clipped and zeroed under pressure: no test), and
+    # the same check fails on the same problem stopped after two steps
+    check_contact_state(field, result)
+    unconverged = solve_contact(field, half, mean_pressure=result.mean_pressure, maxiter=2, warn=False)
+    with pytest.raises(AssertionError, match="complementarity|interpenetration"):
+        check_contact_state(field, unconverged)
     # u = K p exactly (recomputed at the end), periodic: <u> = 0, so <g> = s − <h> (to the solver tolerance)
     np.testing.assert_allclose(result.displacement, half.displacement(result.pressure), rtol=0,
                                atol=1e-12 * np.abs(result.displacement).max())

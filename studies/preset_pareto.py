@@ -1,9 +1,9 @@
 """Speed against accuracy of the study's settings: errors of d_eq, A_R and F_T against the reference setting
 versus CPU cost, the Pareto front, and the measured table behind the presets (``docs/presets.md``).
 
-    python experiments/preset_pareto.py --output /tmp/pareto-out            # the table of docs/presets.md
-    python experiments/preset_pareto.py --output /tmp/pareto-out --library   # also roughcontact/study/preset_errors.csv
-    python experiments/preset_pareto.py --fast --output out                 # 32² patches, seconds
+    python studies/preset_pareto.py --output /tmp/pareto-out            # the table of docs/presets.md
+    python studies/preset_pareto.py --output /tmp/pareto-out --library   # also roughcontact/study/preset_errors.csv
+    python studies/preset_pareto.py --fast --output out                 # 32² patches, seconds
 
 Scenes: the default scene (the presets are chosen on it) and two variants that are not used to choose them,
 ``rough`` (roughness rms 5 µm, seed 1000) and ``smooth`` (rms 1 µm, seed 2000); each at F_N = 0.5, 2 N and
@@ -334,7 +334,7 @@ def main(argv=None):
     parser.add_argument("--fast", action="store_true", help="32² against 48², two realisations: a test that it runs")
     parser.add_argument("--library", action="store_true",
                         help=f"also write the per-setting table into the library ({TABLE_PATH.name})")
-    args, provenance = parse_arguments(parser, argv, "experiments/preset_pareto.py")
+    args, provenance = parse_arguments(parser, argv, "studies/preset_pareto.py")
     output = output_directory(args.output)
     runs = output / "runs"
     runs.mkdir(exist_ok=True)

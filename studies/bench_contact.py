@@ -1,8 +1,8 @@
 """Peer benchmark of the FFT contact solver against the FFT floor, Tamaas and ContactMechanics (a script).
 
-    python experiments/bench_contact.py                          # 256² … 2048², peers if importable
-    python experiments/bench_contact.py --sizes 256 512 --threads 1 --output out
-    python experiments/bench_contact.py --fast                   # tiny grids, no peers, seconds
+    python studies/bench_contact.py                          # 256² … 2048², peers if importable
+    python studies/bench_contact.py --sizes 256 512 --threads 1 --output out
+    python studies/bench_contact.py --fast                   # tiny grids, no peers, seconds
 
 (from the repository root after ``pip install -e .[bench]``). All numbers come from one run on one machine;
 see ``docs/benchmarks.md`` for the method, the peer conventions and measured values. Writes, into
@@ -385,7 +385,7 @@ def main(argv=None):
     parser.add_argument("--peers", nargs="+", choices=list(PEERS), default=list(PEERS), help="peers to run")
     parser.add_argument("--wisdom", help="FFTW wisdom file: imported if it exists, saved at the end, so that "
                                          "repeated runs use the same FFT plans (see docs/benchmarks.md)")
-    args, provenance = parse_arguments(parser, argv, "python experiments/bench_contact.py")
+    args, provenance = parse_arguments(parser, argv, "python studies/bench_contact.py")
     output = output_directory(args.output)
     if args.fast:
         args.sizes, args.sweep_size, args.repeat, args.solve_repeat, args.no_peers = [32, 64], 32, 2, 1, True
