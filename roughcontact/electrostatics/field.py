@@ -40,7 +40,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
-from scipy import sparse
 
 from surfaces import Grid, HeightField
 from surfaces.validation import check_choice, check_finite_array, check_integer, check_real
@@ -89,7 +88,7 @@ class StackField:
         self._fft = make_backend(backend, self.padded_grid.shape, threads=threads)
         self._buffer = self._fft.empty()
         self._window = tuple(slice(0, n) for n in grid.shape)
-        self._differences = _slope_operators(grid) if self.model == "layered" else ()
+        self._stencil = _stencil(grid, enabled=self.model == "layered")
         self.residual = None
 
     @property
@@ -110,27 +109,24 @@ class StackField:
         out[...] = self._buffer[self._window]
         return out
 
-    def _slope_factor(self, gap: np.ndarray) -> np.ndarray:
+    def slope_factor(self, gap: np.ndarray) -> np.ndarray:
         """1 + |∇g|²/3 per pixel (central differences; one-sided at a free window's edges); 1 for the plate."""
-        factor = np.ones(gap.size)
-        for difference in self._differences:
-            factor += (difference @ gap.reshape(-1)) ** 2 / 3
-        return factor.reshape(gap.shape)
+        factor = np.empty(gap.shape)
+        _slope_factor_into(np.ascontiguousarray(gap, dtype=float), self._stencil, factor)
+        return factor
 
-    def column_elastance(self, gap: np.ndarray) -> np.ndarray:
+    def column_elastance(self, gap: np.ndarray, factor=None) -> np.ndarray:
         """R = g / (ε0 eps_a (1 + |∇g|²/3)) [m²/F] per pixel: the air column's voltage per unit flux."""
-        return gap / (EPSILON_0 * self.stack.eps_a * self._slope_factor(gap))
+        return gap / (EPSILON_0 * self.stack.eps_a * (self.slope_factor(gap) if factor is None else factor))
 
-    def attraction(self, gap: np.ndarray, unit_flux: np.ndarray) -> np.ndarray:
+    def attraction(self, gap: np.ndarray, unit_flux: np.ndarray, factor=None) -> np.ndarray:
         """σ_el / U² = ½ Σ_k D₁,k² ∂R_k/∂g [Pa/V²] per pixel: the virtual work of opening the gap at each pixel
-        at fixed voltage, for the unit-voltage flux D₁ of ``gap``."""
-        permittivity = EPSILON_0 * self.stack.eps_a
-        factor = self._slope_factor(gap)
-        pressure = unit_flux ** 2 / (2 * permittivity * factor)
-        weight = (-unit_flux ** 2 * gap / (3 * permittivity * factor ** 2)).reshape(-1)
-        for difference in self._differences:          # through the slopes of the neighbours: Aᵀ (A g · w)
-            pressure += (difference.T @ ((difference @ gap.reshape(-1)) * weight)).reshape(gap.shape)
-        return pressure
+        at fixed voltage, for the unit-voltage flux D₁ of ``gap`` (``factor``: its slope factor, if known)."""
+        out = np.empty(gap.shape)
+        _attraction_into(np.ascontiguousarray(gap, dtype=float), np.ascontiguousarray(unit_flux),
+                         self.slope_factor(gap) if factor is None else factor, self._stencil,
+                         EPSILON_0 * self.stack.eps_a, out)
+        return out
 
     def solve(self, gap, initial=None, tol: float = DEFAULT_TOL, maxiter=None) -> tuple:
         """The unit-voltage flux D₁ [C/m²/V] with (M + R) D₁ = 1 on the window, by Jacobi-preconditioned CG.
@@ -171,24 +167,51 @@ class StackField:
         return flux, iterations, float(np.sqrt(rr / column.size))
 
 
-def _slope_operators(grid: Grid) -> tuple:
-    """The central-difference operators ∂/∂x, ∂/∂y on the flattened window (sparse; periodic axes wrap, a free
-    axis takes one-sided differences at its ends); none along an axis of one pixel."""
-    operators = []
-    for axis, (n, spacing, periodic) in enumerate(zip(grid.shape, grid.spacing, grid.periodic)):
-        if n < 3:
-            continue
+def _stencil(grid: Grid, enabled: bool) -> tuple:
+    """The central differences of the slope factor per axis: (ahead, behind) neighbour indices and 1/width [1/m]
+    (periodic axes wrap, a free axis takes one-sided differences at its ends); an axis of at most two pixels,
+    or ``enabled`` false, has 1/width = 0 (no slope)."""
+    stencil = []
+    for n, spacing, periodic in zip(grid.shape, grid.spacing, grid.periodic):
         index = np.arange(n)
         ahead, behind = (index + 1) % n, (index - 1) % n
-        width = np.full(n, 2 * spacing)
         if not periodic:
             ahead[-1], behind[0] = n - 1, 0
-            width[[0, -1]] = spacing
-        one_d = sparse.csr_matrix((np.concatenate([1 / width, -1 / width]),
-                                   (np.concatenate([index, index]), np.concatenate([ahead, behind]))), shape=(n, n))
-        eye = sparse.identity(grid.shape[1 - axis], format="csr")
-        operators.append((sparse.kron(one_d, eye) if axis == 0 else sparse.kron(eye, one_d)).tocsr())
-    return tuple(operators)
+        inverse_width = 1.0 / ((ahead - behind) % n * spacing) if n > 2 and enabled else np.zeros(n)
+        stencil += [ahead, behind, inverse_width]
+    return tuple(stencil)
+
+
+@njit(cache=True)
+def _slope_factor_into(gap, stencil, factor):
+    """factor ← 1 + |∇g|²/3 by the central differences of ``stencil`` (:func:`_stencil`)."""
+    ahead_x, behind_x, inverse_x, ahead_y, behind_y, inverse_y = stencil
+    nx, ny = gap.shape
+    for i in range(nx):
+        for j in range(ny):
+            slope_x = (gap[ahead_x[i], j] - gap[behind_x[i], j]) * inverse_x[i]
+            slope_y = (gap[i, ahead_y[j]] - gap[i, behind_y[j]]) * inverse_y[j]
+            factor[i, j] = 1.0 + (slope_x * slope_x + slope_y * slope_y) / 3.0
+
+
+@njit(cache=True)
+def _attraction_into(gap, flux, factor, stencil, permittivity, out):
+    """out ← ½ Σ_k D_k² ∂R_k/∂g per pixel for R = g/(permittivity · factor): the column's own D²/(2 ε f) and,
+    through the neighbours' slopes, Aᵀ(w A g) with w = −D² g/(3 ε f²) (A the central differences)."""
+    ahead_x, behind_x, inverse_x, ahead_y, behind_y, inverse_y = stencil
+    nx, ny = gap.shape
+    for i in range(nx):
+        for j in range(ny):
+            out[i, j] = flux[i, j] ** 2 / (2.0 * permittivity * factor[i, j])
+    for i in range(nx):
+        for j in range(ny):
+            weight = -flux[i, j] ** 2 * gap[i, j] / (3.0 * permittivity * factor[i, j] ** 2)
+            value = weight * (gap[ahead_x[i], j] - gap[behind_x[i], j]) * inverse_x[i] * inverse_x[i]
+            out[ahead_x[i], j] += value
+            out[behind_x[i], j] -= value
+            value = weight * (gap[i, ahead_y[j]] - gap[i, behind_y[j]]) * inverse_y[j] * inverse_y[j]
+            out[i, ahead_y[j]] += value
+            out[i, behind_y[j]] -= value
 
 
 @njit(cache=True)
@@ -344,19 +367,20 @@ class FieldLaw:
         self.fft_pairs = 0                     # over all evaluations: one per CG iteration and per start
         self.evaluations = 0
 
-    def evaluate(self, gap, traction, stiffness, flux, start=None) -> float:
-        """traction, stiffness, flux (grid-shaped) ← the law at ``gap``; returns Σ V [J/m² per pixel, summed].
+    def evaluate(self, gap, traction, stiffness, flux, columns, start=None) -> float:
+        """traction, stiffness, the unit-voltage flux and the column elastance (grid-shaped) ← the law at
+        ``gap``; returns Σ V [J/m² per pixel, summed].
 
-        ``start``: (gap, flux) of a nearby evaluation, whose flux starts the field solve."""
+        ``start``: (columns, flux) of a nearby evaluation, whose flux starts the field solve."""
         field = self.field
-        column = field.column_elastance(gap)
+        factor = field.slope_factor(gap)
+        column = field.column_elastance(gap, factor)
         initial = None
         if start is not None:
             # the start's flux, each column updated to first order: δD ≈ −δR D / (M_ii + R_ii) (exact for an
             # isolated open pixel)
-            start_gap, start_flux = start
-            initial = start_flux * (field.pixel_elastance + field.column_elastance(start_gap)) / (
-                field.pixel_elastance + column)
+            start_column, start_flux = start
+            initial = start_flux * (field.pixel_elastance + start_column) / (field.pixel_elastance + column)
         unit_flux, iterations, residual = field.solve_columns(column, initial=initial, tol=self.tol)
         if residual > self.tol:
             raise FloatingPointError(f"the field solve stalled at relative residual {residual:.3g} "
@@ -365,8 +389,9 @@ class FieldLaw:
         self.evaluations += 1
         squared_voltage = self.voltage ** 2
         flux[...] = unit_flux
-        traction[...] = -squared_voltage * field.attraction(gap, unit_flux)
+        columns[...] = column
+        traction[...] = -squared_voltage * field.attraction(gap, unit_flux, factor)
         stiffness[...] = squared_voltage * unit_flux ** 2 / (
-            (EPSILON_0 * field.stack.eps_a * field._slope_factor(gap)) ** 2 * (field.pixel_elastance + column))
+            (EPSILON_0 * field.stack.eps_a * factor) ** 2 * (field.pixel_elastance + column))
         # Φ = U² (−½⟨D₁⟩ − ½⟨D₁ ρ₁⟩) with ρ₁ = 1 − (M + R) D₁ the residual of the unit-voltage solve
         return float(-0.5 * squared_voltage * (np.sum(unit_flux) + np.vdot(unit_flux, self.field.residual)))
