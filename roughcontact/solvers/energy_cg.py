@@ -497,8 +497,8 @@ class _Solver:
         self.pel_field, self.trial_field, self.work, self.z_field, self.w_field = (body.empty() for _ in range(5))
         self.d, self.r, self.r_prev = np.zeros(n, dtype), np.zeros(n, dtype), np.zeros(n, dtype)
         self.free = np.zeros(n, np.bool_)
-        self.law_now = [np.zeros(n, dtype) for _ in range(3)]     # p_int, k at g (and the layered law's flux)
-        self.law_trial = [np.zeros(n, dtype) for _ in range(3)]   # the same at the trial gap
+        self.law_now = [np.zeros(n, dtype) for _ in range(4)]     # p_int, k at g (the layered law: flux, R)
+        self.law_trial = [np.zeros(n, dtype) for _ in range(4)]   # the same at the trial gap
         self.window_view = tuple(slice(0, m) for m in grid.shape)  # the grid in the corner of the body's fields
         self.field = None                                          # the layered law, evaluated by field solves
         if isinstance(law, ElectrostaticInteraction) and not law.local:
@@ -526,12 +526,10 @@ class _Solver:
         """The layered law's traction, stiffness and flux at ``gap`` into ``arrays`` (window only), warm-started
         from the accepted gap's flux; returns Σ V."""
         shape, inside = self.pel_field.shape, self.window_view
-        traction, stiffness, flux = (array.reshape(shape) for array in arrays)
-        start = (self.g.reshape(shape)[inside], self.law_now[2].reshape(shape)[inside]) \
+        traction, stiffness, flux, columns = (array.reshape(shape)[inside] for array in arrays)
+        start = tuple(array.reshape(shape)[inside] for array in self.law_now[3:1:-1]) \
             if self.field.evaluations else None
-        energy_sum = self.field.evaluate(gap.reshape(shape)[inside], traction[inside], stiffness[inside],
-                                         flux[inside], start=start)
-        return energy_sum
+        return self.field.evaluate(gap.reshape(shape)[inside], traction, stiffness, flux, columns, start=start)
 
     def run(self, tol, maxiter, callback, warn, half, heights, control, requested, start_kind, start):
         energy, body, n = self.energy, self.body, self.n

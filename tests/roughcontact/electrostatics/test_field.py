@@ -42,34 +42,34 @@ def test_parallel_plate_is_eq21_pixel_by_pixel():
 @pytest.mark.parametrize("wavelength", [20e-6, 450e-6])
 @pytest.mark.parametrize("mean_gap", [0.5e-6, 2e-6])
 def test_sinusoid_against_the_models_perturbation_series(wavelength, mean_gap):
-    # g = g0 + a cos(qx): (M + R) D = U expanded in a. With r = g/(ε0 ε_a) = r0 + r1 cos(qx) and m0, m_q the
-    # elastance of the modes 0 and q: D0 = U/(m0 + r0), D1 = −r1 D0/(m_q + r0), and the mean of the second order
-    # D2 = −r1 D1/(2 (m0 + r0)). The mean attraction <D²>/(2 ε0 ε_a) = (D0² + 2 D0 D2 + D1²/2)/(2 ε0 ε_a) + O(a⁴).
-    # This closed form tests the FFT multiplier, its normalisation and the CG solve on one mode; at a/g0 = 1e-3
-    # the O(a⁴) rest is 1e-6 of the a² term, the tolerance 1e-4 of it.
+    # g = g0 + a cos(qx): (M + R) D = U expanded in a. With r = g/(ε0 ε_a (1 + s²/3)), s = −a k sin(qx) the
+    # central difference of the sinusoid (k = sin(q Δx)/Δx), r = r0 + r1 cos(qx) + r2 with ⟨r2⟩ = −r0 a² k²/6;
+    # m0, m_q the elastance of the modes 0 and q: D0 = U/(m0 + r0), D1 = −r1 D0/(m_q + r0), and the mean of the
+    # second order ⟨D2⟩ = −(r1 D1/2 + ⟨r2⟩ D0)/(m0 + r0). This closed form tests the FFT multiplier, its
+    # normalisation, the slope factor and the CG solve on one mode; at a/g0 = 1e-3 the O(a⁴) rest is 1e-6 of
+    # the a² term, the tolerance 1e-4 of it. The mean attraction is the energy's derivative (next tests).
     n, amplitude, voltage = 64, 1e-3 * mean_gap, 100.0
     x = np.arange(n) * wavelength / n
     q = 2 * np.pi / wavelength
+    slope = np.sin(q * wavelength / n) / (wavelength / n)
     solution = solve_field(STACK, mean_gap + amplitude * np.cos(q * x), wavelength, voltage)
     m0 = STACK.dielectric_offset / EPSILON_0
     mq = (np.tanh(q * STACK.d_sc) / (STACK.eps_sc * q) + np.tanh(q * STACK.d_i) / (STACK.eps_i * q)) / EPSILON_0
     r0, r1 = mean_gap / (EPSILON_0 * STACK.eps_a), amplitude / (EPSILON_0 * STACK.eps_a)
     d0 = voltage / (m0 + r0)
     d1 = -r1 * d0 / (mq + r0)
-    d2 = -r1 * d1 / (2 * (m0 + r0))
-    second_order = (2 * d0 * d2 + d1 ** 2 / 2) / (2 * EPSILON_0 * STACK.eps_a)
-    uniform = d0 ** 2 / (2 * EPSILON_0 * STACK.eps_a)
-    assert (solution.mean_pressure - uniform) == pytest.approx(second_order, rel=1e-4)
+    d2 = -(r1 * d1 / 2 - r0 * (amplitude * slope) ** 2 / 6 * d0) / (m0 + r0)
+    assert np.mean(solution.flux) - d0 == pytest.approx(d2, rel=1e-4)
     # the layered response differs from the per-pixel one (m_q < m0): the test distinguishes the two models
-    per_pixel = (solve_field(STACK, mean_gap + amplitude * np.cos(q * x), wavelength, voltage,
-                             model="parallel_plate").mean_pressure - uniform)
-    assert abs(per_pixel / second_order - 1) > 1e-2
+    per_pixel = solve_field(STACK, mean_gap + amplitude * np.cos(q * x), wavelength, voltage, model="parallel_plate")
+    assert abs((np.mean(per_pixel.flux) - d0) / d2 - 1) > 1e-2
 
 
 def test_long_wavelengths_and_bare_electrodes_recover_the_parallel_plate():
     # Two limits in which the columns decouple: wavelengths far above d_sc (M -> c/ε0, relative difference
     # O((q d_sc)²) = 1e-3 here), and a stack without solid layers' lateral response (a vanishing insulator
-    # and an almost conducting stratum corneum: M -> 0, so D = U/R column by column).
+    # and an almost conducting stratum corneum: M -> 0, so D = U/R column by column, the derivative expansion
+    # ε0 U (1 + |∇g|²/3)/g of bare conductors).
     rng = np.random.default_rng(2)
     gap = rough_gap((64, 1), rng, contact=0.0) + 1e-6
     wide = 2 * np.pi * STACK.d_sc / 0.03                  # q d_sc = 0.03 at the fundamental
@@ -77,8 +77,9 @@ def test_long_wavelengths_and_bare_electrodes_recover_the_parallel_plate():
     plate = solve_field(STACK, gap[:, 0], wide, 100.0, model="parallel_plate").mean_pressure
     assert layered == pytest.approx(plate, rel=2e-3)
     bare = DielectricStack(d_sc=1e-9, eps_sc=1e6, d_i=1e-12, eps_i=1.0)
-    layered = solve_field(bare, gap[:, 0], 1e-4, 100.0).pressure
-    assert np.allclose(layered, EPSILON_0 * 100.0 ** 2 / (2 * gap[:, 0] ** 2), rtol=1e-5)
+    flux = solve_field(bare, gap[:, 0], 1e-4, 100.0).flux
+    slope = (np.roll(gap[:, 0], -1) - np.roll(gap[:, 0], 1)) / (2 * 1e-4 / gap.shape[0])
+    assert np.allclose(flux, EPSILON_0 * 100.0 * (1 + slope ** 2 / 3) / gap[:, 0], rtol=1e-5)
 
 
 @pytest.mark.parametrize("periodic", [True, False])
