@@ -14,6 +14,19 @@ os.environ.setdefault("ROUGHCONTACT_FFT_THREADS", "1")
 STUDIES = Path(__file__).resolve().parents[1] / "studies"
 
 
+@pytest.fixture(scope="session", autouse=True)
+def wisdom_cache(tmp_path_factory):
+    """The FFTW wisdom cache of the session: a fresh directory, not the user's ``~/.cache/roughcontact``, whose
+    plans (from any earlier run) would decide whether a test's measured plan adds wisdom."""
+    path = tmp_path_factory.mktemp("fftw-wisdom")
+    previous, os.environ["ROUGHCONTACT_CACHE"] = os.environ.get("ROUGHCONTACT_CACHE"), str(path)
+    yield path
+    if previous is None:
+        del os.environ["ROUGHCONTACT_CACHE"]
+    else:
+        os.environ["ROUGHCONTACT_CACHE"] = previous
+
+
 @pytest.fixture(scope="session")
 def load_experiment():
     """``load_experiment(name)`` imports the script ``studies/<name>.py`` as the module ``name``, registered in
