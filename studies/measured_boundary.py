@@ -34,7 +34,7 @@ from surfaces import Grid, HeightField, self_affine
 from surfaces.topography import read_topography, to_topography
 from roughcontact import ElasticHalfSpace, solve_contact
 from roughcontact.electrostatics import DielectricStack
-from roughcontact.provenance import output_directory, parse_arguments, write_csv
+from roughcontact.io import output_directory, parse_arguments, write_csv
 
 VARIANTS = ("inside", "free", "periodic", "mirrored")
 COLUMNS = ("window", "variant", "d_eq", "contact_fraction", "d_eq_error", "contact_fraction_error", "seconds")

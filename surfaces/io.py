@@ -11,6 +11,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .validation import check_real
+
 _METADATA_KEY = "__metadata_json__"
 _TUPLE_TAG = "__tuple__"          # JSON has no tuple: {"__tuple__": [...]} keeps one apart from a list
 
@@ -72,7 +74,6 @@ def length_unit(name: str, unit) -> float:
             raise ValueError(f"{name} = {unit!r} is not a known length unit; valid: a positive factor to metres "
                              f"or one of {', '.join(repr(u) for u in LENGTH_UNITS)}")
         return LENGTH_UNITS[unit]
-    from .validation import check_real
     return check_real(name, unit, low=0.0, low_open=True)
 
 

@@ -1,24 +1,15 @@
 """The measured-boundary study (studies/measured_boundary.py) runs in fast mode: a window that is itself the
 whole periodic surface, declared periodic, reproduces the reference solve; cut windows give one row per window
 and variant with errors that are those of the written values."""
-import importlib.util
-import sys
-from pathlib import Path
-
 import numpy as np
 import pytest
 
 pytest.importorskip("SurfaceTopography", reason="the study reads its windows back through SurfaceTopography")
-SCRIPT = Path(__file__).resolve().parents[2] / "studies" / "measured_boundary.py"
 
 
 @pytest.fixture(scope="module")
-def study():
-    spec = importlib.util.spec_from_file_location("measured_boundary", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules["measured_boundary"] = module
-    spec.loader.exec_module(module)
-    return module
+def study(load_experiment):
+    return load_experiment("measured_boundary")
 
 
 def test_the_whole_periodic_surface_declared_periodic_is_the_reference(study, tmp_path, read_csv):
