@@ -1,6 +1,6 @@
 """Cost of electroadhesive contact against the hard wall, and of a voltage continuation against cold solves.
 
-    python studies/bench_interactions.py                     # 256² and 512², the table of docs/interactions.md
+    python studies/bench_interactions.py                     # 256² and 512², the table of docs/guide/interactions.md
     python studies/bench_interactions.py --sizes 1024 --output out
     python studies/bench_interactions.py --fast              # 64², seconds
 

@@ -5,7 +5,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-PAGES = ["README.md", "docs/architecture.md", "docs/interactions.md", "docs/electrostatics.md"]
+PAGES = ["README.md", "docs/guide/architecture.md", "docs/guide/interactions.md", "docs/guide/electrostatics.md"]
 BLOCK = re.compile(r"^```python\n(.*?)^```", re.MULTILINE | re.DOTALL)
 
 
@@ -24,8 +24,8 @@ def test_python_blocks_run(page, capsys):
 
 
 def test_architecture_page_covers_the_data_path_and_is_linked():
-    text = (ROOT / "docs/architecture.md").read_text()
+    text = (ROOT / "docs/guide/architecture.md").read_text()
     steps = re.findall(r"^## \d\. (\w+)", text, re.MULTILINE)
     assert steps == ["Surface", "Elastic", "Interaction", "Solve", "Result", "Study", "Friction"]
-    assert len(python_blocks("docs/architecture.md")) == len(steps)
-    assert "docs/architecture.md" in (ROOT / "README.md").read_text()
+    assert len(python_blocks("docs/guide/architecture.md")) == len(steps)
+    assert "docs/guide/architecture.md" in (ROOT / "README.md").read_text()
