@@ -517,9 +517,10 @@ def fingerprint(grid: Grid, pattern: str = "left_loop", ridge_period=RIDGE_PERIO
                 pore_density: float = PORE_DENSITY, pore_diameter: float = PORE_DIAMETER,
                 pore_depth: float = PORE_DEPTH, cores=None, deltas=None, rotation: float = 0.0, rng=None,
                 workers: int = -1) -> HeightField:
-    """Synthetic fingerprint height field [m], zero mean, crests towards the counter-face.
+    """Synthetic fingerprint height field [m], zero mean, crests towards the counter-face (SI units; defaults
+    and sources in ``docs/guide/fingerprint.md``).
 
-    Parameters (SI; defaults and sources in ``docs/guide/fingerprint.md``)
+    Parameters
     ----------
     pattern : ``"arch"``, ``"tented_arch"``, ``"left_loop"`` (alias ``"loop"``), ``"right_loop"``, ``"whorl"``.
     ridge_period : ridge-to-ridge distance [m] (default 0.45 mm), scalar or map of ``grid.shape`` (smooth).
@@ -529,8 +530,11 @@ def fingerprint(grid: Grid, pattern: str = "left_loop", ridge_period=RIDGE_PERIO
     pore_diameter, pore_depth : opening diameter (default 120 µm) and depth (default 20 µm) of the dimples [m].
     cores, deltas, rotation : singular points (x, y) [m] and θ∞ [rad]; see :func:`ridge_pattern`.
     rng : None, int seed or ``numpy.random.Generator`` (an int seed, or the fresh one drawn for None, is
-        stored in the metadata). workers : FFT threads for ``scipy.fft`` (−1 = all cores).
+        stored in the metadata).
+    workers : FFT threads for ``scipy.fft`` (−1 = all cores).
 
+    Notes
+    -----
     The metadata records all parameters, the singular points and the pore centres [m]. On a periodic grid
     the ridges are continuous across the boundary and the orientation field is blended with its periodic
     image over a band of three ridge periods at each edge (see :meth:`RidgePattern.orientation`).

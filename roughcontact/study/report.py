@@ -1,5 +1,5 @@
 """Results of a fingerpad study on disk: netCDF, CSV, PNG and report.md, with the seed's friction law fed
-bottom-up (:mod:`.friction`).
+bottom-up (:mod:`roughcontact.study.friction`).
 
 :func:`write_results` writes ``results.nc`` (xarray + h5netcdf, the ``io`` dependencies; skipped
 with a message when missing), the CSV tables, the PNG figures and ``report.md`` into a results directory.

@@ -256,7 +256,7 @@ class _Section:
 class Fingerpad(_Section):
     """Apparent contact: ``model`` "power_law" (A0 = area_prefactor F_N^area_exponent [m²], uniform nominal
     pressure) or "fingertip" (Hertz cap of ``radius`` [m] on tissue of ``E_star`` [Pa]; with ``layer`` the cap
-    pressed onto the skin's layer on that tissue, solved on ``layer_grid``² pixels)."""
+    pressed onto the skin's layer on that tissue, solved on ``layer_grid`` × ``layer_grid`` pixels)."""
     section = "fingerpad"
     model: str = _field(_Choice(("power_law", "fingertip")))
     area_prefactor: float = _field(_Real(0.0, low_open=True))
