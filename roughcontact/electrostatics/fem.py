@@ -32,6 +32,10 @@ from surfaces.validation import (check_choice, check_finite_array, check_integer
 from .stack import EPSILON_0, DielectricStack
 
 
+#: Gaps up to this fraction of the air-equivalent offset eps_a c are contact (merged air rows).
+CONTACT_GAP = 1e-9
+
+
 @dataclass(frozen=True)
 class ProfileFieldSolution:
     """Field solve over a 1-D gap profile; SI units, per unit depth in y.
@@ -232,11 +236,14 @@ def field_solve_profile(stack: DielectricStack, gap, length: float, voltage: flo
     from skfem.helpers import dot, grad
     from scipy import sparse
 
+    # a gap below 1e-9 of the air-equivalent offset is contact: such a sliver of air (a rounding residue of
+    # g = 0) would make the matrix singular to working precision; σ_el changes by < 2e-9 relative there
+    collapsed = gap <= CONTACT_GAP * stack.eps_a * stack.dielectric_offset
+    gap = np.where(collapsed, 0.0, gap)
     mesh = _build_mesh(stack, gap, length, periodic, insulator_rows, air_rows, sc_rows, sc_first)
     twice_area, grads = _gradients(mesh.points, mesh.triangles)
     degenerate = twice_area == 0
     kept = ~degenerate
-    collapsed = gap == 0
     fe_mesh = MeshTri(mesh.points, mesh.triangles[:, kept], sort_t=False, validate=False)
     basis = Basis(fe_mesh, ElementTriP1())
 

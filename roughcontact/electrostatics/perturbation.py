@@ -106,3 +106,25 @@ def mean_attraction(stack: DielectricStack, mean_gap, amplitude, wavenumber, vol
     amplitude = check_finite_array("amplitude", amplitude, nonnegative=True)
     return stack.pressure(mean_gap, voltage) + amplitude ** 2 * second_order_attraction(
         stack, mean_gap, wavenumber, voltage)
+
+
+def gradient_coefficient(stack: DielectricStack, gap, voltage) -> np.ndarray:
+    """``K(g)`` [J/m²] of the derivative expansion W ≈ ∫ [W0(g) + ½ K(g) g'²] dx, the q² term of W2:
+    ``W2 = W0''/4 + q² K/4 + O(q⁴)``.
+
+    From the mapped energy at q = 0 (``docs/field_check.md``): with e0 = U/h, flux C = -e0/(eps_a h) and the
+    first-order mapped potential P0 piecewise linear, 0 -> p1 = C d_i/eps_i -> p2 = p1 - C c -> 0 (c the
+    dielectric offset),
+    ``K = ε0 [e0² (g/(3 eps_a) + d_sc/eps_sc) + Σ_layers eps d (A² + AB + B²)/3 - 2 e0 (g (p1 + 2 p2)/6
+    + d_sc p2/2)]``. Bare conductors: K = ε0 U²/(3 g), the 1/3 of the electrostatic derivative expansion.
+    """
+    gap = check_finite_array("gap", gap, nonnegative=True)
+    voltage = check_finite_array("voltage", voltage)
+    e0 = voltage / (stack.dielectric_offset + gap / stack.eps_a)
+    flux = -e0 / (stack.eps_a * (stack.dielectric_offset + gap / stack.eps_a))
+    p1 = flux * stack.d_i / stack.eps_i
+    p2 = p1 - flux * stack.dielectric_offset        # = p1 + (e0 + C g)/eps_a without the cancellation
+    stored = (stack.eps_i * stack.d_i * p1 ** 2 + stack.eps_a * gap * (p1 ** 2 + p1 * p2 + p2 ** 2)
+              + stack.eps_sc * stack.d_sc * p2 ** 2) / 3
+    coupling = 2 * e0 * (gap * (p1 + 2 * p2) / 6 + stack.d_sc * p2 / 2)
+    return EPSILON_0 * (e0 ** 2 * (gap / (3 * stack.eps_a) + stack.d_sc / stack.eps_sc) + stored - coupling)
