@@ -44,7 +44,9 @@ class ProfileFieldSolution:
     [Pa] (the virtual work of moving one column of skin nodes, over its tributary width; its width-weighted
     mean is σ̄), ``x`` the column positions [m], ``gap`` the gap at the columns [m], ``energy`` E [J/m],
     ``nodes``, ``elements`` (triangles kept), ``unknowns``, and the solver's ``converged``, ``iterations`` and
-    relative ``residual``.
+    relative ``residual``. ``maxwell_pressure`` [Pa] is the independent air-side Maxwell traction on the
+    skin per interval between columns (the field of the air triangle under it; the zero-area ones at contact
+    take their limiting field), ``mean_maxwell_pressure`` its mean; it converges to σ̄ with the mesh.
     """
 
     mean_pressure: float
@@ -58,6 +60,8 @@ class ProfileFieldSolution:
     converged: bool
     iterations: int
     residual: float
+    maxwell_pressure: np.ndarray
+    mean_maxwell_pressure: float
 
 
 @dataclass(frozen=True)
@@ -171,7 +175,8 @@ def _solve(matrix, rhs, solver, tol, maxiter):
 
 
 def _opening_derivative(mesh, degenerate, potential, residual):
-    """Per column, the one-sided dE/dδ (δ -> 0+) of the zero-area air triangles at collapsed columns.
+    """Per column, the one-sided dE/dδ (δ -> 0+) of the zero-area air triangles at collapsed columns, and
+    the limiting gradient ∇u (degenerate triangles, 2) in them.
 
     For each air row segment of a collapsed column, with G its limiting vertical air field and T the flux
     leaving its upper node group (the sum of the non-degenerate residuals above it), the energy per δ is
@@ -180,7 +185,7 @@ def _opening_derivative(mesh, degenerate, potential, residual):
     rows, points = mesh.rows, mesh.points
     share = np.zeros(mesh.period_columns)
     if not np.any(degenerate):
-        return share
+        return share, np.zeros((0, 2))
     air_bottom, air_count = mesh.air_rows[0], len(mesh.air_rows) - 1
     step = 1.0 / air_count
     bottom, top, third = mesh.triangles[:, degenerate]
@@ -207,7 +212,20 @@ def _opening_derivative(mesh, degenerate, potential, residual):
     shifted = linear[used] - flux[used] * step
     minimum = constant[used] - shifted ** 2 / (4 * quadratic[used])
     np.add.at(share, np.flatnonzero(used) // air_count, minimum)
-    return share
+    vertical = np.zeros(size)
+    vertical[used] = shifted / (2 * quadratic[used])                       # the minimising G
+    return share, np.stack([alpha - beta * vertical[slot], vertical[slot]], axis=1)
+
+
+def _maxwell_pressure(mesh, gradient, eps_air):
+    """Air-side Maxwell traction on the skin per interval between columns [Pa], attractive positive:
+    ``ε0 eps_a [½ (E_z² - E_x²) - E_x E_z g']`` from the top air row's triangle under each interval."""
+    intervals, rows = mesh.columns - 1, mesh.rows
+    top_row = mesh.air_rows[-1] - 1
+    upper = intervals * (rows - 1) + np.arange(intervals) * (rows - 1) + top_row   # (corner, up, right+1)
+    ex, ez = gradient[upper].T
+    slope = np.diff(mesh.points[1, mesh.air_rows[-1]::rows]) / np.diff(mesh.points[0, ::rows])
+    return EPSILON_0 * eps_air * (0.5 * (ez ** 2 - ex ** 2) - ex * ez * slope)
 
 
 def field_solve_profile(stack: DielectricStack, gap, length: float, voltage: float, periodic: bool = True,
@@ -278,7 +296,11 @@ def field_solve_profile(stack: DielectricStack, gap, length: float, voltage: flo
     node_column = (t.T // mesh.rows) % mesh.period_columns
     derivative = np.bincount(node_column.ravel(), (per_vertex * mesh.velocity[t.T]).ravel(),
                              mesh.period_columns)
-    derivative += _opening_derivative(mesh, degenerate, potential, stiffness @ potential)
+    opening, degenerate_gradient = _opening_derivative(mesh, degenerate, potential, stiffness @ potential)
+    derivative += opening
+    gradient = np.zeros((mesh.triangles.shape[1], 2))
+    gradient[kept], gradient[degenerate] = field, degenerate_gradient
+    maxwell = _maxwell_pressure(mesh, gradient, stack.eps_a)
     x = mesh.points[0, ::mesh.rows][:mesh.period_columns]
     width = np.full(mesh.period_columns, spacing)
     if not periodic:
@@ -286,4 +308,5 @@ def field_solve_profile(stack: DielectricStack, gap, length: float, voltage: flo
     return ProfileFieldSolution(mean_pressure=-float(derivative.sum()) / length, pressure=-derivative / width,
                                 x=x, gap=gap.copy(), energy=energy, nodes=int(mesh.points.shape[1]),
                                 elements=int(kept.sum()), unknowns=int(unknowns), converged=bool(converged),
-                                iterations=int(iterations), residual=residual)
+                                iterations=int(iterations), residual=residual, maxwell_pressure=maxwell,
+                                mean_maxwell_pressure=float(maxwell.sum() * spacing / length))

@@ -144,3 +144,21 @@ def test_convergence_on_a_profile_with_contact(field_solve):
     order = np.log2(differences[0] / differences[1])
     assert 1.6 < order < 2.1
     assert abs(differences[1]) < 2e-3 * means[-1]
+
+
+def test_virtual_work_against_air_side_maxwell_stress(field_solve):
+    # the Maxwell traction uses the field inside the top air triangle, O(Δz) away from the skin: its mean
+    # approaches σ̄ at first order in the air rows (measured 9.5e-5, 5.1e-5, 2.6e-5 on the sinusoid; 3.0e-4,
+    # 1.5e-4, 6.8e-5 on the contact profile); uniform gap and full contact agree to rounding
+    wavelength, columns = 1e-4, 128
+    x = np.arange(columns) * wavelength / columns
+    for gap in (1e-6 * (1 + 0.5 * np.cos(2 * np.pi * x / wavelength)), _contact_profile(columns)):
+        errors = []
+        for rows in (4, 8, 16):
+            solution = field_solve(TABLE1, gap, wavelength, VOLTAGE, air_rows=rows, insulator_rows=8, sc_rows=48)
+            errors.append(solution.mean_maxwell_pressure / solution.mean_pressure - 1)
+        assert 0 < errors[-1] < 1e-4
+        assert errors[0] / errors[1] == pytest.approx(2, rel=0.2) and errors[1] / errors[2] == pytest.approx(2, rel=0.2)
+    for gap in (1e-6, 0.0):
+        solution = field_solve(TABLE1, np.full(16, gap), 1e-5, VOLTAGE)
+        np.testing.assert_allclose(solution.maxwell_pressure, solution.mean_pressure, rtol=1e-9)
