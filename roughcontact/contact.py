@@ -296,16 +296,31 @@ class ContactResult(SavableResult):
 
     @property
     def electrostatic_force(self) -> float:
-        """Total electrostatic attraction F_el = ∫σ_el(g) dA [N] (≥ 0) of an electrostatic solve."""
+        """Total electrostatic attraction F_el = ∫σ_el dA [N] (≥ 0) of an electrostatic solve, from the field the
+        solve used: Eq. 21 of ``gap`` pixel by pixel, or the layered field (the solved traction)."""
         stack, voltage = self._electrostatics()
-        return float(np.sum(stack.pressure(self.gap, voltage), dtype=np.float64)) * self.params["grid"].pixel_area
+        if self.interaction.local:
+            pressure = stack.pressure(self.gap, voltage)
+        else:
+            pressure = -np.asarray(self.interaction_traction, dtype=np.float64)
+        return float(np.sum(pressure, dtype=np.float64)) * self.params["grid"].pixel_area
 
     @property
     def equivalent_gap(self) -> float:
         """Equivalent air gap d_eq of seed Eq. 25 over the solved window (contact points included) [m]:
-        ``DielectricStack.equivalent_gap`` of ``gap``."""
+        ``DielectricStack.equivalent_gap`` of ``gap``, the seed's definition whatever field the solve used."""
         stack, _ = self._electrostatics()
         return stack.equivalent_gap(self.gap)
+
+    @property
+    def field_equivalent_gap(self) -> float:
+        """The uniform gap d [m] whose Eq. 21 attraction equals F_el/A0 of the solve (:attr:`electrostatic_force`):
+        the field-true counterpart of Eq. 25 (equal to it for the parallel-plate law; negative where the mean
+        attraction exceeds full contact's, ``nan`` at 0 V)."""
+        stack, voltage = self._electrostatics()
+        if voltage == 0.0:
+            return math.nan
+        return stack.gap_for_pressure(self.electrostatic_force / self.params["grid"].area, voltage)
 
     def _electrostatics(self):
         from .interactions import ElectrostaticInteraction

@@ -47,6 +47,7 @@ from ._version import __version__
 from .contact import ContactResult, SolverState, _heights, solve_contact
 from .elastic import _apply_inverse_multiplier, _apply_multiplier
 from .electrostatics import EPSILON_0
+from .electrostatics.field import FieldLaw
 from .interactions import ElectrostaticInteraction, ExponentialAdhesion, MaugisDugdale
 from .results import ConvergenceWarning
 
@@ -56,6 +57,9 @@ MAX_HALVINGS = 40         # line-search step halvings before the direction is gi
 APPROACH = 2.0            # a stable point closes by at most this times (gap + law length) in one step
 ENERGY_ROUND_OFF = 1e-12  # relative round-off of the energy sums (float64), below which a rise is not a rise
 START_TOL = 1e-2          # tolerance of the hard-wall solve that starts a cold solve (a guess, not the answer)
+FIELD_TOL_FACTOR = 0.1   # the layered field's solves to this times the solve's relative residual,
+FIELD_TOL_FLOOR = 1e-12  # but no tighter than this
+FIELD_TOL_CEILING = 1e-4 # and no looser
 _REFRESH = 50             # exact recomputation of p_el at least every _REFRESH incremental steps
 
 # built-in laws evaluated inside the kernels: (kind, a, b, c)
@@ -63,8 +67,9 @@ _ELECTROSTATIC, _EXPONENTIAL, _DUGDALE, _USER = 0, 1, 2, -1
 
 
 def _law_code(law):
-    """(kind, a, b, c) of a built-in law for :func:`_law_at`; ``_USER`` for any other (numpy methods)."""
-    if isinstance(law, ElectrostaticInteraction):
+    """(kind, a, b, c) of a built-in local law for :func:`_law_at`; ``_USER`` for any other (numpy methods, or the
+    layered field)."""
+    if isinstance(law, ElectrostaticInteraction) and law.local:
         stack = law.stack                                   # V = −a/h, h = c + g b, a = ε0 U²/2, b = 1/ε_a
         return _ELECTROSTATIC, 0.5 * EPSILON_0 * law.voltage ** 2, 1.0 / stack.eps_a, stack.dielectric_offset
     if isinstance(law, ExponentialAdhesion):                # V = −a e^(−g b), b = 1/ρ
@@ -449,7 +454,7 @@ def solve_smooth(height_field, half, law, *, mean_pressure=None, total_force=Non
         _restore_mean(g, energy.mean_target)
     deviation = heights - float(heights.mean(dtype=np.float64))
     gap_scale = float(np.sqrt(np.mean(deviation * deviation, dtype=np.float64))) or law.length or 1.0
-    state = _Solver(g, energy, law, gap_scale, start_pairs, window, largest_compliance, scale_to_body)
+    state = _Solver(g, energy, law, gap_scale, start_pairs, window, largest_compliance, scale_to_body, grid)
     return state.run(tol, maxiter, callback, warn, half, heights, control, requested, start_kind, start)
 
 
@@ -478,7 +483,7 @@ class _Solver:
     """The work arrays and the iteration of :func:`solve_smooth` (fields, not closures, so that each step's
     buffers swap without allocation)."""
 
-    def __init__(self, g, energy, law, gap_scale, start_pairs, window, largest_compliance, scale_to_body):
+    def __init__(self, g, energy, law, gap_scale, start_pairs, window, largest_compliance, scale_to_body, grid):
         body = energy.body
         self.energy, self.law, self.body, self.gap_scale = energy, law, body, gap_scale
         self.window, self.largest_compliance, self.scale_to_body = window, largest_compliance, scale_to_body
@@ -489,8 +494,12 @@ class _Solver:
         self.pel_field, self.trial_field, self.work, self.z_field, self.w_field = (body.empty() for _ in range(5))
         self.d, self.r, self.r_prev = np.zeros(n, dtype), np.zeros(n, dtype), np.zeros(n, dtype)
         self.free = np.zeros(n, np.bool_)
-        self.law_now = [np.empty(n, dtype) for _ in range(2)]     # p_int, k at g
-        self.law_trial = [np.empty(n, dtype) for _ in range(2)]   # the same at the trial gap
+        self.law_now = [np.zeros(n, dtype) for _ in range(3)]     # p_int, k at g (and the layered law's flux)
+        self.law_trial = [np.zeros(n, dtype) for _ in range(3)]   # the same at the trial gap
+        self.window_view = tuple(slice(0, m) for m in grid.shape)  # the grid in the corner of the body's fields
+        self.field = None                                          # the layered law, evaluated by field solves
+        if isinstance(law, ElectrostaticInteraction) and not law.local:
+            self.field = FieldLaw(law.stack, law.voltage, grid, model=law.field)
         self.pixel_compliance = body.pixel_compliance
         # float32 fields carry the energy's terms to a few ε32: a smaller rise is round-off, not a rise
         self.round_off = max(ENERGY_ROUND_OFF, 3 * float(np.finfo(dtype).eps))
@@ -504,8 +513,22 @@ class _Solver:
 
     def evaluate(self, gap, pel, arrays):
         """Π/A, its magnitude and Σ V at ``gap`` with elastic traction ``pel``; the law evaluated into ``arrays``."""
-        sums = _evaluate(self.law, self.code, gap, self.window, self.energy.h_f, pel, *arrays)
+        if self.field is None:
+            sums = _evaluate(self.law, self.code, gap, self.window, self.energy.h_f, pel, *arrays[:2])
+        else:
+            sums = _work_terms(gap, self.energy.h_f, pel) + (self.evaluate_field(gap, arrays),)
         return self.energy.value(*sums, self.n) + (sums[-1],)
+
+    def evaluate_field(self, gap, arrays):
+        """The layered law's traction, stiffness and flux at ``gap`` into ``arrays`` (window only), warm-started
+        from the accepted gap's flux; returns Σ V."""
+        shape, inside = self.pel_field.shape, self.window_view
+        traction, stiffness, flux = (array.reshape(shape) for array in arrays)
+        start = (self.g.reshape(shape)[inside], self.law_now[2].reshape(shape)[inside]) \
+            if self.field.evaluations else None
+        energy_sum = self.field.evaluate(gap.reshape(shape)[inside], traction[inside], stiffness[inside],
+                                         flux[inside], start=start)
+        return energy_sum
 
     def run(self, tol, maxiter, callback, warn, half, heights, control, requested, start_kind, start):
         energy, body, n = self.energy, self.body, self.n
@@ -529,6 +552,8 @@ class _Solver:
                 _, zz, rz, prz = _mask_shift(z, free, -sum_z / n_free, r, self.r_prev)
             residual = math.sqrt(zz / n) / self.gap_scale
             residuals.append(residual)
+            if self.field is not None:                  # the field solves as accurate as the step needs
+                self.field.tol = min(FIELD_TOL_CEILING, max(FIELD_TOL_FLOOR, FIELD_TOL_FACTOR * residual))
             if callback is not None and iterations:
                 try:
                     callback(SolverState(iterations, residual, at_wall / heights.size))
@@ -679,7 +704,8 @@ class _Solver:
         params = {"E_star": half.E_star, "grid": grid, "tol": tol, "maxiter": int(maxiter), "method": METHOD,
                   "start": start_kind, "interaction": type(law).__name__, "kernel": half.description,
                   "version": __version__, "control": control, "requested": requested,
-                  "fft_pairs": self.transforms / 2, "detached": detached,
+                  "fft_pairs": self.transforms / 2 + (self.field.fft_pairs if self.field else 0),
+                  "detached": detached,
                   "energy_history": [float(v) * grid.area * self.scale_to_body for v in history]}
         return ContactResult(
             pressure=pressure, displacement=displacement, gap=gap, contact=contact,

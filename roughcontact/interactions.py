@@ -23,9 +23,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from surfaces.validation import check_finite_array, check_positive, check_real
+from surfaces.validation import check_choice, check_finite_array, check_positive, check_real
 
 from .electrostatics import DielectricStack
+
+#: How an electrostatic law takes the field (:class:`ElectrostaticInteraction`).
+FIELDS = ("parallel_plate", "layered")
 
 
 class Interaction:
@@ -80,16 +83,29 @@ class ElectrostaticInteraction(Interaction):
 
     V(g) = −w(g) = −ε0 U² / (2 h(g)), p_int = −σ_el(g) = −ε0 U² / (2 ε_a h(g)²), h(g) = c + g/ε_a
     (:class:`~roughcontact.electrostatics.DielectricStack`; only U² enters, so the sign of the voltage does
-    not matter). The parallel-plate field is taken pixel by pixel.
+    not matter).
+
+    ``field`` says how the field is taken: ``"parallel_plate"``, Eq. 21 pixel by pixel (the methods below), or
+    ``"layered"``, the stack's field over the whole gap field (:mod:`roughcontact.electrostatics.field`: the
+    stratum corneum and the insulator couple the columns). The layered law is non-local: its traction at a
+    pixel depends on the whole gap field, so the contact solver evaluates it through
+    :class:`~roughcontact.electrostatics.field.FieldLaw`, and the per-pixel methods give the parallel-plate values.
     """
 
     stack: DielectricStack = DielectricStack()
     voltage: float = 0.0
+    field: str = "parallel_plate"
 
     def __post_init__(self):
         if not isinstance(self.stack, DielectricStack):
             raise TypeError(f"stack must be a DielectricStack, got {type(self.stack).__name__}")
         object.__setattr__(self, "voltage", check_real("voltage", self.voltage))
+        check_choice("field", self.field, FIELDS)
+
+    @property
+    def local(self) -> bool:
+        """Whether the traction at a pixel depends on its own gap only (the parallel plate)."""
+        return self.field == "parallel_plate"
 
     @property
     def vanishes(self) -> bool:

@@ -126,6 +126,15 @@ class DielectricStack:
         """Interaction energy per unit area V(d) = -w(d) [J/m²]; ``dV/dd = σ_el``."""
         return -self.work_of_adhesion(gap, voltage)
 
+    def gap_for_pressure(self, mean_pressure: float, voltage: float) -> float:
+        """The uniform gap d [m] whose Eq. 21 attraction at ``voltage`` is ``mean_pressure`` [Pa] (Eq. 21 inverted):
+        d = eps_a (|U| sqrt(ε0 / (2 eps_a σ)) − c). Negative for σ above full contact's (Eq. 23); ``nan`` at U = 0."""
+        if voltage == 0.0:
+            return float("nan")
+        mean_pressure = check_positive("mean_pressure", mean_pressure)
+        thickness = abs(float(voltage)) * np.sqrt(EPSILON_0 / (2 * self.eps_a * mean_pressure))
+        return float(self.eps_a * (thickness - self.dielectric_offset))
+
     # -- Eq. 25 --------------------------------------------------------------------------------------------
     def equivalent_gap(self, gap_field, weights=None) -> float:
         """Equivalent air gap d_eq with σ_el(d_eq) = <σ_el(d(x, y))> over the apparent area (Eq. 25) [m].
