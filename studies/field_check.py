@@ -1,0 +1,175 @@
+"""The field models of the layered stack against the finite-element field solve (a script).
+
+    python studies/field_check.py                 # docs/field_check.md, tables "Sinusoid" and "Resolved profiles"
+    python studies/field_check.py --fast          # coarser meshes and pixels, 200 V only: a smoke run
+
+(from the repository root with ``pip install -e ".[fieldcheck]"``). Two tables:
+
+* ``field_check_sinusoid.csv``: the second-order coefficient S of the mean attraction of a sinusoidal gap
+  g0 + a cos(2πx/λ), σ̄ = σ_el(g0) + a² S, for λ = 10 µm … 5 mm and g0 = 0.5, 1, 2 µm: the exact result
+  (``roughcontact.electrostatics.perturbation``), the FE solve (``roughcontact.electrostatics.fem``,
+  Richardson in a from a = 0.05 g0 and 0.1 g0), the layered model (``solve_field``, the same Richardson) and
+  the per-pixel law (σ_el''/4), each as a ratio to the exact S.
+* ``field_check_profiles.csv``: the mean attraction over resolved gap profiles, FE against the layered model
+  and the per-pixel law (relative differences, and the equivalent gaps of Eq. 21; the FE's own error as the
+  change on a mesh with every length halved): (a) synthetic, a cylinder
+  ridge cap with self-affine micro-roughness pressed onto the flat; (b) one period of the default scene's
+  ridge with micro-roughness as a 1-D profile; each pressed (``solve_contact`` on a profile grid of shape
+  (n, 1), pixels ``--pixel``) at the nominal pressures of 0.5 and 2 N of the default scene, at 0 V (hard
+  wall) and 200 V (the per-pixel attraction inside the solve). The attraction is compared at 200 V on every gap
+  (all three models scale with U²).
+
+Every CSV starts with its provenance line.
+"""
+from __future__ import annotations
+
+import argparse
+import time
+
+import numpy as np
+
+from roughcontact.electrostatics import DielectricStack, solve_field
+from roughcontact.electrostatics.fem import field_solve_profile
+from roughcontact.electrostatics.perturbation import second_order_attraction
+from roughcontact.provenance import output_directory, parse_arguments, write_csv
+
+WAVELENGTHS = (10e-6, 100e-6, 1e-3, 5e-3)          # [m]
+MEAN_GAPS = (0.5e-6, 1e-6, 2e-6)                   # [m]
+NORMAL_FORCES = (0.5, 2.0)                         # [N], the default scene's nominal pressures
+VOLTAGES = (0.0, 200.0)                            # [V] of the contact solve
+COMPARISON_VOLTAGE = 200.0                         # [V] of the compared attraction
+#: (a) the synthetic ridge cap: window [m], cap radius [m], roughness rms [m], Hurst exponent, cut-offs [m]
+CAP = dict(window=400e-6, radius=200e-6, rms_height=0.5e-6, hurst=0.8, long_cutoff=50e-6, short_cutoff=2e-6)
+
+
+def _second_order(mean_pressure, gap):
+    """S from σ̄ at a = 0.05 g0 and 0.1 g0 (Richardson: the a⁴ term removed); ``mean_pressure(a)`` [Pa]."""
+    amplitude = 0.05 * gap
+    excess = [mean_pressure(a) - mean_pressure(0.0) for a in (amplitude, 2 * amplitude)]
+    return (16 * excess[0] - excess[1]) / (12 * amplitude ** 2)
+
+
+def sinusoid_rows(stack, columns: int, fem_options: dict) -> list:
+    """One row per (λ, g0): S exact and the FE, layered and per-pixel S over it."""
+    voltage, rows = COMPARISON_VOLTAGE, []
+    for wavelength in WAVELENGTHS:
+        x = np.arange(columns) * wavelength / columns
+        shape = np.cos(2 * np.pi * x / wavelength)
+        for gap in MEAN_GAPS:
+            exact = float(second_order_attraction(stack, gap, 2 * np.pi / wavelength, voltage))
+            start = time.process_time()
+            fem = _second_order(lambda a: field_solve_profile(stack, gap + a * shape, wavelength, voltage,
+                                                              **fem_options).mean_pressure, gap)
+            seconds = time.process_time() - start
+            layered = _second_order(lambda a: solve_field(stack, gap + a * shape, wavelength, voltage,
+                                                          tol=1e-13).mean_pressure, gap)
+            per_pixel = float(stack.pressure_derivative(gap, voltage, 2)) / 4
+            rows.append({"wavelength_um": wavelength * 1e6, "mean_gap_um": gap * 1e6, "S_exact_Pa_per_m2": exact,
+                         "fem_over_exact": fem / exact, "layered_over_exact": layered / exact,
+                         "per_pixel_over_exact": per_pixel / exact, "fem_columns": columns, "fem_cpu_s": seconds})
+    return rows
+
+
+def _pressed(heights, grid, body, pressure, voltage, stack):
+    """The gap [m] of ``heights`` pressed at ``pressure`` [Pa] (with the per-pixel attraction at ``voltage``)."""
+    from roughcontact import ElectrostaticInteraction, solve_contact
+    interaction = ElectrostaticInteraction(stack, voltage=voltage) if voltage else None
+    result = solve_contact(heights, body, mean_pressure=pressure, interaction=interaction)
+    if not result.converged:
+        raise RuntimeError(f"the contact solve did not converge at {pressure:g} Pa, {voltage:g} V")
+    return np.asarray(result.gap)[:, 0]
+
+
+def profiles(scene, pixel: float, rng: int) -> dict:
+    """{name: (heights (n, 1) [m], grid, body)}: (a) the synthetic cap, (b) the default scene's ridge."""
+    from surfaces import Grid, self_affine
+    from roughcontact.study import patch_body, ridge_heights
+
+    def grid_of(window):
+        n = int(round(window / pixel))
+        return Grid((n, 1), (window, window / n), periodic=True)
+
+    cap_grid = grid_of(CAP["window"])
+    x = (np.arange(cap_grid.shape[0]) + 0.5) * cap_grid.spacing[0] - CAP["window"] / 2
+    cap = np.sqrt(np.maximum(CAP["radius"] ** 2 - x ** 2, 0.0)) - CAP["radius"]
+    cap_rough = self_affine(cap_grid, CAP["hurst"], rms_height=CAP["rms_height"], long_cutoff=CAP["long_cutoff"],
+                            short_cutoff=CAP["short_cutoff"], rng=rng).heights
+    ridge_grid = grid_of(scene.ridges.period)
+    ridge = ridge_heights(scene, grid=ridge_grid)
+    roughness = scene.roughness
+    ridge_rough = self_affine(ridge_grid, roughness.hurst, rms_height=roughness.rms_height,
+                              long_cutoff=min(roughness.long_cutoff, scene.ridges.period),
+                              short_cutoff=max(roughness.short_cutoff, 2 * pixel), rng=rng).heights
+    return {"cap": (cap[:, None] + cap_rough, cap_grid, patch_body(scene, grid=cap_grid)),
+            "scene_ridge": (ridge + ridge_rough, ridge_grid, patch_body(scene, grid=ridge_grid))}
+
+
+def profile_rows(scene, stack, pixel: float, voltages, fem_options: dict, rng: int) -> list:
+    """One row per profile, load and solve voltage: mean attraction at 200 V by FE, layered and per pixel."""
+    from roughcontact.study import apparent_scale
+    pressures = {force: scale[1][0] for force, scale in zip(scene.loads.normal_forces, apparent_scale(scene))}
+    rows, voltage = [], COMPARISON_VOLTAGE
+    for name, (heights, grid, body) in profiles(scene, pixel, rng).items():
+        length = grid.lengths[0]
+        for force in NORMAL_FORCES:
+            for solve_voltage in voltages:
+                gap = _pressed(heights, grid, body, pressures[force], solve_voltage, stack)
+                start = time.process_time()
+                fem = field_solve_profile(stack, gap, length, voltage, **fem_options)
+                seconds = time.process_time() - start
+                # the same piecewise-linear gap on a mesh with every length halved: the FE's own error
+                fine_x = np.arange(2 * gap.size) * length / (2 * gap.size)
+                fine_gap = np.interp(fine_x, np.arange(gap.size + 1) * length / gap.size, np.append(gap, gap[0]))
+                fine = field_solve_profile(stack, fine_gap, length, voltage,
+                                           **{key: 2 * value for key, value in fem_options.items()})
+                layered = solve_field(stack, gap, length, voltage, tol=1e-12).mean_pressure
+                per_pixel = float(np.mean(stack.pressure(gap, voltage)))
+                rows.append({
+                    "profile": name, "normal_force_N": force, "solve_voltage_V": solve_voltage,
+                    "pixels": gap.size, "pixel_um": length / gap.size * 1e6, "contact_fraction": np.mean(gap == 0),
+                    "mean_gap_um": gap.mean() * 1e6, "fem_Pa": fem.mean_pressure, "fem_maxwell_Pa": fem.mean_maxwell_pressure,
+                    "layered_Pa": layered, "per_pixel_Pa": per_pixel,
+                    "layered_difference": layered / fem.mean_pressure - 1,
+                    "per_pixel_difference": per_pixel / fem.mean_pressure - 1,
+                    "fem_equivalent_gap_um": stack.gap_for_pressure(fem.mean_pressure, voltage) * 1e6,
+                    "layered_equivalent_gap_um": stack.gap_for_pressure(layered, voltage) * 1e6,
+                    "per_pixel_equivalent_gap_um": stack.equivalent_gap(gap) * 1e6,
+                    "fem_refined_difference": fine.mean_pressure / fem.mean_pressure - 1,
+                    "fem_unknowns": fem.unknowns, "fem_cpu_s": seconds})
+    return rows
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--fast", action="store_true", help="1 µm pixels, 64 columns per sinusoid, 200 V only")
+    parser.add_argument("--pixel", type=float, default=0.25e-6, help="profile pixel [m] (default 0.25 µm)")
+    parser.add_argument("--columns", type=int, default=256, help="FE columns per sinusoid wavelength")
+    parser.add_argument("--seed", type=int, default=0, help="rng seed of the micro-roughness")
+    parser.add_argument("--output", default="out", help="output directory (its parent must exist)")
+    args, provenance = parse_arguments(parser, argv, "python studies/field_check.py")
+    output = output_directory(args.output)
+    from roughcontact.scene import load_scene
+    scene = load_scene(preset="draft")
+    stack = scene.screen.stack()
+    fem_options = dict(air_rows=8, insulator_rows=8, sc_rows=48)
+    pixel, columns = (1e-6, 64) if args.fast else (args.pixel, args.columns)
+    sinusoid = sinusoid_rows(stack, columns, fem_options)
+    write_csv(output / "field_check_sinusoid.csv", sinusoid, provenance)
+    for row in sinusoid:
+        print(f"λ {row['wavelength_um']:7.0f} µm  g0 {row['mean_gap_um']:.1f} µm  S/S_exact: FE "
+              f"{row['fem_over_exact']:.6f}  layered {row['layered_over_exact']:.6f}  "
+              f"per pixel {row['per_pixel_over_exact']:.6f}")
+    rows = profile_rows(scene, stack, pixel, (COMPARISON_VOLTAGE,) if args.fast else VOLTAGES, fem_options,
+                        args.seed)
+    write_csv(output / "field_check_profiles.csv", rows, provenance)
+    for row in rows:
+        print(f"{row['profile']:12s} {row['normal_force_N']:.1f} N, solved at {row['solve_voltage_V']:3.0f} V: "
+              f"FE {row['fem_Pa']:.5g} Pa (refined {100 * row['fem_refined_difference']:+.2f} %), layered {100 * row['layered_difference']:+.2f} %, "
+              f"per pixel {100 * row['per_pixel_difference']:+.2f} %  (d_eq FE {row['fem_equivalent_gap_um']:.3f} "
+              f"µm, layered {row['layered_equivalent_gap_um']:.3f}, per pixel {row['per_pixel_equivalent_gap_um']:.3f})")
+    print(f"written to {output}/")
+    return sinusoid, rows
+
+
+if __name__ == "__main__":
+    main()
