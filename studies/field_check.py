@@ -1,7 +1,7 @@
 """The field models of the layered stack against the finite-element field solve (a script).
 
     python studies/field_check.py                 # docs/field_check.md, tables "Sinusoid" and "Resolved profiles"
-    python studies/field_check.py --fast          # coarser meshes and pixels, 200 V only: a smoke run
+    python studies/field_check.py --fast          # two sinusoids, 1 µm pixels, 2 N and 200 V: a smoke run
 
 (from the repository root with ``pip install -e ".[fieldcheck]"``). Two tables:
 
@@ -49,13 +49,13 @@ def _second_order(mean_pressure, gap):
     return (16 * excess[0] - excess[1]) / (12 * amplitude ** 2)
 
 
-def sinusoid_rows(stack, columns: int, fem_options: dict) -> list:
+def sinusoid_rows(stack, wavelengths, mean_gaps, columns: int, fem_options: dict) -> list:
     """One row per (λ, g0): S exact and the FE, layered and per-pixel S over it."""
     voltage, rows = COMPARISON_VOLTAGE, []
-    for wavelength in WAVELENGTHS:
+    for wavelength in wavelengths:
         x = np.arange(columns) * wavelength / columns
         shape = np.cos(2 * np.pi * x / wavelength)
-        for gap in MEAN_GAPS:
+        for gap in mean_gaps:
             exact = float(second_order_attraction(stack, gap, 2 * np.pi / wavelength, voltage))
             start = time.process_time()
             fem = _second_order(lambda a: field_solve_profile(stack, gap + a * shape, wavelength, voltage,
@@ -108,14 +108,14 @@ def profiles(scene, pixel: float, rng: int) -> dict:
             "scene_ridge": (ridge + ridge_rough, ridge_grid, patch_body(scene, grid=ridge_grid))}
 
 
-def profile_rows(scene, stack, pixel: float, voltages, fem_options: dict, rng: int) -> list:
+def profile_rows(scene, stack, pixel: float, forces, voltages, fem_options: dict, rng: int) -> list:
     """One row per profile, load and solve voltage: mean attraction at 200 V by FE, layered and per pixel."""
     from roughcontact.study import apparent_scale
     pressures = {force: scale[1][0] for force, scale in zip(scene.loads.normal_forces, apparent_scale(scene))}
     rows, voltage = [], COMPARISON_VOLTAGE
     for name, (heights, grid, body) in profiles(scene, pixel, rng).items():
         length = grid.lengths[0]
-        for force in NORMAL_FORCES:
+        for force in forces:
             for solve_voltage in voltages:
                 gap, cold_start = _pressed(heights, body, pressures[force], solve_voltage, stack)
                 start = time.process_time()
@@ -129,9 +129,11 @@ def profile_rows(scene, stack, pixel: float, voltages, fem_options: dict, rng: i
                 layered = solve_field(stack, gap, length, voltage, tol=1e-12).mean_pressure
                 per_pixel = float(np.mean(stack.pressure(gap, voltage)))
                 rows.append({
-                    "profile": name, "normal_force_N": force, "solve_voltage_V": solve_voltage, "cold_start": cold_start,
-                    "pixels": gap.size, "pixel_um": length / gap.size * 1e6, "contact_fraction": np.mean(gap == 0),
-                    "mean_gap_um": gap.mean() * 1e6, "fem_Pa": fem.mean_pressure, "fem_maxwell_Pa": fem.mean_maxwell_pressure,
+                    "profile": name, "normal_force_N": force, "solve_voltage_V": solve_voltage,
+                    "cold_start": cold_start, "pixels": gap.size, "pixel_um": length / gap.size * 1e6,
+                    "contact_fraction": np.mean(gap == 0),
+                    "mean_gap_um": gap.mean() * 1e6, "fem_Pa": fem.mean_pressure,
+                    "fem_maxwell_Pa": fem.mean_maxwell_pressure,
                     "layered_Pa": layered, "per_pixel_Pa": per_pixel,
                     "layered_difference": layered / fem.mean_pressure - 1,
                     "per_pixel_difference": per_pixel / fem.mean_pressure - 1,
@@ -145,7 +147,8 @@ def profile_rows(scene, stack, pixel: float, voltages, fem_options: dict, rng: i
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--fast", action="store_true", help="1 µm pixels, 64 columns per sinusoid, 200 V only")
+    parser.add_argument("--fast", action="store_true",
+                        help="λ = 100 µm and 1 mm at g0 = 1 µm, 64 columns; profiles of 1 µm pixels at 2 N, 200 V")
     parser.add_argument("--pixel", type=float, default=0.25e-6, help="profile pixel [m] (default 0.25 µm)")
     parser.add_argument("--columns", type=int, default=256, help="FE columns per sinusoid wavelength")
     parser.add_argument("--seed", type=int, default=0, help="rng seed of the micro-roughness")
@@ -156,21 +159,24 @@ def main(argv=None):
     scene = load_scene(preset="draft")
     stack = scene.screen.stack()
     fem_options = dict(air_rows=8, insulator_rows=8, sc_rows=48)
-    pixel, columns = (1e-6, 64) if args.fast else (args.pixel, args.columns)
-    sinusoid = sinusoid_rows(stack, columns, fem_options)
+    if args.fast:
+        sinusoid = sinusoid_rows(stack, (100e-6, 1e-3), (1e-6,), 64, fem_options)
+        rows = profile_rows(scene, stack, 1e-6, (2.0,), (COMPARISON_VOLTAGE,), fem_options, args.seed)
+    else:
+        sinusoid = sinusoid_rows(stack, WAVELENGTHS, MEAN_GAPS, args.columns, fem_options)
+        rows = profile_rows(scene, stack, args.pixel, NORMAL_FORCES, VOLTAGES, fem_options, args.seed)
     write_csv(output / "field_check_sinusoid.csv", sinusoid, provenance)
     for row in sinusoid:
         print(f"λ {row['wavelength_um']:7.0f} µm  g0 {row['mean_gap_um']:.1f} µm  S/S_exact: FE "
               f"{row['fem_over_exact']:.6f}  layered {row['layered_over_exact']:.6f}  "
               f"per pixel {row['per_pixel_over_exact']:.6f}")
-    rows = profile_rows(scene, stack, pixel, (COMPARISON_VOLTAGE,) if args.fast else VOLTAGES, fem_options,
-                        args.seed)
     write_csv(output / "field_check_profiles.csv", rows, provenance)
     for row in rows:
         print(f"{row['profile']:12s} {row['normal_force_N']:.1f} N, solved at {row['solve_voltage_V']:3.0f} V: "
-              f"FE {row['fem_Pa']:.5g} Pa (refined {100 * row['fem_refined_difference']:+.2f} %), layered {100 * row['layered_difference']:+.2f} %, "
-              f"per pixel {100 * row['per_pixel_difference']:+.2f} %  (d_eq FE {row['fem_equivalent_gap_um']:.3f} "
-              f"µm, layered {row['layered_equivalent_gap_um']:.3f}, per pixel {row['per_pixel_equivalent_gap_um']:.3f})")
+              f"FE {row['fem_Pa']:.5g} Pa (refined {100 * row['fem_refined_difference']:+.2f} %), "
+              f"layered {100 * row['layered_difference']:+.2f} %, per pixel {100 * row['per_pixel_difference']:+.2f} %"
+              f"  (d_eq FE {row['fem_equivalent_gap_um']:.3f} µm, layered {row['layered_equivalent_gap_um']:.3f}, "
+              f"per pixel {row['per_pixel_equivalent_gap_um']:.3f})")
     print(f"written to {output}/")
     return sinusoid, rows
 

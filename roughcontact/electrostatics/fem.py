@@ -12,12 +12,12 @@ The attraction is the exact derivative of the discrete energy E = ½ uᵀ K u [J
 rigid normal shift δ of the skin (stratum corneum and tissue nodes move by δ, air node r of n_a by δ r/n_a):
 ``σ̄ = -(1/L) dE/dδ``, positive = attractive (at fixed potentials the mechanical potential is -E; for a
 uniform gap this is seed Eq. 21 exactly, because P1 holds the 1-D solution). With u fixed (virtual work),
-``∂E_e/∂z_n = ½ ε0 ε A (|∇u|² ∂_z φ_n - 2 ∂_z u ∇φ_n·∇u)`` per triangle e and vertex n. At a contact column the
-shift opens a new air layer: the one-sided derivative (δ -> 0+) of the energy of the unmerged mesh is, per
+``∂E_e/∂z_n = ½ ε0 ε A (|∇u|² ∂_z φ_n - 2 ∂_z u ∇φ_n·∇u)`` per triangle e and vertex n. At a contact column
+the shift opens a new air layer: the one-sided derivative (δ -> 0+) of the energy of the unmerged mesh is, per
 collapsed air row, the minimum over its limiting air field G of the zero-area triangles' energy per δ plus
-the flux through the row times G/n_a (derivation in the docs). scikit-fem assembles, pyamg solves (conjugate
-gradients preconditioned by classical AMG, optional; the default is a sparse LU solve); both are the
-optional extra ``fieldcheck``, imported here lazily.
+the flux through the row times G/n_a (derivation in the docs). scikit-fem assembles; a sparse LU solves, or
+optionally conjugate gradients preconditioned by pyamg's classical AMG. scikit-fem and pyamg are the optional
+extra ``fieldcheck``, imported here lazily.
 """
 from __future__ import annotations
 
@@ -180,7 +180,8 @@ def _opening_derivative(mesh, degenerate, potential, residual):
 
     For each air row segment of a collapsed column, with G its limiting vertical air field and T the flux
     leaving its upper node group (the sum of the non-degenerate residuals above it), the energy per δ is
-    Σ ¼ ε |Δx| Δr [G² + (α - β G)²] + T Δr G (α = Δu/Δx, β = Δz/Δx to the third vertex): minimised over G.
+    Σ ¼ ε |Δx| Δr [G² + (α - β G)²] + T Δr G (α = Δu/Δx, β = Δz/Δx to the third vertex), minimised
+    over G.
     """
     rows, points = mesh.rows, mesh.points
     share = np.zeros(mesh.period_columns)
