@@ -21,6 +21,8 @@ extra ``fieldcheck``, imported here lazily.
 """
 from __future__ import annotations
 
+import itertools
+import math
 import warnings
 from dataclasses import dataclass
 
@@ -66,17 +68,19 @@ class ProfileFieldSolution:
 
 @dataclass(frozen=True)
 class _Mesh:
-    """Terrain-following mesh: node (column j, row k) has index ``j * rows + k``; ``column_of`` maps every
-    node column to its unknowns' column (the periodic image of the last column is column 0)."""
+    """Terrain-following mesh of simplices in ``dim`` = 2 (x, z) or 3 (x, y, z) dimensions. Node (node column
+    c, row k) has index ``c * rows + k``; node columns run over the lateral nodes in C order, with the periodic
+    images of the first column(s) at the end of each axis; ``column`` maps every node to its distinct column."""
 
-    points: np.ndarray          # (2, nodes)
+    points: np.ndarray          # (dim, nodes)
     velocity: np.ndarray        # dz/dδ per node
-    triangles: np.ndarray       # (3, elements), vertex 0-1-2; vertices 0, 1 on the triangle's vertical edge
-    permittivity: np.ndarray    # relative permittivity per triangle
+    simplices: np.ndarray       # (dim + 1, elements): vertices 0, 1 the vertical edge (bottom, top), then the rest
+    permittivity: np.ndarray    # relative permittivity per simplex
+    column: np.ndarray          # distinct column of each node
     air_rows: range             # node rows of the air layer (insulator top ... stratum-corneum bottom)
     rows: int
-    columns: int                # node columns (with the periodic image)
-    period_columns: int         # distinct columns
+    node_shape: tuple           # lateral node columns per axis (with the periodic images)
+    columns: int                # distinct columns
 
 
 def _stratum_corneum_rows(d_sc: float, first: float, count: int) -> np.ndarray:
@@ -97,71 +101,83 @@ def _stratum_corneum_rows(d_sc: float, first: float, count: int) -> np.ndarray:
     return heights * (d_sc / heights[-1])
 
 
-def _build_mesh(stack: DielectricStack, gap, length, periodic, insulator_rows, air_rows, sc_rows,
+def _build_mesh(stack: DielectricStack, gap, spacing, periodic, insulator_rows, air_rows, sc_rows,
                 sc_first) -> _Mesh:
-    n = gap.size
-    columns = n + 1 if periodic else n
-    x = np.arange(columns) * (length / n if periodic else length / (n - 1))
-    g = np.concatenate([gap, gap[:1]]) if periodic else gap
+    """The mesh over the lateral gap array ``gap`` (1-D or 2-D) at ``spacing`` [m] per axis. Every lateral
+    cell × row is cut into dim! simplices along the paths of Kuhn's triangulation (one per order of the unit
+    steps), so that every simplex has exactly one vertical edge; in 2-D these are the two triangles of a quad."""
+    node_shape = tuple(n + 1 if periodic else n for n in gap.shape)
+    g = np.pad(gap, [(0, 1)] * gap.ndim, mode="wrap") if periodic else gap
+    lateral = np.meshgrid(*[np.arange(m) * h for m, h in zip(node_shape, spacing)], indexing="ij")
     insulator = np.linspace(-stack.d_i, 0.0, insulator_rows + 1)
     air = np.linspace(0.0, 1.0, air_rows + 1)[1:]
     sc = _stratum_corneum_rows(stack.d_sc, sc_first, sc_rows)[1:]
     rows = insulator_rows + air_rows + sc_rows + 1
-    z = np.concatenate([np.broadcast_to(insulator, (columns, insulator_rows + 1)), g[:, None] * air,
-                        g[:, None] + sc], axis=1)
+    g = g.reshape(-1, 1)
+    z = np.concatenate([np.broadcast_to(insulator, (g.shape[0], insulator_rows + 1)), g * air, g + sc], axis=1)
     velocity = np.concatenate([np.zeros(insulator_rows + 1), air, np.ones(sc_rows)])
-    points = np.stack([np.repeat(x, rows), z.ravel()])
-    j, k = np.meshgrid(np.arange(columns - 1), np.arange(rows - 1), indexing="ij")
-    corner = (j * rows + k).ravel()
-    right, up = corner + rows, corner + 1
-    # triangle (right, right+1, corner): vertical edge on column j+1; (corner, up, right+1): on column j
-    triangles = np.concatenate([np.stack([right, right + 1, corner]), np.stack([corner, up, right + 1])], axis=1)
+    points = np.stack([np.repeat(x.ravel(), rows) for x in lateral] + [z.ravel()])
+    distinct = np.meshgrid(*[np.arange(m) % n for m, n in zip(node_shape, gap.shape)], indexing="ij")
+    column = np.repeat(np.ravel_multi_index([i.ravel() for i in distinct], gap.shape), rows)
+    # cells: lateral corner (node_shape - 1 per axis) × row; unit steps along each lateral axis and up
+    dim = gap.ndim + 1
+    corners = np.meshgrid(*[np.arange(m - 1) for m in node_shape], np.arange(rows - 1), indexing="ij")
+    base = (np.ravel_multi_index([c.ravel() for c in corners[:-1]], node_shape) * rows + corners[-1].ravel())
+    stride = [int(np.prod(node_shape[a + 1:])) * rows for a in range(gap.ndim)] + [1]
+    simplices = []
+    for order in itertools.permutations(range(dim)):
+        path = [base]
+        for axis in order:
+            path.append(path[-1] + stride[axis])
+        up = order.index(dim - 1) + 1                           # the vertical step: path[up - 1] -> path[up]
+        simplices.append(np.stack([path[up - 1], path[up]] + [p for i, p in enumerate(path) if i not in (up - 1, up)]))
     layer_of_row = np.concatenate([np.full(insulator_rows, stack.eps_i), np.full(air_rows, stack.eps_a),
                                    np.full(sc_rows, stack.eps_sc)])
-    permittivity = np.tile(np.broadcast_to(layer_of_row, (columns - 1, rows - 1)).ravel(), 2)
-    return _Mesh(points, np.tile(velocity, columns), triangles, permittivity,
-                 range(insulator_rows, insulator_rows + air_rows + 1), rows, columns, n)
+    permittivity = np.tile(layer_of_row[corners[-1].ravel()], len(simplices))
+    return _Mesh(points, np.tile(velocity, g.shape[0]), np.concatenate(simplices, axis=1), permittivity, column,
+                 range(insulator_rows, insulator_rows + air_rows + 1), rows, node_shape, gap.size)
 
 
-def _gradients(points, triangles):
-    """Twice the signed areas (elements,) and the P1 basis gradients (elements, 3 vertices, 2)."""
-    p = points[:, triangles]                                   # (2, 3, elements)
-    e1, e2 = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
-    twice_area = e1[0] * e2[1] - e1[1] * e2[0]
-    safe = np.where(twice_area == 0, 1.0, twice_area)
-    # grad φ_i = rot90(opposite edge) / (2A)
-    opposite = np.stack([p[:, 2] - p[:, 1], p[:, 0] - p[:, 2], p[:, 1] - p[:, 0]], axis=1)   # (2, 3, el)
-    grads = np.stack([-opposite[1], opposite[0]], axis=-1) / safe[None, :, None]            # (3, el, 2)
-    return twice_area, grads.transpose(1, 0, 2)
+def _gradients(points, simplices):
+    """Signed volumes times dim! (elements,) and the P1 basis gradients (elements, dim + 1, dim); zero-volume
+    simplices get zero gradients."""
+    p = points[:, simplices].transpose(2, 1, 0)                 # (elements, dim + 1, dim)
+    edges = p[:, 1:] - p[:, :1]                                  # rows e_j = p_j - p_0
+    determinant = np.linalg.det(edges)
+    flat = determinant == 0
+    inverse = np.linalg.inv(np.where(flat[:, None, None], np.eye(edges.shape[1]), edges))
+    grads = np.zeros(p.shape)
+    grads[:, 1:] = inverse.transpose(0, 2, 1)                   # ∇φ_i = column i of E⁻¹
+    grads[:, 0] = -grads[:, 1:].sum(axis=1)
+    grads[flat] = 0.0
+    return determinant, grads
 
 
 def _unknowns(mesh: _Mesh, collapsed: np.ndarray):
     """Unknown index per node (-1 bottom electrode, -2 tissue) merging the air rows of collapsed columns
-    and the periodic image column."""
-    rows = mesh.rows
-    column = np.arange(mesh.columns) % mesh.period_columns
-    row = np.arange(rows)
-    key_row = np.where(collapsed[column][:, None] & (row >= mesh.air_rows[0]) & (row <= mesh.air_rows[-1]),
-                       mesh.air_rows[0], row[None, :])
-    key = column[:, None] * rows + key_row
-    key[:, 0], key[:, -1] = -1, -2
+    and the periodic images."""
+    row = np.arange(mesh.points.shape[1]) % mesh.rows
+    in_air = (row >= mesh.air_rows[0]) & (row <= mesh.air_rows[-1])
+    key = mesh.column * mesh.rows + np.where(collapsed.ravel()[mesh.column] & in_air, mesh.air_rows[0], row)
+    key[row == 0], key[row == mesh.rows - 1] = -1, -2
     free = np.unique(key[key >= 0])
-    index = np.full(mesh.period_columns * rows, -1)
+    index = np.full(mesh.columns * mesh.rows, -1)
     index[free] = np.arange(free.size)
-    return np.where(key >= 0, index[np.maximum(key, 0)], key).ravel(), free.size
+    return np.where(key >= 0, index[np.maximum(key, 0)], key), free.size
 
 
 def _solve(matrix, rhs, solver, tol, maxiter):
     """(solution, converged, iterations, relative residual ‖b - Ax‖/‖b‖) of the SPD system.
 
-    ``"direct"``: sparse LU (SuperLU, nested-dissection order), exact to rounding and fast in 2-D.
-    ``"amg"``: conjugate gradients preconditioned by classical (Ruge–Stüben) AMG; it copes with the thin
-    rows better than smoothed aggregation but can stall on the 3000:1 permittivity contrast (then warned).
+    ``"direct"``: sparse LU (SuperLU, minimum-degree order on Aᵀ + A), exact to rounding; fast in 2-D, slow in
+    3-D (10 s for 32² columns × 33 rows). ``"amg"``: conjugate gradients preconditioned by classical
+    (Ruge–Stüben) AMG, 10 iterations there; it copes with the thin rows better than smoothed aggregation but
+    can stall on the 3000:1 permittivity contrast of some 2-D meshes (then warned).
     """
     if solver == "direct":
         from scipy.sparse.linalg import splu
 
-        solution = splu(matrix.tocsc()).solve(rhs)
+        solution = splu(matrix.tocsc(), permc_spec="MMD_AT_PLUS_A").solve(rhs)
         iterations = 0
     else:
         import pyamg
@@ -175,39 +191,39 @@ def _solve(matrix, rhs, solver, tol, maxiter):
 
 
 def _opening_derivative(mesh, degenerate, potential, residual):
-    """Per column, the one-sided dE/dδ (δ -> 0+) of the zero-area air triangles at collapsed columns, and
-    the limiting gradient ∇u (degenerate triangles, 2) in them.
+    """Per column, the one-sided dE/dδ (δ -> 0+) of the zero-volume air simplices at collapsed columns, and
+    the limiting gradient ∇u (degenerate simplices, dim) in them.
 
-    For each air row segment of a collapsed column, with G its limiting vertical air field and T the flux
-    leaving its upper node group (the sum of the non-degenerate residuals above it), the energy per δ is
-    Σ ¼ ε |Δx| Δr [G² + (α - β G)²] + T Δr G (α = Δu/Δx, β = Δz/Δx to the third vertex), minimised
-    over G.
+    A zero-volume simplex has its vertical edge (Δr of the air, Δz = δ Δr) on a collapsed column and its other
+    vertices at lateral offsets H (rows) from it; its air field G = ∂u/∂z and the lateral gradient α - β G
+    (H α = Δu, H β = Δz to those vertices) give it the energy per δ ½ ε Δr |det H|/dim! [G² + |α - β G|²]. Per
+    air row segment of a collapsed column, with T the flux leaving its upper node group (the sum of the
+    non-degenerate residuals above it), the energy per δ is the sum of these plus T Δr G, minimised over G.
     """
     rows, points = mesh.rows, mesh.points
-    share = np.zeros(mesh.period_columns)
+    share = np.zeros(mesh.columns)
+    dim = points.shape[0]
     if not np.any(degenerate):
-        return share, np.zeros((0, 2))
+        return share, np.zeros((0, dim))
     air_bottom, air_count = mesh.air_rows[0], len(mesh.air_rows) - 1
     step = 1.0 / air_count
-    bottom, top, third = mesh.triangles[:, degenerate]
-    eps = EPSILON_0 * mesh.permittivity[degenerate]
-    dx = points[0, third] - points[0, bottom]
-    alpha = (potential[third] - potential[bottom]) / dx
-    beta = (points[1, third] - points[1, bottom]) / dx
-    weight = 0.25 * eps * np.abs(dx) * step
-    column = (bottom // rows) % mesh.period_columns
+    bottom, others = mesh.simplices[0, degenerate], mesh.simplices[2:, degenerate]
+    lateral = (points[:-1, others] - points[:-1, bottom][:, None]).transpose(2, 1, 0)      # (el, dim-1, dim-1)
+    alpha = np.linalg.solve(lateral, (potential[others] - potential[bottom]).T[..., None])[..., 0]
+    beta = np.linalg.solve(lateral, (points[-1, others] - points[-1, bottom]).T[..., None])[..., 0]
+    weight = (0.5 * EPSILON_0 * mesh.permittivity[degenerate] * step * np.abs(np.linalg.det(lateral))
+              / math.factorial(dim))
     segment = bottom % rows - air_bottom                      # air row segment 0 .. air_count-1
-    slot = column * air_count + segment
-    size = mesh.period_columns * air_count
-    quadratic = np.bincount(slot, weight * (1 + beta ** 2), size)
-    linear = np.bincount(slot, weight * 2 * alpha * beta, size)
-    constant = np.bincount(slot, weight * alpha ** 2, size)
+    slot = mesh.column[bottom] * air_count + segment
+    size = mesh.columns * air_count
+    quadratic = np.bincount(slot, weight * (1 + np.sum(beta ** 2, axis=1)), size)
+    linear = np.bincount(slot, weight * 2 * np.sum(alpha * beta, axis=1), size)
+    constant = np.bincount(slot, weight * np.sum(alpha ** 2, axis=1), size)
     # flux T through each segment: residuals of the air nodes above it, summed over the column's images
-    node_column = (np.arange(points.shape[1]) // rows) % mesh.period_columns
     node_row = np.arange(points.shape[1]) % rows - air_bottom
-    above = np.zeros((mesh.period_columns, air_count + 1))
     in_air = (node_row >= 0) & (node_row <= air_count)
-    np.add.at(above, (node_column[in_air], node_row[in_air]), residual[in_air])
+    above = np.zeros((mesh.columns, air_count + 1))
+    np.add.at(above, (mesh.column[in_air], node_row[in_air]), residual[in_air])
     flux = np.cumsum(above[:, ::-1], axis=1)[:, ::-1][:, 1:].ravel()       # Σ_{m > r} R_m
     used = quadratic > 0
     shifted = linear[used] - flux[used] * step
@@ -215,18 +231,105 @@ def _opening_derivative(mesh, degenerate, potential, residual):
     np.add.at(share, np.flatnonzero(used) // air_count, minimum)
     vertical = np.zeros(size)
     vertical[used] = shifted / (2 * quadratic[used])                       # the minimising G
-    return share, np.stack([alpha - beta * vertical[slot], vertical[slot]], axis=1)
+    return share, np.concatenate([alpha - beta * vertical[slot][:, None], vertical[slot][:, None]], axis=1)
 
 
 def _maxwell_pressure(mesh, gradient, eps_air):
     """Air-side Maxwell traction on the skin per interval between columns [Pa], attractive positive:
     ``ε0 eps_a [½ (E_z² - E_x²) - E_x E_z g']`` from the top air row's triangle under each interval."""
-    intervals, rows = mesh.columns - 1, mesh.rows
+    intervals, rows = mesh.node_shape[0] - 1, mesh.rows
     top_row = mesh.air_rows[-1] - 1
     upper = intervals * (rows - 1) + np.arange(intervals) * (rows - 1) + top_row   # (corner, up, right+1)
     ex, ez = gradient[upper].T
     slope = np.diff(mesh.points[1, mesh.air_rows[-1]::rows]) / np.diff(mesh.points[0, ::rows])
     return EPSILON_0 * eps_air * (0.5 * (ez ** 2 - ex ** 2) - ex * ez * slope)
+
+
+@dataclass(frozen=True)
+class _Solved:
+    """What both solves share: the mesh, the nodal potential, energy [J/m or J], the skin-shift derivative per
+    column, the gradient per simplex (degenerate ones: their limit) and the solver's record."""
+
+    mesh: _Mesh
+    energy: float
+    derivative: np.ndarray
+    gradient: np.ndarray
+    elements: int
+    unknowns: int
+    converged: bool
+    iterations: int
+    residual: float
+
+
+def _check_options(rows: dict, solver, sc_first, spacing):
+    for name, value in rows.items():
+        check_integer(name, value, low=1)
+    check_choice("solver", solver, ("direct", "amg"))
+    return check_positive("sc_first", min(spacing) if sc_first is None else sc_first)
+
+
+def _solve_stack(stack, gap, spacing, periodic, voltage, rows: dict, sc_first, solver, tol, maxiter,
+                 caller) -> _Solved:
+    """Mesh, assemble (scikit-fem), solve and differentiate (module docstring) over the gap array ``gap``."""
+    from scipy import sparse
+    from skfem import Basis, BilinearForm, ElementTetP1, ElementTriP1, MeshTet, MeshTri, asm
+    from skfem.helpers import dot, grad
+
+    # a gap below 1e-9 of the air-equivalent offset is contact: such a sliver of air (a rounding residue of
+    # g = 0) would make the matrix singular to working precision; σ_el changes by < 2e-9 relative there
+    collapsed = gap <= CONTACT_GAP * stack.eps_a * stack.dielectric_offset
+    gap = np.where(collapsed, 0.0, gap)
+    mesh = _build_mesh(stack, gap, spacing, periodic, rows["insulator_rows"], rows["air_rows"], rows["sc_rows"],
+                       sc_first)
+    determinant, grads = _gradients(mesh.points, mesh.simplices)
+    degenerate = determinant == 0
+    kept = ~degenerate
+    mesh_type, element = (MeshTri, ElementTriP1) if gap.ndim == 1 else (MeshTet, ElementTetP1)
+    basis = Basis(mesh_type(mesh.points, mesh.simplices[:, kept], sort_t=False, validate=False), element())
+
+    @BilinearForm
+    def laplace(u, v, w):
+        return EPSILON_0 * w["eps"] * dot(grad(u), grad(v))
+
+    permittivity = np.broadcast_to(mesh.permittivity[kept][:, None], (kept.sum(), basis.X.shape[-1]))
+    stiffness = asm(laplace, basis, eps=permittivity).tocsr()
+    index, unknowns = _unknowns(mesh, collapsed)
+    free = index >= 0
+    merge = sparse.csr_matrix((np.ones(free.sum()), (np.flatnonzero(free), index[free])),
+                              shape=(index.size, unknowns))
+    fixed = np.where(index == -2, voltage, 0.0)
+    matrix = (merge.T @ stiffness @ merge).tocsr()
+    solution, converged, iterations, residual = _solve(matrix, -merge.T @ (stiffness @ fixed), solver, tol,
+                                                       maxiter)
+    if not converged:
+        from ..results import ConvergenceWarning
+        warnings.warn(f"{caller}: relative residual {residual:.2e} > tol = {tol:g} after {iterations} "
+                      "iterations", ConvergenceWarning, stacklevel=3)
+    potential = merge @ solution + fixed
+    energy = 0.5 * float(potential @ (stiffness @ potential))
+
+    # virtual work of the kept simplices: Σ_n V_n ∂E_e/∂z_n, booked to the node's column
+    simplices, g_kept = mesh.simplices[:, kept], grads[kept]
+    field = np.einsum("eij,ie->ej", g_kept, potential[simplices])          # ∇u (el, dim)
+    half_eps_volume = (0.5 * EPSILON_0 * mesh.permittivity[kept] * np.abs(determinant[kept])
+                       / math.factorial(mesh.points.shape[0]))
+    per_vertex = half_eps_volume[:, None] * (np.sum(field ** 2, axis=1)[:, None] * g_kept[:, :, -1]
+                                             - 2 * field[:, -1:] * np.einsum("eij,ej->ei", g_kept, field))
+    derivative = np.bincount(mesh.column[simplices.T].ravel(), (per_vertex * mesh.velocity[simplices.T]).ravel(),
+                             mesh.columns)
+    opening, degenerate_gradient = _opening_derivative(mesh, degenerate, potential, stiffness @ potential)
+    gradient = np.zeros((mesh.simplices.shape[1], mesh.points.shape[0]))
+    gradient[kept], gradient[degenerate] = field, degenerate_gradient
+    return _Solved(mesh, energy, derivative + opening, gradient, int(kept.sum()), int(unknowns), bool(converged),
+                   int(iterations), residual)
+
+
+def _tributary(count: int, spacing: float, periodic: bool) -> np.ndarray:
+    """Width of each node's share of an axis [m]: the spacing, halved at the ends of a free window."""
+    width = np.full(count, spacing)
+    if not periodic:
+        width[[0, -1]] = spacing / 2
+    return width
 
 
 def field_solve_profile(stack: DielectricStack, gap, length: float, voltage: float, periodic: bool = True,
@@ -245,69 +348,71 @@ def field_solve_profile(stack: DielectricStack, gap, length: float, voltage: flo
     if gap.ndim != 1 or gap.size < 2:
         raise ValueError(f"gap must be a 1-D profile of at least 2 values; got shape {gap.shape}")
     length = check_positive("length", length)
-    solver = check_choice("solver", solver, ("direct", "amg"))
     voltage = check_real("voltage", voltage)
-    for name, value in (("insulator_rows", insulator_rows), ("air_rows", air_rows), ("sc_rows", sc_rows)):
-        check_integer(name, value, low=1)
     spacing = length / (gap.size if periodic else gap.size - 1)
-    sc_first = check_positive("sc_first", spacing if sc_first is None else sc_first)
-    from skfem import Basis, BilinearForm, ElementTriP1, MeshTri, asm
-    from skfem.helpers import dot, grad
-    from scipy import sparse
+    rows = dict(insulator_rows=insulator_rows, air_rows=air_rows, sc_rows=sc_rows)
+    sc_first = _check_options(rows, solver, sc_first, (spacing,))
+    solved = _solve_stack(stack, gap, (spacing,), periodic, voltage, rows, sc_first, solver, tol, maxiter,
+                          "field_solve_profile")
+    mesh = solved.mesh
+    maxwell = _maxwell_pressure(mesh, solved.gradient, stack.eps_a)
+    return ProfileFieldSolution(
+        mean_pressure=-float(solved.derivative.sum()) / length,
+        pressure=-solved.derivative / _tributary(gap.size, spacing, periodic),
+        x=mesh.points[0, ::mesh.rows][:gap.size], gap=gap.copy(),
+        energy=solved.energy, nodes=int(mesh.points.shape[1]), elements=solved.elements, unknowns=solved.unknowns,
+        converged=solved.converged, iterations=solved.iterations, residual=solved.residual,
+        maxwell_pressure=maxwell, mean_maxwell_pressure=float(maxwell.sum() * spacing / length))
 
-    # a gap below 1e-9 of the air-equivalent offset is contact: such a sliver of air (a rounding residue of
-    # g = 0) would make the matrix singular to working precision; σ_el changes by < 2e-9 relative there
-    collapsed = gap <= CONTACT_GAP * stack.eps_a * stack.dielectric_offset
-    gap = np.where(collapsed, 0.0, gap)
-    mesh = _build_mesh(stack, gap, length, periodic, insulator_rows, air_rows, sc_rows, sc_first)
-    twice_area, grads = _gradients(mesh.points, mesh.triangles)
-    degenerate = twice_area == 0
-    kept = ~degenerate
-    fe_mesh = MeshTri(mesh.points, mesh.triangles[:, kept], sort_t=False, validate=False)
-    basis = Basis(fe_mesh, ElementTriP1())
 
-    @BilinearForm
-    def laplace(u, v, w):
-        return EPSILON_0 * w["eps"] * dot(grad(u), grad(v))
+@dataclass(frozen=True)
+class PatchFieldSolution:
+    """Field solve over a 2-D gap field (x, y, z); SI units.
 
-    permittivity = np.broadcast_to(mesh.permittivity[kept][:, None], (kept.sum(), basis.X.shape[-1]))
-    stiffness = asm(laplace, basis, eps=permittivity).tocsr()
-    index, unknowns = _unknowns(mesh, collapsed)
-    free = index >= 0
-    merge = sparse.csr_matrix((np.ones(free.sum()), (np.flatnonzero(free), index[free])),
-                              shape=(index.size, unknowns))
-    fixed = np.where(index == -2, voltage, 0.0)
-    matrix = (merge.T @ stiffness @ merge).tocsr()
-    rhs = -merge.T @ (stiffness @ fixed)
-    solution, converged, iterations, residual = _solve(matrix, rhs, solver, tol, maxiter)
-    if not converged:
-        from ..results import ConvergenceWarning
-        warnings.warn(f"field_solve_profile: relative residual {residual:.2e} > tol = {tol:g} after "
-                      f"{iterations} iterations", ConvergenceWarning, stacklevel=2)
-    potential = merge @ solution + fixed
-    energy = 0.5 * float(potential @ (stiffness @ potential))
+    ``mean_pressure`` σ̄ [Pa] (virtual work, positive = attraction), ``pressure`` the attraction per column
+    [Pa] (shaped like the gap; its area-weighted mean is σ̄), ``gap`` [m], ``energy`` E [J], ``nodes``,
+    ``elements`` (tetrahedra kept), ``unknowns``, and the solver's ``converged``, ``iterations`` and relative
+    ``residual``.
+    """
 
-    # virtual work of the kept triangles: Σ_n V_n ∂E_e/∂z_n, booked to the node's column
-    t = mesh.triangles[:, kept]
-    g_kept = grads[kept]                                                  # (el, 3, 2)
-    field = np.einsum("eij,ie->ej", g_kept, potential[t])                  # ∇u (el, 2)
-    half_eps_area = 0.25 * EPSILON_0 * mesh.permittivity[kept] * np.abs(twice_area[kept])
-    per_vertex = half_eps_area[:, None] * (np.sum(field ** 2, axis=1)[:, None] * g_kept[:, :, 1]
-                                           - 2 * field[:, 1:2] * np.einsum("eij,ej->ei", g_kept, field))
-    node_column = (t.T // mesh.rows) % mesh.period_columns
-    derivative = np.bincount(node_column.ravel(), (per_vertex * mesh.velocity[t.T]).ravel(),
-                             mesh.period_columns)
-    opening, degenerate_gradient = _opening_derivative(mesh, degenerate, potential, stiffness @ potential)
-    derivative += opening
-    gradient = np.zeros((mesh.triangles.shape[1], 2))
-    gradient[kept], gradient[degenerate] = field, degenerate_gradient
-    maxwell = _maxwell_pressure(mesh, gradient, stack.eps_a)
-    x = mesh.points[0, ::mesh.rows][:mesh.period_columns]
-    width = np.full(mesh.period_columns, spacing)
-    if not periodic:
-        width[[0, -1]] = spacing / 2
-    return ProfileFieldSolution(mean_pressure=-float(derivative.sum()) / length, pressure=-derivative / width,
-                                x=x, gap=gap.copy(), energy=energy, nodes=int(mesh.points.shape[1]),
-                                elements=int(kept.sum()), unknowns=int(unknowns), converged=bool(converged),
-                                iterations=int(iterations), residual=residual, maxwell_pressure=maxwell,
-                                mean_maxwell_pressure=float(maxwell.sum() * spacing / length))
+    mean_pressure: float
+    pressure: np.ndarray
+    gap: np.ndarray
+    energy: float
+    nodes: int
+    elements: int
+    unknowns: int
+    converged: bool
+    iterations: int
+    residual: float
+
+
+def field_solve_patch(stack: DielectricStack, gap, lengths, voltage: float, periodic: bool = True,
+                      insulator_rows: int = 4, air_rows: int = 4, sc_rows: int = 24, sc_first=None,
+                      solver: str = "amg", tol: float = 1e-9, maxiter: int = 500) -> PatchFieldSolution:
+    """Solve the stack's field over the 2-D gap field ``gap`` [m] (>= 0) on a window ``lengths`` (Lx, Ly) [m].
+
+    The 3-D counterpart of :func:`field_solve_profile`: the same terrain-following rows under every lateral
+    node, each hexahedron cut into six P1 tetrahedra (Kuhn), contact columns merged, the attraction by virtual
+    work including the one-sided opening at contact. Periodic in x and y, or free (field-parallel side walls;
+    there the four corner columns share their virtual work unevenly through the split, ±1/3 of a uniform gap's,
+    while every other column and the sum are exact). The default solver is ``"amg"`` (LU fills in 3-D).
+    """
+    gap = check_finite_array("gap", gap, nonnegative=True)
+    if gap.ndim != 2 or min(gap.shape) < 2:
+        raise ValueError(f"gap must be a 2-D field of at least 2 × 2 values; got shape {gap.shape}")
+    if np.ndim(lengths) != 1 or len(lengths) != 2:
+        raise ValueError(f"lengths must be (Lx, Ly) in m; got {lengths!r}")
+    lengths = tuple(check_positive("lengths", value) for value in lengths)
+    voltage = check_real("voltage", voltage)
+    spacing = tuple(length / (n if periodic else n - 1) for length, n in zip(lengths, gap.shape))
+    rows = dict(insulator_rows=insulator_rows, air_rows=air_rows, sc_rows=sc_rows)
+    sc_first = _check_options(rows, solver, sc_first, spacing)
+    solved = _solve_stack(stack, gap, spacing, periodic, voltage, rows, sc_first, solver, tol, maxiter,
+                          "field_solve_patch")
+    area = np.outer(*[_tributary(n, h, periodic) for n, h in zip(gap.shape, spacing)])
+    return PatchFieldSolution(
+        mean_pressure=-float(solved.derivative.sum()) / (lengths[0] * lengths[1]),
+        pressure=-solved.derivative.reshape(gap.shape) / area, gap=gap.copy(), energy=solved.energy,
+        nodes=int(solved.mesh.points.shape[1]), elements=solved.elements, unknowns=solved.unknowns,
+        converged=solved.converged, iterations=solved.iterations, residual=solved.residual)
