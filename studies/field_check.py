@@ -1,6 +1,6 @@
 """The field models of the layered stack against the finite-element field solve (a script).
 
-    python studies/field_check.py                 # docs/field_check.md, tables "Sinusoid" and "Resolved profiles"
+    python studies/field_check.py      # docs/field_check.md: tables "Sinusoid", "Resolved profiles", "3-D patch"
     python studies/field_check.py --fast          # two sinusoids, 1 µm pixels, 2 N and 200 V: a smoke run
 
 (from the repository root with ``pip install -e ".[fieldcheck]"``). Two tables:
@@ -18,6 +18,9 @@
   (n, 1), pixels ``--pixel``) at the nominal pressures of 0.5 and 2 N of the default scene, at 0 V (hard
   wall) and 200 V (the per-pixel attraction inside the solve). The attraction is compared at 200 V on every gap
   (all three models scale with U²).
+* ``field_check_patch.csv``: the same comparison in 3-D (``field_solve_patch``) over a periodic 32 µm
+  self-affine patch (H = 0.8, rms 0.5 µm, wavelengths 2–16 µm) of ``--patch-columns``² pixels pressed on a
+  10 MPa half-space at 30 and 100 kPa, with the FE repeated on the gap interpolated to a grid twice as fine.
 
 Every CSV starts with its provenance line.
 """
@@ -29,7 +32,7 @@ import time
 import numpy as np
 
 from roughcontact.electrostatics import DielectricStack, solve_field
-from roughcontact.electrostatics.fem import field_solve_profile
+from roughcontact.electrostatics.fem import field_solve_patch, field_solve_profile
 from roughcontact.electrostatics.perturbation import second_order_attraction
 from roughcontact.provenance import output_directory, parse_arguments, write_csv
 
@@ -40,6 +43,9 @@ VOLTAGES = (0.0, 200.0)                            # [V] of the contact solve
 COMPARISON_VOLTAGE = 200.0                         # [V] of the compared attraction
 #: (a) the synthetic ridge cap: window [m], cap radius [m], roughness rms [m], Hurst exponent, cut-offs [m]
 CAP = dict(window=400e-6, radius=200e-6, rms_height=0.5e-6, hurst=0.8, long_cutoff=50e-6, short_cutoff=2e-6)
+#: the 3-D patch: a periodic self-affine window [m] pressed on a 10 MPa stratum-corneum-like half-space
+PATCH = dict(window=32e-6, rms_height=0.5e-6, hurst=0.8, long_cutoff=16e-6, short_cutoff=2e-6, E_star=1e7)
+PATCH_PRESSURES = (3e4, 1e5)                       # [Pa] nominal pressures on the patch
 
 
 def _second_order(mean_pressure, gap):
@@ -145,12 +151,56 @@ def profile_rows(scene, stack, pixel: float, forces, voltages, fem_options: dict
     return rows
 
 
+def _refined(gap):
+    """The periodic gap field on a grid twice as fine, interpolated linearly along each axis (the mid-cell
+    value the mean of the four corners)."""
+    fine = np.empty((2 * gap.shape[0], 2 * gap.shape[1]))
+    fine[::2, ::2] = gap
+    fine[1::2, ::2] = 0.5 * (gap + np.roll(gap, -1, axis=0))
+    fine[:, 1::2] = 0.5 * (fine[:, ::2] + np.roll(fine[:, ::2], -1, axis=1))
+    return fine
+
+
+def patch_rows(stack, columns: int, rng: int) -> list:
+    """One row per nominal pressure: the 3-D FE solve over a pressed self-affine patch (``columns``² pixels)
+    and on the same gap refined twice (the FE's own error), the layered model and the per-pixel law."""
+    from roughcontact import ElasticHalfSpace, solve_contact
+    from surfaces import Grid, self_affine
+    window, voltage, rows = PATCH["window"], COMPARISON_VOLTAGE, []
+    grid = Grid((columns, columns), (window, window), periodic=True)
+    heights = self_affine(grid, PATCH["hurst"], rms_height=PATCH["rms_height"], long_cutoff=PATCH["long_cutoff"],
+                          short_cutoff=max(PATCH["short_cutoff"], 2 * grid.spacing[0]), rng=rng)
+    body = ElasticHalfSpace(grid, E_star=PATCH["E_star"])
+    for pressure in PATCH_PRESSURES:
+        result = solve_contact(heights, body, mean_pressure=pressure)
+        if not result.converged:
+            raise RuntimeError(f"the patch's contact solve did not converge at {pressure:g} Pa")
+        gap = np.asarray(result.gap)
+        start = time.process_time()
+        fem = field_solve_patch(stack, gap, (window, window), voltage)
+        seconds = time.process_time() - start
+        fine = field_solve_patch(stack, _refined(gap), (window, window), voltage)
+        layered = solve_field(stack, gap, (window, window), voltage, tol=1e-12).mean_pressure
+        per_pixel = float(np.mean(stack.pressure(gap, voltage)))
+        rows.append({"nominal_pressure_Pa": pressure, "pixels": gap.size, "pixel_um": window / columns * 1e6,
+                     "contact_fraction": np.mean(gap == 0), "mean_gap_um": gap.mean() * 1e6,
+                     "fem_Pa": fem.mean_pressure, "layered_Pa": layered, "per_pixel_Pa": per_pixel,
+                     "layered_difference": layered / fem.mean_pressure - 1,
+                     "per_pixel_difference": per_pixel / fem.mean_pressure - 1,
+                     "fem_refined_difference": fine.mean_pressure / fem.mean_pressure - 1,
+                     "fem_unknowns": fem.unknowns, "fem_refined_unknowns": fine.unknowns, "fem_cpu_s": seconds,
+                     "fem_converged": fem.converged and fine.converged})
+    return rows
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--fast", action="store_true",
                         help="λ = 100 µm and 1 mm at g0 = 1 µm, 64 columns; profiles of 1 µm pixels at 2 N, 200 V")
     parser.add_argument("--pixel", type=float, default=0.25e-6, help="profile pixel [m] (default 0.25 µm)")
     parser.add_argument("--columns", type=int, default=256, help="FE columns per sinusoid wavelength")
+    parser.add_argument("--patch-columns", type=int, default=64,
+                        help="pixels per side of the 3-D patch (32 µm; its FE is refined to twice that)")
     parser.add_argument("--seed", type=int, default=0, help="rng seed of the micro-roughness")
     parser.add_argument("--output", default="out", help="output directory (its parent must exist)")
     args, provenance = parse_arguments(parser, argv, "python studies/field_check.py")
@@ -162,9 +212,11 @@ def main(argv=None):
     if args.fast:
         sinusoid = sinusoid_rows(stack, (100e-6, 1e-3), (1e-6,), 64, fem_options)
         rows = profile_rows(scene, stack, 1e-6, (2.0,), (COMPARISON_VOLTAGE,), fem_options, args.seed)
+        patch = patch_rows(stack, 16, args.seed)
     else:
         sinusoid = sinusoid_rows(stack, WAVELENGTHS, MEAN_GAPS, args.columns, fem_options)
         rows = profile_rows(scene, stack, args.pixel, NORMAL_FORCES, VOLTAGES, fem_options, args.seed)
+        patch = patch_rows(stack, args.patch_columns, args.seed)
     write_csv(output / "field_check_sinusoid.csv", sinusoid, provenance)
     for row in sinusoid:
         print(f"λ {row['wavelength_um']:7.0f} µm  g0 {row['mean_gap_um']:.1f} µm  S/S_exact: FE "
@@ -177,8 +229,14 @@ def main(argv=None):
               f"layered {100 * row['layered_difference']:+.2f} %, per pixel {100 * row['per_pixel_difference']:+.2f} %"
               f"  (d_eq FE {row['fem_equivalent_gap_um']:.3f} µm, layered {row['layered_equivalent_gap_um']:.3f}, "
               f"per pixel {row['per_pixel_equivalent_gap_um']:.3f})")
+    write_csv(output / "field_check_patch.csv", patch, provenance)
+    for row in patch:
+        print(f"patch {row['pixels']} px at {row['nominal_pressure_Pa'] / 1e3:.0f} kPa, contact "
+              f"{100 * row['contact_fraction']:.1f} %: FE {row['fem_Pa']:.5g} Pa (refined "
+              f"{100 * row['fem_refined_difference']:+.2f} %), layered {100 * row['layered_difference']:+.2f} %, "
+              f"per pixel {100 * row['per_pixel_difference']:+.2f} %")
     print(f"written to {output}/")
-    return sinusoid, rows
+    return sinusoid, rows, patch
 
 
 if __name__ == "__main__":
