@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 STUDY = Path(__file__).resolve().parents[2] / "studies" / "field_check.py"
+pytestmark = pytest.mark.slow          # the fast run takes about 10 s (two profiles, two 3-D patches, refined)
 
 
 @pytest.fixture(scope="module")
