@@ -26,6 +26,7 @@ import numpy as np
 from surfaces.validation import check_choice, check_finite_array, check_positive, check_real
 
 from .electrostatics import DielectricStack
+from .io.results import savable_field
 
 #: How an electrostatic law takes the field (:class:`ElectrostaticInteraction`).
 FIELDS = ("parallel_plate", "layered")
@@ -183,6 +184,8 @@ class MaugisDugdale(Interaction):
 
 #: The laws that results can be saved and loaded with (by class name).
 LAWS = {law.__name__: law for law in (HardWall, ElectrostaticInteraction, ExponentialAdhesion, MaugisDugdale)}
+for _kind in (*LAWS.values(), DielectricStack):        # a result holding a law (and its stack) loads them by name
+    savable_field(_kind)
 
 
 __all__ = ["Interaction", "HardWall", "ElectrostaticInteraction", "ExponentialAdhesion", "MaugisDugdale"]

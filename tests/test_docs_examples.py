@@ -5,7 +5,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-PAGES = ["README.md", "docs/architecture.md", "docs/interactions.md"]
+PAGES = ["README.md", "docs/architecture.md", "docs/interactions.md", "docs/electrostatics.md"]
 BLOCK = re.compile(r"^```python\n(.*?)^```", re.MULTILINE | re.DOTALL)
 
 

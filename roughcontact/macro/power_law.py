@@ -26,7 +26,7 @@ import numpy as np
 
 from surfaces.validation import check_broadcast, check_finite_array, check_integer, check_positive, check_real, plain
 
-from ..results import SavableResult
+from ..io.results import SavableResult
 
 #: 1 mm in m, for the seed's mm-based parameter sets.
 MILLIMETRE = 1e-3
