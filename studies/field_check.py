@@ -31,10 +31,15 @@ import time
 
 import numpy as np
 
-from roughcontact.electrostatics import DielectricStack, solve_field
+from roughcontact import ElasticHalfSpace, ElectrostaticInteraction, solve_contact
+from roughcontact.electrostatics import solve_field
 from roughcontact.electrostatics.fem import field_solve_patch, field_solve_profile
 from roughcontact.electrostatics.perturbation import second_order_attraction
-from roughcontact.provenance import output_directory, parse_arguments, write_csv
+from roughcontact.io import output_directory, parse_arguments, write_csv
+from roughcontact.study.apparent import apparent_scale
+from roughcontact.study.patch import patch_body, ridge_heights
+from roughcontact.study.scene import load_scene
+from surfaces import Grid, self_affine
 
 WAVELENGTHS = (10e-6, 100e-6, 1e-3, 5e-3)          # [m]
 MEAN_GAPS = (0.5e-6, 1e-6, 2e-6)                   # [m]
@@ -80,7 +85,6 @@ def _pressed(heights, body, pressure, voltage, stack) -> tuple:
     """``(gap [m], cold start used)`` of ``heights`` pressed at ``pressure`` [Pa] (with the per-pixel attraction
     at ``voltage``). The solver's nested cold start stalls on some of these 1-D profiles (the default scene's
     ridge at 2 N, 0 V, 0.25 µm pixels: a 37 % contact state); then Polonsky and Keer's uniform start is used."""
-    from roughcontact import ElectrostaticInteraction, solve_contact
     interaction = ElectrostaticInteraction(stack, voltage=voltage) if voltage else None
     for cold_start in ("nested", "pk"):
         result = solve_contact(heights, body, mean_pressure=pressure, interaction=interaction,
@@ -92,9 +96,6 @@ def _pressed(heights, body, pressure, voltage, stack) -> tuple:
 
 def profiles(scene, pixel: float, rng: int) -> dict:
     """{name: (heights (n, 1) [m], grid, body)}: (a) the synthetic cap, (b) the default scene's ridge."""
-    from surfaces import Grid, self_affine
-    from roughcontact.study import patch_body, ridge_heights
-
     def grid_of(window):
         n = int(round(window / pixel))
         return Grid((n, 1), (window, window / n), periodic=True)
@@ -116,7 +117,6 @@ def profiles(scene, pixel: float, rng: int) -> dict:
 
 def profile_rows(scene, stack, pixel: float, forces, voltages, fem_options: dict, rng: int) -> list:
     """One row per profile, load and solve voltage: mean attraction at 200 V by FE, layered and per pixel."""
-    from roughcontact.study import apparent_scale
     pressures = {force: scale[1][0] for force, scale in zip(scene.loads.normal_forces, apparent_scale(scene))}
     rows, voltage = [], COMPARISON_VOLTAGE
     for name, (heights, grid, body) in profiles(scene, pixel, rng).items():
@@ -164,8 +164,6 @@ def _refined(gap):
 def patch_rows(stack, columns: int, rng: int) -> list:
     """One row per nominal pressure: the 3-D FE solve over a pressed self-affine patch (``columns``² pixels)
     and on the same gap refined twice (the FE's own error), the layered model and the per-pixel law."""
-    from roughcontact import ElasticHalfSpace, solve_contact
-    from surfaces import Grid, self_affine
     window, voltage, rows = PATCH["window"], COMPARISON_VOLTAGE, []
     grid = Grid((columns, columns), (window, window), periodic=True)
     heights = self_affine(grid, PATCH["hurst"], rms_height=PATCH["rms_height"], long_cutoff=PATCH["long_cutoff"],
@@ -205,7 +203,6 @@ def main(argv=None):
     parser.add_argument("--output", default="out", help="output directory (its parent must exist)")
     args, provenance = parse_arguments(parser, argv, "python studies/field_check.py")
     output = output_directory(args.output)
-    from roughcontact.scene import load_scene
     scene = load_scene(preset="draft")
     stack = scene.screen.stack()
     fem_options = dict(air_rows=8, insulator_rows=8, sc_rows=48)

@@ -31,6 +31,7 @@ import numpy as np
 from surfaces.validation import (check_choice, check_finite_array, check_integer, check_positive,
                                  check_real)
 
+from ..io.results import ConvergenceWarning
 from .stack import EPSILON_0, DielectricStack
 
 
@@ -302,7 +303,6 @@ def _solve_stack(stack, gap, spacing, periodic, voltage, rows: dict, sc_first, s
     solution, converged, iterations, residual = _solve(matrix, -merge.T @ (stiffness @ fixed), solver, tol,
                                                        maxiter)
     if not converged:
-        from ..results import ConvergenceWarning
         warnings.warn(f"{caller}: relative residual {residual:.2e} > tol = {tol:g} after {iterations} "
                       "iterations", ConvergenceWarning, stacklevel=3)
     potential = merge @ solution + fixed

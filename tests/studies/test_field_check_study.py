@@ -1,27 +1,17 @@
 """The field-check study (studies/field_check.py) runs in fast mode: its sinusoid rows reproduce the exact S
 with the FE solve, its profile rows hold the differences of the written values, and the per-pixel law is far
 below the FE solve on the pressed profiles while the layered model is close to it."""
-import importlib.util
-import sys
-from pathlib import Path
-
 import numpy as np
 import pytest
 
-STUDY = Path(__file__).resolve().parents[2] / "studies" / "field_check.py"
 pytestmark = pytest.mark.slow          # the fast run takes about 10 s (two profiles, two 3-D patches, refined)
 
 
 @pytest.fixture(scope="module")
-def fast_rows(tmp_path_factory):
+def fast_rows(fast_run):
     pytest.importorskip("skfem", reason="the field check needs the optional extra roughcontact[fieldcheck]")
     pytest.importorskip("pyamg", reason="the field check needs the optional extra roughcontact[fieldcheck]")
-    spec = importlib.util.spec_from_file_location("field_check_study", STUDY)
-    module = sys.modules["field_check_study"] = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    path = tmp_path_factory.mktemp("field_check")
-    module.main(["--fast", "--output", str(path)])
-    return path
+    return fast_run("field_check")
 
 
 def test_sinusoid_rows(fast_rows, read_csv):
