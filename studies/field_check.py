@@ -191,6 +191,12 @@ def patch_rows(stack, columns: int, rng: int) -> list:
     return rows
 
 
+def _differences(row) -> str:
+    """The FE mean, its change on refinement and the other models' differences from it, as printed."""
+    return (f"FE {row['fem_Pa']:.5g} Pa (refined {100 * row['fem_refined_difference']:+.2f} %), "
+            f"layered {100 * row['layered_difference']:+.2f} %, per pixel {100 * row['per_pixel_difference']:+.2f} %")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--fast", action="store_true",
@@ -222,16 +228,12 @@ def main(argv=None):
     write_csv(output / "field_check_profiles.csv", rows, provenance)
     for row in rows:
         print(f"{row['profile']:12s} {row['normal_force_N']:.1f} N, solved at {row['solve_voltage_V']:3.0f} V: "
-              f"FE {row['fem_Pa']:.5g} Pa (refined {100 * row['fem_refined_difference']:+.2f} %), "
-              f"layered {100 * row['layered_difference']:+.2f} %, per pixel {100 * row['per_pixel_difference']:+.2f} %"
-              f"  (d_eq FE {row['fem_equivalent_gap_um']:.3f} µm, layered {row['layered_equivalent_gap_um']:.3f}, "
-              f"per pixel {row['per_pixel_equivalent_gap_um']:.3f})")
+              f"{_differences(row)}  (d_eq FE {row['fem_equivalent_gap_um']:.3f} µm, layered "
+              f"{row['layered_equivalent_gap_um']:.3f}, per pixel {row['per_pixel_equivalent_gap_um']:.3f})")
     write_csv(output / "field_check_patch.csv", patch, provenance)
     for row in patch:
         print(f"patch {row['pixels']} px at {row['nominal_pressure_Pa'] / 1e3:.0f} kPa, contact "
-              f"{100 * row['contact_fraction']:.1f} %: FE {row['fem_Pa']:.5g} Pa (refined "
-              f"{100 * row['fem_refined_difference']:+.2f} %), layered {100 * row['layered_difference']:+.2f} %, "
-              f"per pixel {100 * row['per_pixel_difference']:+.2f} %")
+              f"{100 * row['contact_fraction']:.1f} %: {_differences(row)}")
     print(f"written to {output}/")
     return sinusoid, rows, patch
 

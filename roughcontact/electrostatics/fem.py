@@ -40,21 +40,17 @@ CONTACT_GAP = 1e-9
 
 
 @dataclass(frozen=True)
-class ProfileFieldSolution:
-    """Field solve over a 1-D gap profile; SI units, per unit depth in y.
+class PatchFieldSolution:
+    """Field solve over a 2-D gap field (x, y, z); SI units.
 
     ``mean_pressure`` σ̄ [Pa] (virtual work, positive = attraction), ``pressure`` the attraction per column
-    [Pa] (the virtual work of moving one column of skin nodes, over its tributary width; its width-weighted
-    mean is σ̄), ``x`` the column positions [m], ``gap`` the gap at the columns [m], ``energy`` E [J/m],
-    ``nodes``, ``elements`` (triangles kept), ``unknowns``, and the solver's ``converged``, ``iterations`` and
-    relative ``residual``. ``maxwell_pressure`` [Pa] is the independent air-side Maxwell traction on the
-    skin per interval between columns (the field of the air triangle under it; the zero-area ones at contact
-    take their limiting field), ``mean_maxwell_pressure`` its mean; it converges to σ̄ with the mesh.
+    [Pa] (the virtual work of moving one column of skin nodes, over its tributary area; shaped like the gap, its
+    area-weighted mean is σ̄), ``gap`` [m], ``energy`` E [J], ``nodes``, ``elements`` (simplices kept),
+    ``unknowns``, and the solver's ``converged``, ``iterations`` and relative ``residual``.
     """
 
     mean_pressure: float
     pressure: np.ndarray
-    x: np.ndarray
     gap: np.ndarray
     energy: float
     nodes: int
@@ -63,6 +59,18 @@ class ProfileFieldSolution:
     converged: bool
     iterations: int
     residual: float
+
+
+@dataclass(frozen=True)
+class ProfileFieldSolution(PatchFieldSolution):
+    """Field solve over a 1-D gap profile (x, z); the fields of :class:`PatchFieldSolution` per unit depth in y
+    (``pressure`` per column over its tributary width, ``energy`` E [J/m]), and ``x`` the column positions
+    [m]. ``maxwell_pressure`` [Pa] is the independent air-side Maxwell traction on the skin per interval between
+    columns (the field of the air triangle under it; the zero-area ones at contact take their limiting field),
+    ``mean_maxwell_pressure`` its mean; it converges to σ̄ with the mesh.
+    """
+
+    x: np.ndarray
     maxwell_pressure: np.ndarray
     mean_maxwell_pressure: float
 
@@ -363,28 +371,6 @@ def field_solve_profile(stack: DielectricStack, gap, length: float, voltage: flo
         energy=solved.energy, nodes=int(mesh.points.shape[1]), elements=solved.elements, unknowns=solved.unknowns,
         converged=solved.converged, iterations=solved.iterations, residual=solved.residual,
         maxwell_pressure=maxwell, mean_maxwell_pressure=float(maxwell.sum() * spacing / length))
-
-
-@dataclass(frozen=True)
-class PatchFieldSolution:
-    """Field solve over a 2-D gap field (x, y, z); SI units.
-
-    ``mean_pressure`` σ̄ [Pa] (virtual work, positive = attraction), ``pressure`` the attraction per column
-    [Pa] (shaped like the gap; its area-weighted mean is σ̄), ``gap`` [m], ``energy`` E [J], ``nodes``,
-    ``elements`` (tetrahedra kept), ``unknowns``, and the solver's ``converged``, ``iterations`` and relative
-    ``residual``.
-    """
-
-    mean_pressure: float
-    pressure: np.ndarray
-    gap: np.ndarray
-    energy: float
-    nodes: int
-    elements: int
-    unknowns: int
-    converged: bool
-    iterations: int
-    residual: float
 
 
 def field_solve_patch(stack: DielectricStack, gap, lengths, voltage: float, periodic: bool = True,
