@@ -86,16 +86,17 @@ class ElectrostaticInteraction(Interaction):
     (:class:`~roughcontact.electrostatics.DielectricStack`; only U² enters, so the sign of the voltage does
     not matter).
 
-    ``field`` says how the field is taken: ``"parallel_plate"``, Eq. 21 pixel by pixel (the methods below), or
-    ``"layered"``, the stack's field over the whole gap field (:mod:`roughcontact.electrostatics.field`: the
-    stratum corneum and the insulator couple the columns). The layered law is non-local: its traction at a
-    pixel depends on the whole gap field, so the contact solver evaluates it through
-    :class:`~roughcontact.electrostatics.field.FieldLaw`, and the per-pixel methods give the parallel-plate values.
+    ``field`` says how the field is taken: ``"layered"`` (the default), the stack's field over the whole gap field
+    (:mod:`roughcontact.electrostatics.field`: the stratum corneum and the insulator couple the columns;
+    ``docs/electrostatics.md``), or ``"parallel_plate"``, Eq. 21 pixel by pixel (the methods below), the seed's
+    assumption. The layered law is non-local: its traction at a pixel depends on the whole gap field, so the
+    contact solver evaluates it through :class:`~roughcontact.electrostatics.field.FieldLaw`, and the per-pixel
+    methods give the parallel-plate values.
     """
 
     stack: DielectricStack = DielectricStack()
     voltage: float = 0.0
-    field: str = "parallel_plate"
+    field: str = "layered"
 
     def __post_init__(self):
         if not isinstance(self.stack, DielectricStack):

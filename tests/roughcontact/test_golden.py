@@ -130,12 +130,12 @@ def hard_wall_float32():
 
 
 def electrostatic_load_control():
-    return solve_contact(*rough(), mean_pressure=1e3, interaction=ElectrostaticInteraction(STACK, 30.0))
+    return solve_contact(*rough(), mean_pressure=1e3, interaction=ElectrostaticInteraction(STACK, 30.0, field="parallel_plate"))
 
 
 def electrostatic_float32():
     return solve_contact(*rough(dtype=np.float32), mean_pressure=1e3,
-                         interaction=ElectrostaticInteraction(STACK, 30.0))
+                         interaction=ElectrostaticInteraction(STACK, 30.0, field="parallel_plate"))
 
 
 def electrostatic_layered_field():
