@@ -16,7 +16,8 @@
   ridge cap with self-affine micro-roughness pressed onto the flat; (b) one period of the default scene's
   ridge with micro-roughness as a 1-D profile; each pressed (``solve_contact`` on a profile grid of shape
   (n, 1), pixels ``--pixel``) at the nominal pressures of 0.5 and 2 N of the default scene, at 0 V (hard
-  wall) and 200 V (the per-pixel attraction inside the solve). The attraction is compared at 200 V on every gap
+  wall) and 200 V (the per-pixel attraction inside the solve, ``field="parallel_plate"``, so that the gaps do
+  not depend on one of the compared models). The attraction is compared at 200 V on every gap
   (all three models scale with U²).
 * ``field_check_patch.csv``: the same comparison in 3-D (``field_solve_patch``) over a periodic 32 µm
   self-affine patch (H = 0.8, rms 0.5 µm, wavelengths 2–16 µm) of ``--patch-columns``² pixels pressed on a
@@ -85,7 +86,7 @@ def _pressed(heights, body, pressure, voltage, stack) -> tuple:
     """``(gap [m], cold start used)`` of ``heights`` pressed at ``pressure`` [Pa] (with the per-pixel attraction
     at ``voltage``). The solver's nested cold start stalls on some of these 1-D profiles (the default scene's
     ridge at 2 N, 0 V, 0.25 µm pixels: a 37 % contact state); then Polonsky and Keer's uniform start is used."""
-    interaction = ElectrostaticInteraction(stack, voltage=voltage) if voltage else None
+    interaction = ElectrostaticInteraction(stack, voltage=voltage, field="parallel_plate") if voltage else None
     for cold_start in ("nested", "pk"):
         result = solve_contact(heights, body, mean_pressure=pressure, interaction=interaction,
                                cold_start=cold_start, warn=False)
