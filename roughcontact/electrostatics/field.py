@@ -89,6 +89,7 @@ class StackField:
         self._buffer = self._fft.empty()
         self._window = tuple(slice(0, n) for n in grid.shape)
         self._stencil = _stencil(grid, enabled=self.model == "layered")
+        self._work = None
         self.residual = None
 
     @property
@@ -147,9 +148,11 @@ class StackField:
         if self.model == "parallel_plate":
             self.residual = np.zeros_like(column)
             return 1.0 / (self.stack.dielectric_offset / EPSILON_0 + column), 0, 0.0
-        inverse_diagonal = 1.0 / (self._diagonal + column)
+        if self._work is None or self._work[0].shape != column.shape:
+            self._work = tuple(np.empty(column.shape) for _ in range(5))       # allocated once per grid
+        inverse_diagonal, product, residual, z, direction = self._work
+        np.divide(1.0, self._diagonal + column, out=inverse_diagonal)
         flux = inverse_diagonal.copy() if initial is None else np.array(initial, dtype=float)
-        product, residual, z, direction = (np.empty_like(flux) for _ in range(4))
         self.apply_elastance(flux, product)
         rz, rr = _cg_start(flux.reshape(-1), product.reshape(-1), column.reshape(-1), inverse_diagonal.reshape(-1),
                            residual.reshape(-1), z.reshape(-1), direction.reshape(-1))
