@@ -1,6 +1,6 @@
 """Cost of the layered field inside the contact solve against the per-pixel law on the same patch and tolerance.
 
-    python studies/bench_field.py                      # 256² and 512², 30/100/200 V: the table of docs/electrostatics.md
+    python studies/bench_field.py                      # 256² and 512², 30/100/200 V: the table of docs/guide/electrostatics.md
     python studies/bench_field.py --repeat 3 --output out
     python studies/bench_field.py --fast               # 64², seconds
 

@@ -1,6 +1,6 @@
 """The field models of the layered stack against the finite-element field solve (a script).
 
-    python studies/field_check.py      # docs/field_check.md: tables "Sinusoid", "Resolved profiles", "3-D patch"
+    python studies/field_check.py      # docs/validation/field_check.md: tables "Sinusoid", "Resolved profiles", "3-D patch"
     python studies/field_check.py --fast          # two sinusoids, 1 µm pixels, 2 N and 200 V: a smoke run
 
 (from the repository root with ``pip install -e ".[fieldcheck]"``). Two tables:

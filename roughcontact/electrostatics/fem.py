@@ -1,6 +1,6 @@
 """Finite-element field solve of the full layered stack over a 1-D gap profile: the independent reference.
 
-A 2-D x–z problem (``docs/field_check.md``): electrode at z = -d_i (potential 0), insulator (eps_i), air gap
+A 2-D x–z problem (``docs/validation/field_check.md``): electrode at z = -d_i (potential 0), insulator (eps_i), air gap
 0 < z < g(x) (eps_a), stratum corneum g(x) < z < g(x) + d_sc (eps_sc, uniform vertical thickness), tissue on
 its top face (potential U); ``div(ε0 ε grad φ) = 0``, periodic in x or with field-parallel (zero-flux) side
 walls. The mesh is terrain-following: every column of nodes has the same rows (uniform in the insulator and

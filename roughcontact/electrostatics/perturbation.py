@@ -1,4 +1,4 @@
-"""Exact second-order response of the layered stack to a sinusoidal air gap (``docs/field_check.md``).
+"""Exact second-order response of the layered stack to a sinusoidal air gap (``docs/validation/field_check.md``).
 
 The gap ``g(x) = g0 + a cos(q x)`` between a flat insulator (electrode at z = -d_i, potential 0) and a
 stratum corneum of uniform vertical thickness d_sc whose top face (the tissue, potential U) follows the skin
@@ -112,7 +112,7 @@ def gradient_coefficient(stack: DielectricStack, gap, voltage) -> np.ndarray:
     """``K(g)`` [J/m²] of the derivative expansion W ≈ ∫ [W0(g) + ½ K(g) g'²] dx, the q² term of W2:
     ``W2 = W0''/4 + q² K/4 + O(q⁴)``.
 
-    From the mapped energy at q = 0 (``docs/field_check.md``): with e0 = U/h, flux C = -e0/(eps_a h) and the
+    From the mapped energy at q = 0 (``docs/validation/field_check.md``): with e0 = U/h, flux C = -e0/(eps_a h) and the
     first-order mapped potential P0 piecewise linear, 0 -> p1 = C d_i/eps_i -> p2 = p1 - C c -> 0 (c the
     dielectric offset),
     ``K = ε0 [e0² (g/(3 eps_a) + d_sc/eps_sc) + Σ_layers eps d (A² + AB + B²)/3 - 2 e0 (g (p1 + 2 p2)/6

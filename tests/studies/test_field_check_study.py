@@ -18,7 +18,7 @@ def test_sinusoid_rows(fast_rows, read_csv):
     rows = read_csv(fast_rows / "field_check_sinusoid.csv")
     assert [(row["wavelength_um"], row["mean_gap_um"]) for row in rows] == [("100.0", "1.0"), ("1000.0", "1.0")]
     for row in rows:
-        # 64 columns: measured 3e-6 and 1e-5 (docs/field_check.md); the per-pixel law is 3-8 % off here
+        # 64 columns: measured 3e-6 and 1e-5 (docs/validation/field_check.md); the per-pixel law is 3-8 % off here
         assert float(row["fem_over_exact"]) == pytest.approx(1, abs=1e-4)
         assert float(row["layered_over_exact"]) == pytest.approx(1, abs=1e-3)
         assert float(row["per_pixel_over_exact"]) < 0.97
@@ -48,6 +48,6 @@ def test_patch_rows(fast_rows, read_csv):
         assert row["fem_converged"] == "True" and 0 < float(row["contact_fraction"]) < 0.5
         assert float(row["layered_difference"]) == pytest.approx(layered / fem - 1, rel=1e-12)
         # 2 µm pixels (16²): measured layered +3.7 %, per pixel -22 %; the FE changes by -16 % on refinement,
-        # the pixels are far too coarse for the contact edges (the full run: 0.5 µm, docs/field_check.md)
+        # the pixels are far too coarse for the contact edges (the full run: 0.5 µm, docs/validation/field_check.md)
         assert abs(float(row["layered_difference"])) < 0.1
         assert float(row["per_pixel_difference"]) < -0.1

@@ -1,4 +1,4 @@
-"""The independent field check (docs/field_check.md): second-order perturbation theory of a sinusoidal gap and
+"""The independent field check (docs/validation/field_check.md): second-order perturbation theory of a sinusoidal gap and
 the finite-element solve of the full stack, each against limits and against the other."""
 import numpy as np
 import pytest
