@@ -1,10 +1,15 @@
-"""The documentation keeps its promises: every test that docs/validation/index.md names exists, and no page
-names a commit or points into the git history (the history is CHANGELOG.md's)."""
+"""The documentation keeps its promises: every relative link resolves (to a file, and to a heading or an
+anchor of a page), every test that docs/validation/index.md names exists, and no page names a commit or points
+into the git history (the history is CHANGELOG.md's)."""
 import re
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 VALIDATION = ROOT / "docs" / "validation" / "index.md"
+PAGES = sorted([*(ROOT / "docs").rglob("*.md"), ROOT / "README.md", ROOT / "CHANGELOG.md",
+                ROOT / "examples" / "README.md"])
+#: a relative link to a file (its target has a dot or a slash) and its anchor
+LINK = re.compile(r"\]\(((?![a-z]+:)[^)\s#]*[./][^)\s#]*)(#[^)\s]+)?\)")
 #: a commit hash: 7-40 hex digits with at least one letter and one digit, not part of a number (8.85e-12)
 HASH = re.compile(r"(?<![.\w])(?=[0-9a-f]*[a-f])(?=[0-9a-f]*[0-9])[0-9a-f]{7,40}(?![\w-])")
 
@@ -41,3 +46,24 @@ def test_no_page_names_a_commit_or_the_git_history():
         text = page.read_text()
         assert not HASH.findall(text), (page, HASH.findall(text))
         assert "git history" not in text, page
+
+
+def anchors(page):
+    """GitHub's anchors of a page: its headings (lower case, punctuation dropped, spaces to hyphens) and the
+    ids of its explicit anchors."""
+    text = page.read_text()
+    headings = re.findall(r"^#+ (.*)$", text, re.MULTILINE)
+    return ({re.sub(r"[^\w\- ]", "", heading.strip().lower()).replace(" ", "-") for heading in headings}
+            | set(re.findall(r'<a (?:id|name)="([^"]+)"', text)))
+
+
+def test_relative_links_resolve():
+    checked = 0
+    for page in PAGES:
+        for target, anchor in LINK.findall(page.read_text()):
+            path = (page.parent / target).resolve()
+            assert path.exists(), f"{page.relative_to(ROOT)}: {target}"
+            if anchor and path.suffix == ".md":
+                assert anchor[1:] in anchors(path), f"{page.relative_to(ROOT)}: {target}{anchor}"
+            checked += 1
+    assert checked > 100
