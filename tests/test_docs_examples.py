@@ -6,6 +6,7 @@ Blocks run in a fresh working directory. A page whose blocks read ``roughcontact
 ``roughcontact run`` writes) finds there the results of a tiny study (32² patches).
 """
 import re
+import runpy
 from pathlib import Path
 
 import pytest
@@ -16,22 +17,10 @@ NOT_RUN = re.compile(r"<!-- not run by the tests: (.{20,}) -->")
 PAGES = sorted(str(page.relative_to(ROOT)) for page in (ROOT / "docs").rglob("*.md")) + ["README.md"]
 #: the modules of the optional extras (pyproject.toml): a page that needs one is skipped without it
 OPTIONAL = {"felupe", "tensortrax", "skfem", "pyamg", "tamaas", "ContactMechanics", "distributed"}
-#: the results a page reads from ``roughcontact run --out roughcontact-results`` come from this scene
-TINY_STUDY = """\
-[loads]
-normal_forces = [0.5, 2.0]
-voltages = [0.0, 200.0]
-[roughness]
-long_cutoff = 1.5e-4
-[ridge_area]
-coarse_graining = 6e-5
-sensitivity = [2.0]
-[presets.draft]
-grid = 32
-realisations = 2
-tolerance = 1e-6
-pixels_per_cutoff = 3.0
-"""
+#: the results a page reads from ``roughcontact run --out roughcontact-results`` come from the study tests'
+#: tiny scene (32² patches), at the 0 and 200 V the tutorial reads
+TINY_STUDY = runpy.run_path(str(ROOT / "tests" / "roughcontact" / "study" / "study_scenes.py"))["TINY"].replace(
+    "voltages = [0.0, 150.0]", "voltages = [0.0, 200.0]")
 
 
 def python_blocks(page):
