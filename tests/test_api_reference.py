@@ -8,6 +8,7 @@ import pytest
 API = Path(__file__).resolve().parents[1] / "docs" / "reference" / "api"
 
 
+@pytest.mark.slow                                          # 6 CPU s: autodoc inspects every module
 @pytest.mark.filterwarnings("ignore:The mapping interface for autodoc options:PendingDeprecationWarning")
 def test_api_reference_builds_without_warnings(tmp_path):
     build = pytest.importorskip("sphinx.cmd.build", reason="the API reference needs Sphinx (the test extra)")
