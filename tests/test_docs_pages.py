@@ -67,3 +67,15 @@ def test_relative_links_resolve():
                 assert anchor[1:] in anchors(path), f"{page.relative_to(ROOT)}: {target}{anchor}"
             checked += 1
     assert checked > 100
+
+
+def test_every_page_is_reachable_from_the_index():
+    """docs/index.md links everything: every page under docs/ is reached from it by relative links."""
+    reached, todo = set(), [ROOT / "docs" / "index.md"]
+    while todo:
+        page = todo.pop()
+        if page in reached or page.suffix != ".md" or not page.is_relative_to(ROOT / "docs"):
+            continue
+        reached.add(page)
+        todo += [(page.parent / target).resolve() for target, _ in LINK.findall(page.read_text())]
+    assert set((ROOT / "docs").rglob("*.md")) - reached == set()
