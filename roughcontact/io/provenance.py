@@ -115,12 +115,22 @@ def write_csv(path, rows, provenance: Provenance | None, columns=None, echo=Fals
 
 
 def write_atomic(path, text: str) -> Path:
-    """Write ``text`` to ``path`` through a sibling ``.part`` file renamed over it: a reader (or a resumed run)
-    sees the old file or the whole new one, never a half-written one."""
+    """Write ``text`` (UTF-8) to ``path`` through a sibling ``.part`` file, synced to disk and renamed over it
+    (the directory synced after): a reader, or a run resumed after a crash or a power cut, sees the old file or
+    the whole new one, never a half-written or empty one."""
     path = Path(path)
     temporary = path.with_name(path.name + ".part")
-    temporary.write_text(text)
+    with open(temporary, "w", encoding="utf-8") as stream:
+        stream.write(text)
+        stream.flush()
+        os.fsync(stream.fileno())
     os.replace(temporary, path)
+    if hasattr(os, "O_DIRECTORY"):                   # (POSIX: the rename itself reaches the disk)
+        directory = os.open(path.parent, os.O_RDONLY | os.O_DIRECTORY)
+        try:
+            os.fsync(directory)
+        finally:
+            os.close(directory)
     return path
 
 

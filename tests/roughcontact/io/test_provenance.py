@@ -1,5 +1,6 @@
 """The one writer of provenance-carrying outputs (roughcontact.io.provenance)."""
 import json
+import os
 
 import numpy as np
 import pytest
@@ -46,6 +47,17 @@ def test_output_directory_creates_only_the_last_level(tmp_path):
     with pytest.raises(OutputPathError, match="does not exist"):
         output_directory(tmp_path / "missing" / "new")
     assert not (tmp_path / "missing").exists()
+
+
+def test_write_atomic_syncs_the_file_before_renaming_it(tmp_path, monkeypatch):
+    # a crash or power cut after the rename must not leave an empty file (a resumed study would read it)
+    events, fsync, replace = [], os.fsync, os.replace
+    monkeypatch.setattr(os, "fsync", lambda descriptor: events.append(("fsync", os.fstat(descriptor).st_size))
+                        or fsync(descriptor))
+    monkeypatch.setattr(os, "replace", lambda *paths: events.append(("replace",)) or replace(*paths))
+    write_atomic(tmp_path / "record.json", '{"new": 1}')
+    assert events[:2] == [("fsync", 10), ("replace",)]          # the whole text on disk, then renamed
+    assert events[2:] == [("fsync", os.stat(tmp_path).st_size)]  # and the directory's entry after it
 
 
 def test_write_atomic_replaces_the_file_whole(tmp_path):
