@@ -299,6 +299,12 @@ class _Dask:
         except ImportError:
             raise ImportError("running on a dask cluster needs dask.distributed: pip install 'roughcontact[parallel]'"
                               ) from None
+        if not isinstance(address, str):
+            raise TypeError(f"dask must be a scheduler address such as 'tcp://host:8786', got {type(address).__name__}")
+        try:
+            distributed.comm.resolve_address(address)          # its form (a Client would fail, then hang at exit)
+        except (ValueError, OSError) as error:
+            raise ValueError(f"dask = {address!r} is not a scheduler address (tcp://host:port): {error}") from None
         self.distributed, self.address, self.futures = distributed, address, []
 
     def __enter__(self):

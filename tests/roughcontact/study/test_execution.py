@@ -228,6 +228,32 @@ def test_an_unreachable_scheduler_is_named(tiny, tmp_path):
     assert not (tmp_path / "run.lock").exists() and not any((tmp_path / "tasks").iterdir())
 
 
+@pytest.mark.parametrize("address, message", [
+    ("nonsense", r"dask = 'nonsense' is not a scheduler address \(tcp://host:port\): missing port number"),
+    ("tcp://host:port", r"dask = 'tcp://host:port' is not a scheduler address"),
+    ("foo://host:1", r"dask = 'foo://host:1' is not a scheduler address \(tcp://host:port\): unknown address scheme"),
+])
+def test_a_malformed_scheduler_address_is_refused_at_once(address, message, tmp_path):
+    pytest.importorskip("distributed")
+    with pytest.raises(ValueError, match=message):
+        run_study(load_scene(text=TINY, preset="draft"), tmp_path, dask=address)
+    assert not (tmp_path / "scene.toml").exists()                         # refused before anything is written
+    with pytest.raises(TypeError, match="dask must be a scheduler address such as 'tcp://host:8786', got int"):
+        run_study(load_scene(text=TINY, preset="draft"), dask=8786)
+
+
+def test_the_command_with_a_malformed_scheduler_address_ends_at_once(tmp_path):
+    # a distributed.Client that failed on the address kept its event loop and hung the interpreter's exit for
+    # 60 s, then printed a traceback
+    pytest.importorskip("distributed")
+    command = ["run", "--out", str(tmp_path / "out"), "--dask", "nonsense"]
+    done = subprocess.run([sys.executable, "-m", "roughcontact.cli", *command], capture_output=True, text=True,
+                          timeout=45, cwd=Path(__file__).parents[3])
+    assert done.returncode == 2 and done.stderr.strip().splitlines() == [
+        "roughcontact run: error: dask = 'nonsense' is not a scheduler address (tcp://host:port): missing port "
+        "number in address 'nonsense'"]
+
+
 @pytest.mark.parametrize("workers, dask, message", [
     (0, None, r"workers must be an integer in \[1, inf\], got 0"),
     (2.0, None, r"workers must be an integer"),
