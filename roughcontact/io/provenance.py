@@ -84,6 +84,8 @@ def output_directory(path) -> Path:
     if path.exists() and not path.is_dir():
         raise OutputPathError(f"output path {path} is a file, not a directory")
     if not path.exists():
+        if path.parent.exists() and not path.parent.is_dir():
+            raise OutputPathError(f"the parent of the output directory, {path.parent}, is a file, not a directory")
         if not path.parent.is_dir():
             raise OutputPathError(f"the parent of the output directory, {path.parent}, does not exist "
                                   "(only the last level of the path is created)")
