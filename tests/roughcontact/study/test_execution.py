@@ -112,7 +112,8 @@ def test_a_damaged_task_file_is_named_and_solved_again(tiny, tiny_result, finish
     path = directory / "tasks" / "R001_U001.json"
     damaged = damage(path.read_text())
     path.write_bytes(damaged if isinstance(damaged, bytes) else damaged.encode("utf-8"))
-    with pytest.warns(StaleTaskWarning, match=f"task file {re.escape(str(path))}: {reason}.*; its task is solved again"):
+    with pytest.warns(StaleTaskWarning, match=f"task file {re.escape(str(path))}: {reason}.*; its task is solved "
+                                              "again"):
         resumed = run_study(tiny, directory, workers=1)
     assert resumed.computed == 2 and resumed.solves == 2                # that task's two loads, solved again
     assert numbers(resumed) == numbers(tiny_result)

@@ -226,7 +226,8 @@ def test_resume_after_interruption_recomputes_nothing_done(tiny, tmp_path, monke
     stored["records"] = [{key: value for key, value in record.items() if key != "unstable_steps"}
                          for record in stored["records"]]
     stale.write_text(json.dumps(stored))
-    with pytest.warns(StaleTaskWarning, match=r"R000_U001.json: record 1 \(F_N = 0.5 N\) lacks the fields of a PatchRecord"):
+    with pytest.warns(StaleTaskWarning, match=r"R000_U001.json: record 1 \(F_N = 0.5 N\) lacks the fields of a "
+                                              "PatchRecord"):
         refreshed = run_study(tiny, tmp_path / "run", workers=1)
     assert refreshed.computed == 2 and refreshed.solves == 2            # its two loads' points, one solve each
     for row, resumed_row in zip(refreshed.points, resumed.points):
@@ -255,6 +256,31 @@ def test_another_scene_and_a_running_study_are_refused(tiny, tmp_path):
     store.release()
     assert not (tmp_path / "run.lock").exists()
     TaskStore(tmp_path, tiny).release()                              # free again
+
+
+@pytest.mark.parametrize("call, error, message", [
+    (lambda tiny, path: run_study({"loads": {}}), TypeError, "scene must be a Scene .*load_scene.*got dict"),
+    (lambda tiny, path: run_study(str(path)), TypeError, "scene must be a Scene .*got str"),
+    (lambda tiny, path: run_study(tiny, progress="yes"), TypeError, "progress must be True or False, got 'yes'"),
+    (lambda tiny, path: run_study(tiny, path / "file.txt"), ValueError, "file.txt is a file, not a directory"),
+    (lambda tiny, path: run_study(tiny, path / "missing" / "out"), ValueError, "missing, does not exist"),
+    (lambda tiny, path: run_study(tiny, ""), ValueError, "the output path is empty"),
+])
+def test_run_study_refuses_bad_arguments_naming_them(tiny, tmp_path, call, error, message):
+    (tmp_path / "file.txt").write_text("not a directory")
+    with pytest.raises(error, match=message):
+        call(tiny, tmp_path)
+    assert sorted(path.name for path in tmp_path.iterdir()) == ["file.txt"]      # nothing written
+
+
+def test_study_fields_are_checked_by_name(tiny_result):
+    with pytest.raises(ValueError, match="name = 'bogus' is not a field of the study's points; valid: normal_force"):
+        tiny_result.array("bogus")
+    for name in ("bogus", "seconds", "nominal_pressures"):        # (per point or per ring, not per realisation)
+        with pytest.raises(ValueError, match=f"name = '{name}' is not a field with one value per realisation; "
+                                             "valid: equivalent_gap, .*ridge_area_fractions"):
+            tiny_result.summary(name)
+    assert tiny_result.array("seconds").shape == (2, 2)
 
 
 def test_run_command_end_to_end(tmp_path, capsys):
