@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import os
+from concurrent.futures.process import BrokenProcessPool
 from importlib import metadata
 import platform
 import sys
@@ -99,6 +100,11 @@ def _cmd_run(args, provenance) -> int:
     except (ValueError, ImportError) as error:   # a scene key or parameter the preset cannot resolve, another
         print(f"roughcontact run: error: {error}", file=sys.stderr)        # scene, dask not installed
         return USAGE_ERROR
+    except RuntimeError as error:
+        if not isinstance(error.__cause__, BrokenProcessPool):
+            raise
+        print(f"roughcontact run: error: {error}", file=sys.stderr)        # a worker was killed
+        return 1
     written = study.write_results(result, output, provenance, time.perf_counter() - start)
     if not written["netcdf"]:
         print("roughcontact run: results.nc not written: xarray and h5netcdf are not installed "

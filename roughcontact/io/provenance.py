@@ -78,6 +78,8 @@ def parse_arguments(parser, argv, program: str) -> tuple:
 def output_directory(path) -> Path:
     """``path`` as a writable directory, created if missing (only its last level). Raises
     :class:`OutputPathError` for an empty path, a file, a missing parent or a directory without write access."""
+    if not isinstance(path, (str, os.PathLike)):
+        raise TypeError(f"the output path must be a str or os.PathLike, got {type(path).__name__}")
     if not str(path).strip():
         raise OutputPathError("the output path is empty")
     path = Path(path)
@@ -103,7 +105,7 @@ def write_csv(path, rows, provenance: Provenance | None, columns=None, echo=Fals
     (default: the first row's keys; other keys are ignored, missing ones left empty); ``echo`` also prints
     each row as ``key=value, …``. ``provenance=None`` writes no comment line, for a reader that cannot skip one."""
     rows = list(rows)
-    with open(path, "w", newline="") as stream:
+    with open(path, "w", newline="", encoding="utf-8") as stream:
         if provenance is not None:
             stream.write(f"# {provenance.line}\n")
         writer = csv.DictWriter(stream, fieldnames=columns or list(rows[0]), extrasaction="ignore", restval="")
@@ -148,8 +150,11 @@ def write_columns(path, header, columns, provenance: Provenance) -> Path:
 
 def read_csv(path) -> list:
     """The rows of a CSV file written here, as dicts of strings (comment lines skipped)."""
-    with open(path, newline="") as stream:
-        return list(csv.DictReader(line for line in stream if not line.startswith("#")))
+    try:
+        with open(path, newline="", encoding="utf-8") as stream:
+            return list(csv.DictReader(line for line in stream if not line.startswith("#")))
+    except UnicodeDecodeError as error:
+        raise ValueError(f"{path} is not UTF-8 text (byte {error.start}); the CSV files written here are") from None
 
 
 def save_figure(figure, path, provenance: Provenance, dpi=FIGURE_DPI, colors=None) -> Path:

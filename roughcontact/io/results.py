@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import os
 import sys
 import warnings
 import zipfile
@@ -41,7 +42,11 @@ def _encode(value):
         return {k: _encode(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
         return type(value)(_encode(v) for v in value)      # save_npz keeps a tuple apart from a list
-    return value
+    if value is None or isinstance(value, (str, int, float, np.generic, np.ndarray)):   # (an array in a dict: a list)
+        return value
+    raise TypeError(f"a {type(value).__qualname__} cannot be saved: a field holds arrays, numbers, strings, "
+                    "dicts, lists, tuples, a surfaces.Grid or dataclasses of these (a user's interaction law must "
+                    "be a frozen dataclass)")
 
 
 #: The dataclasses a result may hold as a field, by qualified name: registered by the module that defines the
@@ -113,7 +118,10 @@ def _split(result, prefix, arrays) -> dict:
             fields[f.name] = tuple({_RESULT_TAG: type(v).__qualname__, "fields": _split(v, f"{key}.{i}.", arrays)}
                                    for i, v in enumerate(value))
         else:
-            fields[f.name] = _encode(value)
+            try:
+                fields[f.name] = _encode(value)
+            except TypeError as error:
+                raise TypeError(f"{type(result).__qualname__}.{f.name}: {error}") from None
     return fields
 
 
@@ -155,6 +163,8 @@ def _array_record(arrays: dict) -> dict:
 def _read(path) -> tuple:
     """``(arrays, metadata)`` of a saved result; a ValueError naming ``path`` if it is not one (the file's absence
     or permissions stay an OSError, which names it)."""
+    if not isinstance(path, (str, os.PathLike)):
+        raise TypeError(f"path must be a str or os.PathLike, got {type(path).__name__}")
     try:
         arrays, metadata = load_npz(path)
     except (zipfile.BadZipFile, zlib.error, EOFError, TypeError) as error:

@@ -5,6 +5,7 @@ import json
 import subprocess
 import sys
 import warnings
+from concurrent.futures.process import BrokenProcessPool
 from datetime import datetime, timedelta, timezone
 from pathlib import Path
 
@@ -183,3 +184,17 @@ def test_a_warning_is_one_line(tmp_path, capsys, monkeypatch):
     assert capsys.readouterr().err.splitlines() == [
         "roughcontact run: warning: task file R000_U000.json: empty; its task is solved again",
         "roughcontact run: error: stop here"]
+
+
+def test_a_broken_pool_is_one_line(tmp_path, capsys, monkeypatch):
+    # (a worker killed by the system, e.g. out of memory): run_study's RuntimeError, one line, exit code 1
+    def broken(*arguments, **options):
+        try:
+            raise BrokenProcessPool("A process in the process pool was terminated abruptly")
+        except BrokenProcessPool as error:
+            raise RuntimeError("a worker of the study's process pool ended abruptly") from error
+
+    monkeypatch.setattr(study, "run_study", broken)
+    assert main(["run", "--out", str(tmp_path / "out")]) == 1
+    assert capsys.readouterr().err.splitlines() == [
+        "roughcontact run: error: a worker of the study's process pool ended abruptly"]

@@ -135,3 +135,12 @@ def test_a_user_dataclass_is_rebuilt_while_its_module_is_imported_and_named_when
 
 def _with_law(toy, law):
     return _Toy(toy.pressure, toy.grid, toy.converged, toy.iterations, toy.shape, {**toy.params, "law": law})
+
+
+def test_a_field_that_cannot_be_saved_is_named():
+    class Law:                                             # a user's law that is not a dataclass
+        length = 1e-6
+
+    toy = _Toy(np.zeros((2, 3)), _toy().grid, True, 1, (2, 3), {"law": Law()})
+    with pytest.raises(TypeError, match="_Toy.params: a .*Law cannot be saved: .* must be a frozen dataclass"):
+        toy.save("unused.npz")
