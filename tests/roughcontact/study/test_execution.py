@@ -182,6 +182,31 @@ def test_the_pool_ends_with_a_killed_client(tmp_path):
     client.wait()
 
 
+@pytest.mark.slow
+def test_ctrl_c_stops_the_command_and_its_pool_with_one_line(tmp_path):
+    psutil = pytest.importorskip("psutil")
+    scene = tmp_path / "scene.toml"
+    scene.write_text(TINY.replace("realisations = 2", "realisations = 500"))
+    command = [sys.executable, "-m", "roughcontact.cli", "run", str(scene), "--preset", "draft", "--out",
+               str(tmp_path / "out"), "--workers", "2"]
+    client = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                              cwd=Path(__file__).parents[3], start_new_session=True)
+    try:
+        while not any((tmp_path / "out" / "tasks").glob("*.json")):          # the workers have started
+            assert client.poll() is None
+            time.sleep(0.05)
+        pool = psutil.Process(client.pid).children(recursive=True)
+        os.killpg(client.pid, signal.SIGINT)                 # Ctrl-C: the terminal signals the whole group
+        out, err = client.communicate(timeout=60)
+    finally:
+        client.kill()
+    assert client.returncode == 130 and "Traceback" not in err
+    assert err.splitlines()[-1] == (f"roughcontact run: interrupted; finished tasks are kept in {tmp_path / 'out'} "
+                                    "(the same command resumes)")
+    assert psutil.wait_procs(pool, timeout=30)[1] == []
+    assert not (tmp_path / "out" / "run.lock").exists()
+
+
 def test_local_cluster_gives_the_in_process_records(tiny, tiny_result, cluster):
     on_cluster = run_study(tiny, dask=cluster.scheduler_address)
     assert numbers(on_cluster) == numbers(tiny_result) and on_cluster.solves == 8
