@@ -81,7 +81,10 @@ class TaskStore:
     def release(self) -> None:
         """Free the directory for other runs."""
         if self._descriptor is not None:
-            self.lock.unlink(missing_ok=True)          # before the lock is freed: a waiting run locks a new file
+            try:
+                self.lock.unlink(missing_ok=True)      # before the lock is freed: a waiting run locks a new file
+            except PermissionError:                    # (Windows removes no open file: the next run takes it over)
+                pass
             os.close(self._descriptor)
             self._descriptor = None
 
@@ -161,7 +164,7 @@ def _lock(path: Path) -> int:
     :class:`DirectoryInUse` naming the file and its holder if another process holds it."""
     while True:
         descriptor = os.open(path, os.O_CREAT | os.O_RDWR, 0o644)
-        if not _try_lock(descriptor):
+        if not _try_lock(descriptor, path):
             holder = os.read(descriptor, 32).decode("ascii", "replace").strip() or "unknown"
             os.close(descriptor)
             raise DirectoryInUse(f"{path.parent} is being written by another roughcontact run (process {holder} "
@@ -178,8 +181,8 @@ def _lock(path: Path) -> int:
     return descriptor
 
 
-def _try_lock(descriptor: int) -> bool:
-    """Take the exclusive lock of the open file ``descriptor`` if no other open file holds it."""
+def _try_lock(descriptor: int, path: Path) -> bool:
+    """Take the exclusive lock of ``path``, open as ``descriptor``, if no other open file holds it."""
     try:
         import fcntl
     except ImportError:                              # Windows
@@ -193,6 +196,9 @@ def _try_lock(descriptor: int) -> bool:
         fcntl.flock(descriptor, fcntl.LOCK_EX | fcntl.LOCK_NB)
     except BlockingIOError:
         return False
+    except OSError as error:                         # e.g. a file system without locks
+        os.close(descriptor)
+        raise OSError(error.errno, error.strerror, str(path)) from None
     return True
 
 

@@ -132,16 +132,16 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
     todo = [key for key in order if key not in records]
     executor = make_executor(workers, dask, len(todo)) if todo else InProcess()
     bar = None
-    if progress and todo:
-        from tqdm import tqdm
-        bar = tqdm(total=len(todo) * len(forces) / count, desc="roughcontact run", unit="point",
-                   bar_format="{l_bar}{bar}| {n:.4g}/{total:.4g} [{elapsed}<{remaining}]")
     task = solve_chain
     if scene.preset.scales == "coupled":            # the micro-roughness as an interface law (.coupled)
         task = coupled_chain
     apparent = apparent_scale(scene)                # once, for every task
     try:
         with executor:
+            if progress and todo:                   # (once the executor runs: a refused one shows no bar)
+                from tqdm import tqdm
+                bar = tqdm(total=len(todo) * len(forces) / count, desc="roughcontact run", unit="point",
+                           bar_format="{l_bar}{bar}| {n:.4g}/{total:.4g} [{elapsed}<{remaining}]")
             futures = {executor.submit(task, scene, r, j, executor.threads, apparent): (r, j) for r, j in todo}
             for future in executor.as_completed(list(futures)):
                 key = futures[future]

@@ -17,6 +17,7 @@ from pathlib import Path
 
 import pytest
 
+from roughcontact.cli import main
 from roughcontact.study.execution import StaleTaskWarning, TaskStore
 from roughcontact.study.resolved import solve_chain
 from roughcontact.study.run import run_study
@@ -278,6 +279,19 @@ def test_the_command_with_a_malformed_scheduler_address_ends_at_once(tmp_path):
     assert done.returncode == 2 and done.stderr.strip().splitlines() == [
         "roughcontact run: error: dask = 'nonsense' is not a scheduler address (tcp://host:port): missing port "
         "number in address 'nonsense'"]
+
+
+def test_the_command_with_an_unreachable_scheduler_prints_one_line(tmp_path, capsys):
+    dask = pytest.importorskip("dask")
+    pytest.importorskip("distributed")
+    scene = tmp_path / "scene.toml"
+    scene.write_text(TINY)
+    with dask.config.set({"distributed.comm.timeouts.connect": "1s"}):
+        assert main(["run", str(scene), "--preset", "draft", "--out", str(tmp_path / "out"), "--dask",
+                     "tcp://127.0.0.1:9"]) == 2
+    assert capsys.readouterr().err.splitlines() == [       # (no progress bar before the refusal)
+        "roughcontact run: error: dask = 'tcp://127.0.0.1:9': Timed out trying to connect to tcp://127.0.0.1:9 "
+        "after 1 s"]
 
 
 @pytest.mark.parametrize("workers, dask, message", [
