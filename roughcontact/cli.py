@@ -183,7 +183,8 @@ def main(argv=None) -> int:
     except OutputPathError as error:
         parser.exit(USAGE_ERROR, f"{program}: error: {error}\n")
     except OSError as error:                      # e.g. the disk filled up while writing
-        parser.exit(USAGE_ERROR, f"{program}: error: cannot write {error.filename}: {error.strerror}\n")
+        parser.exit(USAGE_ERROR, f"{program}: error: cannot write {error.filename or 'the output'}: "
+                                 f"{error.strerror or error}\n")
 
 
 if __name__ == "__main__":

@@ -198,3 +198,14 @@ def test_a_broken_pool_is_one_line(tmp_path, capsys, monkeypatch):
     assert main(["run", "--out", str(tmp_path / "out")]) == 1
     assert capsys.readouterr().err.splitlines() == [
         "roughcontact run: error: a worker of the study's process pool ended abruptly"]
+
+
+def test_a_full_disk_under_the_standard_output_is_one_line(capsys, monkeypatch):
+    def full(*arguments, **options):
+        raise OSError(28, "No space left on device")        # (writing to /dev/full: no file name)
+
+    monkeypatch.setattr("builtins.print", full)
+    with pytest.raises(SystemExit) as exit_info:
+        main(["info"])
+    assert exit_info.value.code == 2
+    assert capsys.readouterr().err == "roughcontact info: error: cannot write the output: No space left on device\n"
