@@ -8,8 +8,9 @@ the same way, its arrays named ``field.name`` (``field.index.name`` in a tuple),
 every array are recorded. ``ResultClass.load(path)`` gives back an equal object, with read-only arrays (as a
 pickled result does); a file that is not such a result, or whose arrays differ from their record, is a
 ``ValueError`` naming the file. A dataclass held in a field is rebuilt from its registered class
-(:func:`savable_field`) or, failing that, from its class if its module is imported in this session (a user's
-own interaction law); otherwise it loads as a dict of its fields, with a warning naming the class.
+(:func:`savable_field`) or, failing that, from its class if that derives from a registered class's base (a
+user's own interaction law) and its module is imported in this session; otherwise it loads as a dict of its
+fields, with a warning naming the class.
 """
 from __future__ import annotations
 
@@ -62,15 +63,17 @@ def savable_field(kind: type) -> type:
 
 
 def _field_type(record: dict, unknown: set):
-    """The class of a stored dataclass ``record``: registered, or defined in a module imported in this session
-    (never imported here: loading a file runs no module's code); None, with its name added to ``unknown``."""
+    """The class of a stored dataclass ``record``: registered, or a subclass of a registered class's base (a
+    user's own interaction law) defined in a module imported in this session (never imported here: loading a
+    file runs no module's code); None, with its name added to ``unknown``."""
     name, module = record["__dataclass__"], record.get("__module__")
     kind = FIELD_TYPES.get(name)
     if kind is None and module in sys.modules:
         kind = sys.modules[module]
         for part in name.split("."):
             kind = getattr(kind, part, None)
-        if not (isinstance(kind, type) and dataclasses.is_dataclass(kind)):
+        bases = tuple({base for registered in FIELD_TYPES.values() for base in registered.__mro__[:-1]})
+        if not (isinstance(kind, type) and dataclasses.is_dataclass(kind) and issubclass(kind, bases)):
             kind = None
     if kind is None:
         unknown.add(name if module is None else f"{module}.{name}")
@@ -212,9 +215,10 @@ class SavableResult:
         except (TypeError, ValueError) as error:
             raise ValueError(f"{path}: {error}") from None
         if unknown:
-            warnings.warn(f"{path}: {', '.join(sorted(unknown))} is neither registered (roughcontact.io.savable_field)"
-                          " nor defined in a module imported now; loaded as a dict of its fields (import its module, "
-                          "or register the class, before loading to rebuild it)", stacklevel=2)
+            warnings.warn(f"{path}: cannot rebuild {', '.join(sorted(unknown))}: not registered with "
+                          "roughcontact.io.savable_field, nor a subclass of a registered class's base (a user's "
+                          "interaction law) in a module imported now; loaded as a dict of its fields (import its "
+                          "module, or register the class, before loading to rebuild it)", stacklevel=2)
         return result
 
     def __setstate__(self, state: dict):

@@ -11,6 +11,7 @@ import pytest
 
 from roughcontact import __version__
 from roughcontact.io import SavableResult
+from roughcontact.io.results import FIELD_TYPES
 from surfaces import Grid
 from surfaces.io import load_npz
 
@@ -120,15 +121,27 @@ def test_a_file_written_before_the_array_record_still_loads(tmp_path):
 def test_a_user_dataclass_is_rebuilt_while_its_module_is_imported_and_named_when_not(tmp_path, monkeypatch):
     # a user's own law (a dataclass in the user's module) saved in a result: rebuilt if its module is loaded,
     # otherwise a warning names it and the field comes back as a dict of its fields
+    class Law:                                             # the library's base of its registered laws
+        pass
+
+    @dataclass(frozen=True)
+    class BuiltIn(Law):
+        depth: float
+
+    monkeypatch.setitem(FIELD_TYPES, "BuiltIn", BuiltIn)
     module = types.ModuleType("user_laws")
-    exec("from dataclasses import dataclass\n@dataclass(frozen=True)\nclass WallLaw:\n    depth: float\n",
+    exec("from dataclasses import dataclass\n@dataclass(frozen=True)\nclass WallLaw(Law):\n    depth: float\n"
+         "@dataclass(frozen=True)\nclass Unrelated:\n    depth: float\n", {**module.__dict__, "Law": Law},
          module.__dict__)
     monkeypatch.setitem(sys.modules, "user_laws", module)
     path = _with_law(_toy(), module.WallLaw(2e-9)).save(tmp_path / "toy.npz")
     assert _Toy.load(path).params["law"] == module.WallLaw(2e-9)
+    unrelated = _with_law(_toy(), module.Unrelated(2e-9)).save(tmp_path / "unrelated.npz")
+    with pytest.warns(UserWarning, match="cannot rebuild user_laws.Unrelated"):       # not a law: not built
+        assert _Toy.load(unrelated).params["law"] == {"depth": 2e-9}
     monkeypatch.delitem(sys.modules, "user_laws")                       # another session, without the module
-    with pytest.warns(UserWarning, match=f"{re.escape(str(path))}: user_laws.WallLaw is neither registered "
-                                         r"\(roughcontact.io.savable_field\) nor defined in a module imported now"):
+    with pytest.warns(UserWarning, match=f"{re.escape(str(path))}: cannot rebuild user_laws.WallLaw: not registered "
+                                         "with roughcontact.io.savable_field, nor .* in a module imported now"):
         loaded = _Toy.load(path)
     assert loaded.params["law"] == {"depth": 2e-9}
 
