@@ -144,17 +144,19 @@ def _record_problem(records, scene: Scene) -> str | None:
         if not isinstance(record["ridge_area_fractions"], list) or len(record["ridge_area_fractions"]) != len(lengths):
             return f"{where}: ridge_area_fractions is not a list of {len(lengths)} numbers (one per closing length)"
         for name, kind in _RECORD_TYPES.items():
+            if kind is None:                                # (a field of another type: any JSON value)
+                continue
             for value in record[name] if name == "ridge_area_fractions" else [record[name]]:
                 number = isinstance(value, (int, float)) and not isinstance(value, bool)
                 if not (number if kind is float else type(value) is kind):
-                    return f"{where}: {name} = {value!r} is not a {kind.__name__}"
+                    return f"{where}: {name} = {value!r} is not of type {kind.__name__}"
                 if kind is float and record["converged"] and not math.isfinite(value):
                     return f"{where}: {name} = {value!r} in a converged solve"
     return None
 
 
 #: The JSON type of each field of a stored :class:`PatchRecord` (of each item for a tuple).
-_RECORD_TYPES = {field.name: {"float": float, "tuple": float, "bool": bool, "int": int}[field.type]
+_RECORD_TYPES = {field.name: {"float": float, "tuple": float, "bool": bool, "int": int}.get(field.type)
                  for field in dataclasses.fields(PatchRecord)}
 
 

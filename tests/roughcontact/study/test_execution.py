@@ -104,7 +104,7 @@ def _edited_gap(text):
     (lambda text: '{"records": 3}', "not a task file"),
     (lambda text: text.replace('"records": [{', '"records": [3, {', 1), r"not one record per load \(2 loads\)"),
     (lambda text: text.replace('"converged": true', '"converged": "yes"', 1),
-     r"record 1 \(F_N = 0.5 N\): converged = 'yes' is not a bool"),
+     r"record 1 \(F_N = 0.5 N\): converged = 'yes' is not of type bool"),
     (_nan_gap, r"record 2 \(F_N = 2 N\): equivalent_gap = nan in a converged solve"),
     (_edited_gap, r"its records do not match their digest \(edited or damaged\)"),
 ], ids=["empty", "truncated", "not UTF-8", "old list", "wrong keys", "record count", "wrong type", "NaN", "edited"])
