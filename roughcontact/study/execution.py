@@ -311,8 +311,10 @@ class _Dask:
             raise TypeError(f"dask must be a scheduler address such as 'tcp://host:8786', got {type(address).__name__}")
         try:
             distributed.comm.resolve_address(address)          # its form (a Client would fail, then hang at exit)
-        except (ValueError, OSError) as error:
+        except ValueError as error:
             raise ValueError(f"dask = {address!r} is not a scheduler address (tcp://host:port): {error}") from None
+        except OSError as error:
+            raise ValueError(f"dask = {address!r}: its host cannot be resolved ({error.strerror})") from None
         self.distributed, self.address, self.futures = distributed, address, []
 
     def __enter__(self):
