@@ -133,7 +133,10 @@ def _join(kind, fields, arrays, prefix, unknown: set):
     ``unknown`` collects the stored dataclasses whose class is not found (loaded as dicts)."""
     def rebuilt(value, key):
         if isinstance(value, dict) and _RESULT_TAG in value:
-            return _join(_result_types()[value[_RESULT_TAG]], value["fields"], arrays, key + ".", unknown)
+            nested = _result_types().get(value[_RESULT_TAG])
+            if nested is None:
+                raise ValueError(f"its field {key} holds a {value[_RESULT_TAG]!r}, a result class not defined now")
+            return _join(nested, value["fields"], arrays, key + ".", unknown)
         if isinstance(value, tuple) and value and all(isinstance(v, dict) and _RESULT_TAG in v for v in value):
             return tuple(rebuilt(v, f"{key}.{i}") for i, v in enumerate(value))
         return _decode(value, unknown)
@@ -182,6 +185,8 @@ def _read(path) -> tuple:
         raise ValueError(f"{path} is not a saved result: its metadata record has no fields")
     stored = _array_record(arrays)
     expected = metadata.get("arrays", stored)           # (files written before the record: not checked)
+    if not isinstance(expected, dict):
+        raise ValueError(f"{path} is not a saved result: its record of arrays is not a table")
     if stored != expected:
         def described(record, name):
             return "missing" if name not in record else f"{tuple(record[name][0])} {record[name][1]}"

@@ -100,8 +100,13 @@ def _rewritten(path, arrays, metadata=None):
     (lambda path: _rewritten(path, _metadata_json(path)[0], {**_metadata_json(path)[1], "fields": {
         k: v for k, v in _metadata_json(path)[1]["fields"].items() if k != "iterations"}}),
      "its _Toy record has no iterations$"),
+    (lambda path: _rewritten(path, _metadata_json(path)[0], {**_metadata_json(path)[1], "arrays": "pressure"}),
+     "its record of arrays is not a table"),
+    (lambda path: _rewritten(path, _metadata_json(path)[0], {**_metadata_json(path)[1], "fields": {
+        **_metadata_json(path)[1]["fields"], "grid": {"__result__": "Nope", "fields": {}}}}),
+     "its field grid holds a 'Nope', a result class not defined now"),
 ], ids=["empty", "truncated", "text", "npy", "no metadata", "bad JSON", "shape", "dtype", "missing array",
-        "extra field", "missing field"])
+        "extra field", "missing field", "bad array record", "unknown nested result"])
 def test_a_damaged_or_altered_file_is_a_value_error_naming_it(tmp_path, damage, reason):
     path = _toy().save(tmp_path / "toy.npz")
     damage(path)
