@@ -507,6 +507,23 @@ def _parse(text: str, origin: str) -> dict:
 _DEFAULTS = _parse(DEFAULT_SCENE_TOML, "the default scene")
 
 
+def _read_scene_file(path) -> str:
+    """The text of the scene file ``path`` (TOML is UTF-8); a ValueError naming the file if it cannot be read."""
+    try:
+        data = Path(path).read_bytes()
+    except TypeError:
+        raise TypeError(f"scene path must be a str or os.PathLike, got {type(path).__name__}") from None
+    except OSError as error:
+        raise ValueError(f"cannot read the scene file {path}: {error.strerror}") from None
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        line = data.count(b"\n", 0, error.start) + 1
+        column = error.start - data.rfind(b"\n", 0, error.start)
+        raise ValueError(f"the scene file {path} is not UTF-8 text: byte 0x{data[error.start]:02x} at line {line}, "
+                         f"column {column} (TOML files are UTF-8; save it as UTF-8 in the editor)") from None
+
+
 def load_scene(path=None, *, text: str | None = None, preset: str | None = None) -> Scene:
     """The scene of the TOML file ``path`` (or of the TOML ``text``; neither: the default scene), every value
     not given taken from :data:`DEFAULT_SCENE_TOML`; ``preset`` overrides ``study.preset``."""
@@ -514,10 +531,7 @@ def load_scene(path=None, *, text: str | None = None, preset: str | None = None)
         raise ValueError("give a scene path or its text, not both")
     origin = "the default scene" if path is None and text is None else str(path) if path is not None else "scene"
     if path is not None:
-        try:
-            text = Path(path).read_text()
-        except OSError as error:
-            raise ValueError(f"cannot read the scene file {path}: {error.strerror}") from None
+        text = _read_scene_file(path)
     text = "" if text is None else text
     given = _parse(text, origin)
     for name, value in given.items():

@@ -1,5 +1,6 @@
 """Scenes: the default round-trips through TOML; every scene error names the key, its line and the valid values."""
 import dataclasses
+import re
 
 import pytest
 
@@ -75,6 +76,15 @@ def test_invalid_toml_and_missing_file(tmp_path):
         load_scene(text="[ridges\n")
     with pytest.raises(ValueError, match="cannot read the scene file"):
         load_scene(tmp_path / "missing.toml")
+    latin1 = tmp_path / "latin1.toml"                              # a comment saved in Latin-1 by an editor
+    latin1.write_bytes(b"[loads]\nvoltages = [0.0]\n# caf\xe9\n")
+    with pytest.raises(ValueError, match=f"the scene file {re.escape(str(latin1))} is not UTF-8 text: byte 0xe9 "
+                                         "at line 3, column 6.*TOML files are UTF-8"):
+        load_scene(latin1)
+    with pytest.raises(ValueError, match=f"cannot read the scene file {re.escape(str(tmp_path))}: Is a directory"):
+        load_scene(tmp_path)
+    with pytest.raises(TypeError, match="scene path must be a str or os.PathLike, got int"):
+        load_scene(3)
 
 
 def test_sections_validate_when_built_in_python():

@@ -2,6 +2,7 @@
 resume after an interruption, refusal of another scene, and `roughcontact run` end to end."""
 import json
 import os
+import re
 
 import numpy as np
 import pytest
@@ -14,7 +15,7 @@ from roughcontact.io import read_csv
 from roughcontact.macro import TabulatedArea
 from roughcontact.solvers import solve_contact
 from roughcontact.study.apparent import apparent_contact, apparent_scale
-from roughcontact.study.execution import DirectoryInUse, SceneMismatch, TaskStore
+from roughcontact.study.execution import DirectoryInUse, SceneMismatch, StaleTaskWarning, TaskStore
 from roughcontact.study.friction import bottom_up_friction
 from roughcontact.study.patch import (patch_body, patch_surface, realisation_count, ridge_area_fraction,
                                       ridge_equivalent_gap, ridge_heights)
@@ -219,12 +220,15 @@ def test_resume_after_interruption_recomputes_nothing_done(tiny, tmp_path, monke
     assert resumed.computed == 2 and resumed.solves == 4
     again = run_study(tiny, tmp_path / "run", workers=1)
     assert again.computed == 0 and again.solves == 0 and again.points == resumed.points
-    # a task file written with other record fields (another version's) is solved again, not misread
+    # a task file written with other record fields (another version's) is named and solved again, not misread
     stale = tmp_path / "run" / "tasks" / "R000_U001.json"
-    records = json.loads(stale.read_text())
-    stale.write_text(json.dumps([{key: value for key, value in record.items() if key != "unstable_steps"}
-                                 for record in records]))
-    refreshed = run_study(tiny, tmp_path / "run", workers=1)
+    stored = json.loads(stale.read_text())
+    stored["records"] = [{key: value for key, value in record.items() if key != "unstable_steps"}
+                         for record in stored["records"]]
+    stale.write_text(json.dumps(stored))
+    with pytest.warns(StaleTaskWarning, match=r"R000_U001.json: record 1 \(F_N = 0.5 N\) lacks the fields of a "
+                                              "PatchRecord"):
+        refreshed = run_study(tiny, tmp_path / "run", workers=1)
     assert refreshed.computed == 2 and refreshed.solves == 2            # its two loads' points, one solve each
     for row, resumed_row in zip(refreshed.points, resumed.points):
         assert [point.equivalent_gap for point in row] == [point.equivalent_gap for point in resumed_row]
@@ -236,14 +240,47 @@ def test_another_scene_and_a_running_study_are_refused(tiny, tmp_path):
     other = load_scene(text=TINY.replace("grid = 32", "grid = 64"), preset="draft")
     with pytest.raises(SceneMismatch, match=r"presets.draft.grid = 32 -> 64"):
         TaskStore(tmp_path, other)
-    (tmp_path / "run.lock").write_text(str(os.getppid()))             # a running process holds the directory
-    with pytest.raises(DirectoryInUse, match=f"another roughcontact run \\(process {os.getppid()}\\)"):
-        TaskStore(tmp_path, tiny)
-    (tmp_path / "run.lock").write_text("999999999")                  # a killed run's lock is taken over
+    fcntl = pytest.importorskip("fcntl", reason="the lock test holds the lock with flock (POSIX)")
+    with open(tmp_path / "run.lock", "w") as held:                     # a running process holds the directory
+        fcntl.flock(held, fcntl.LOCK_EX)
+        held.write("4242")
+        held.flush()
+        with pytest.raises(DirectoryInUse, match=f"another roughcontact run \\(process 4242 holds "
+                                                 f"{re.escape(str(tmp_path / 'run.lock'))}\\)"):
+            TaskStore(tmp_path, tiny)
+    (tmp_path / "run.lock").write_text("1")          # a killed run's lock, its process id reused: taken over
     store = TaskStore(tmp_path, tiny)                                # the same scene resumes
     assert (tmp_path / "run.lock").read_text() == str(os.getpid())
+    with pytest.raises(DirectoryInUse, match=f"process {os.getpid()} holds"):
+        TaskStore(tmp_path, tiny)                                    # held by this process: refused as well
     store.release()
     assert not (tmp_path / "run.lock").exists()
+    TaskStore(tmp_path, tiny).release()                              # free again
+
+
+@pytest.mark.parametrize("call, error, message", [
+    (lambda tiny, path: run_study({"loads": {}}), TypeError, "scene must be a Scene .*load_scene.*got dict"),
+    (lambda tiny, path: run_study(str(path)), TypeError, "scene must be a Scene .*got str"),
+    (lambda tiny, path: run_study(tiny, progress="yes"), TypeError, "progress must be True or False, got 'yes'"),
+    (lambda tiny, path: run_study(tiny, path / "file.txt"), ValueError, "file.txt is a file, not a directory"),
+    (lambda tiny, path: run_study(tiny, path / "missing" / "out"), ValueError, "missing, does not exist"),
+    (lambda tiny, path: run_study(tiny, ""), ValueError, "the output path is empty"),
+])
+def test_run_study_refuses_bad_arguments_naming_them(tiny, tmp_path, call, error, message):
+    (tmp_path / "file.txt").write_text("not a directory")
+    with pytest.raises(error, match=message):
+        call(tiny, tmp_path)
+    assert sorted(path.name for path in tmp_path.iterdir()) == ["file.txt"]      # nothing written
+
+
+def test_study_fields_are_checked_by_name(tiny_result):
+    with pytest.raises(ValueError, match="name = 'bogus' is not a field of the study's points; valid: normal_force"):
+        tiny_result.array("bogus")
+    for name in ("bogus", "seconds", "nominal_pressures"):        # (per point or per ring, not per realisation)
+        with pytest.raises(ValueError, match=f"name = '{name}' is not a field with one value per realisation; "
+                                             "valid: equivalent_gap, .*ridge_area_fractions"):
+            tiny_result.summary(name)
+    assert tiny_result.array("seconds").shape == (2, 2)
 
 
 def test_run_command_end_to_end(tmp_path, capsys):
