@@ -318,7 +318,7 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
             "## Ridge contact fraction A_R/A0", "", *_table(result, a_mean[:, :, 0], a_half[:, :, 0], 1.0, 3, "-"),
             "", "## Real contact fraction", "", *_table(result, c_mean, c_half, 100.0, 2, "%"), "",
             "## Ridge-area gap d_eq,R [µm] (fed to the friction law)", "",
-            *_table(result, r_mean, r_half, MICRO, 3, "µm"), ""]
+            *_table(result, r_mean, r_half, MICRO, 3, "µm"), *_clipped_ridge_gap(result), ""]
 
     text += ["## Where the equivalent-gap assumption holds and where it fails", ""]
     low = f"{voltages[0]:g} V"                       # the reference voltage of the comparisons (0 V by default)
@@ -410,18 +410,31 @@ def _per_pixel_section(result: StudyResult) -> list:
     lines = ["## How wrong is the per-pixel field assumption", "",
              f"F_el [N] of the solve's `{result.scene.screen.field}` field / F_el [N] of Eq. 21 pixel by pixel on "
              "the same solved gap (what Eq. 25 assumes) / their ratio, each ± the "
-             f"{CONFIDENCE:.0%} confidence half-width over the realisations (0 V: no force; the ratio is the "
+             f"{CONFIDENCE:.0%} confidence half-width over the realisations (0 V: no force, –; the ratio is the "
              "small-voltage limit on the hard-wall gap):", "",
              "| F_N [N] | " + " | ".join(f"{v:g} V" for v in voltages) + " |", "|---" * (len(voltages) + 1) + "|"]
     for i, force in enumerate(result.normal_forces):
-        lines.append(f"| {force:g} | " + " | ".join(
-            f"{_cell(field_mean[i, j], field_half[i, j], 1.0, 3)} / {_cell(pixel_mean[i, j], pixel_half[i, j], 1.0, 3)}"
-            f" / {_cell(ratio_mean[i, j], ratio_half[i, j], 1.0, 2)}" for j in range(len(voltages))) + " |")
+        cells = []
+        for j, voltage in enumerate(voltages):
+            forces = (f"{_cell(field_mean[i, j], field_half[i, j], 1.0, 3)} / "
+                      f"{_cell(pixel_mean[i, j], pixel_half[i, j], 1.0, 3)}" if voltage > 0 else "– / –")
+            cells.append(f"{forces} / {_cell(ratio_mean[i, j], ratio_half[i, j], 1.0, 2)}")
+        lines.append(f"| {force:g} | " + " | ".join(cells) + " |")
     return lines
 
 
+def _clipped_ridge_gap(result: StudyResult) -> list:
+    """A note where A_R cannot carry the solved F_el at any gap (d_eq,R = 0 in some realisation)."""
+    clipped = int(np.sum(result.array("ridge_equivalent_gap") == 0))
+    if clipped == 0:
+        return []
+    return ["", f"{clipped} of {result.array('ridge_equivalent_gap').size} patch results have A_R too small to carry "
+            "the solved F_el even in full contact (σ_el(0) A_R < σ̄_el A0): d_eq,R = 0 there, and the friction "
+            "law's electrostatic force falls short of the solved one."]
+
+
 def _range(values, spec) -> str:
-    finite = np.asarray(values)[np.isfinite(values)]
+    finite = np.round(np.asarray(values)[np.isfinite(values)], 12) + 0.0      # + 0.0: no "-0" for a zero error
     if finite.size == 0:
         return "n/a (no voltage above 0 V)"
     return f"{format(np.min(finite), spec)} to {format(np.max(finite), spec)}"
