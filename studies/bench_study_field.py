@@ -7,9 +7,9 @@
 Runs the study of the default scene (or ``--scene``) at ``--preset`` in this process (one worker, so process
 CPU time is the study's), once with ``field = "parallel_plate"`` and once with ``field = "layered"``,
 alternating ``--repeat`` times, after one point of each (the first load at the last voltage) that compiles
-the kernels, plans the FFTs and builds the bodies, untimed. For each run: wall time, CPU time, contact solves, and the solver work in FFT
-pairs (each contact solve's ``params["fft_pairs"]``, the layered field's CG passes included, plus the field
-solves of the 0 V points' small-voltage limit), and the layered/per-pixel ratios. FFT pairs do not depend on
+the kernels, plans the FFTs and builds the bodies, untimed. For each run: wall time, CPU time, contact solves,
+and the solver work in FFT pairs (each contact solve's ``params["fft_pairs"]``, the layered field's CG passes
+included, plus the field solves of the 0 V points' small-voltage limit), and the layered/per-pixel ratios. FFT pairs do not depend on
 the machine's other load; wall and CPU times do (run on an idle machine for the docs' timing).
 Writes ``bench_study_field.csv`` with its provenance into ``--output``.
 """
@@ -83,8 +83,9 @@ def main(argv=None):
     parser.add_argument("--output", default="out", help="directory for bench_study_field.csv")
     args, provenance = parse_arguments(parser, argv, "studies/bench_study_field.py")
     scene = load_scene(text=FAST, preset="draft") if args.fast else load_scene(args.scene, preset=args.preset)
-    warm = dataclasses.replace(scene, loads=dataclasses.replace(scene.loads, normal_forces=scene.loads.normal_forces[:1],
-                                                                voltages=scene.loads.voltages[-1:]))
+    loads = dataclasses.replace(scene.loads, normal_forces=scene.loads.normal_forces[:1],
+                                voltages=scene.loads.voltages[-1:])
+    warm = dataclasses.replace(scene, loads=loads)
     for field in ("parallel_plate", "layered"):       # compile the kernels, plan the FFTs, build the bodies
         measure(warm, field)
     rows = []
@@ -94,10 +95,7 @@ def main(argv=None):
             layered[f"{key}_ratio"] = layered[f"{key}_s"] / pixel[f"{key}_s"]
         layered["fft_pair_ratio"] = layered["fft_pairs"] / pixel["fft_pairs"]
         rows += [{"repeat": repeat, **pixel}, {"repeat": repeat, **layered}]
-    path = write_csv(output_directory(args.output) / "bench_study_field.csv", rows, provenance, COLUMNS)
-    for row in rows:
-        print("  ".join(f"{key}={value:.4g}" if isinstance(value, float) else f"{key}={value}"
-                        for key, value in row.items()))
+    path = write_csv(output_directory(args.output) / "bench_study_field.csv", rows, provenance, COLUMNS, echo=True)
     print(f"wrote {path}")
 
 

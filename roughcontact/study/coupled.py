@@ -8,15 +8,16 @@ path separates them (``docs/equivalent_gap.md``, "Scale coupling"):
    from the last, with the electrostatic attraction at the voltage U). Each gives the mean traction p(ū) [Pa]
    that the interface transmits (contact minus attraction, positive compressive), its Eq. 25 gap e(ū) [m], its
    field-equivalent gap f(ū) [m] (the uniform gap whose Eq. 21 attraction is the patch's mean attraction in the
-   scene's field model), its real contact fraction φ(ū), the fraction a_ℓ(ū) of its real contact closed with a disc of diameter ℓ (the
-   study's A_R definition, :func:`roughcontact.study.ridge_area_fraction`) and its weighted mean-square gap
-   slope.
+   scene's field model), its real contact fraction φ(ū), the fraction a_ℓ(ū) of its real contact closed with
+   a disc of diameter ℓ (the study's A_R definition, :func:`roughcontact.study.ridge_area_fraction`) and its
+   weighted mean-square gap slope.
 2. **Ridge scale** (:func:`coupled_point`). The ridges alone, on a coarser grid, are pressed at the nominal
    pressure with :class:`InterfaceLaw` (traction p(ū), ū the ridge-scale gap) acting between them and the
    screen.
 3. **Averages.** d_eq = Eq. 25 of the field e(ū(x)) (exact: Eq. 25 of the pixel-wise equivalent gaps is Eq. 25
-   of the underlying field), the field-equivalent gap likewise from f(ū(x)), the mean gap that of ū (a periodic micro patch's mean gap is its separation), the
-   real contact fraction the mean of φ(ū(x)), A_R/A0 the mean of a_ℓ(ū(x)).
+   of the underlying field), the field-equivalent gap likewise from f(ū(x)), the mean gap that of ū (a periodic
+   micro patch's mean gap is its separation), the real contact fraction the mean of φ(ū(x)), A_R/A0 the mean of
+   a_ℓ(ū(x)).
 
 :func:`coupled_chain` runs one realisation at one voltage over the scene's loads (one law serves them all).
 Scale separation is the assumption: a ridge-scale pixel behaves like a micro patch at the same mean

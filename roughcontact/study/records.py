@@ -30,9 +30,9 @@ def confidence_interval(samples) -> tuple:
 
 
 def unit_attraction(stack, field: str, result, voltage: float) -> float:
-    """⟨σ_el⟩/U² [Pa/V²] over the window of a solved patch ``result`` in the ``field`` model: from the solve's own
-    attraction at ``voltage`` > 0 (F_el/(A0 U²)), at 0 V from the field of the hard-wall gap at 1 V (σ_el ∝ U²,
-    so this is the small-voltage limit)."""
+    """⟨σ_el⟩/U² [Pa/V²] over the window of a solved patch ``result`` in the ``field`` model: from the solve's
+    own attraction at ``voltage`` > 0 (F_el/(A0 U²)), at 0 V from the field of the hard-wall gap at 1 V
+    (σ_el ∝ U², so this is the small-voltage limit)."""
     grid = result.params["grid"]
     if voltage > 0:
         return result.electrostatic_force / grid.area / voltage ** 2

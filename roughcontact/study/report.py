@@ -148,8 +148,8 @@ def dataset(result: StudyResult):
             values = np.array([row[key] for row in friction]).reshape(len(result.normal_forces), -1)
             variables[key.removesuffix("_N")] = (("normal_force", "voltage"), values, {"units": unit})
     attrs = {"title": "roughcontact multiscale fingerpad study", "roughcontact_version": __version__,
-             "preset": scene.study.preset, "field": scene.screen.field, "seed": scene.study.seed, "scene_toml": scene.to_toml(),
-             "short_cutoff_in_use": result.short_cutoff, "confidence": CONFIDENCE}
+             "preset": scene.study.preset, "field": scene.screen.field, "seed": scene.study.seed,
+             "scene_toml": scene.to_toml(), "short_cutoff_in_use": result.short_cutoff, "confidence": CONFIDENCE}
     for key, value in scene.flat().items():
         attrs[f"scene.{key}"] = int(value) if isinstance(value, bool) else value
     return xr.Dataset(variables, coords=coords, attrs=attrs)
@@ -248,7 +248,7 @@ def _figures(result: StudyResult, out, provenance) -> list:
 # report.md
 # ---------------------------------------------------------------------------------------------------------
 def _cell(mean, half, scale=1.0, digits=2) -> str:
-    text = f"{mean * scale:.{digits}f}"
+    text = f"{np.round(mean * scale, digits) + 0.0:.{digits}f}"           # + 0.0: no "-0.00" for a rounded zero
     return text if not np.isfinite(half) else f"{text} ± {half * scale:.{digits}f}"
 
 
@@ -278,7 +278,8 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
     assumption holds and where it fails, with numbers."""
     scene, preset = result.scene, result.scene.preset
     forces, voltages = result.normal_forces, result.voltages
-    friction_figure, friction_table = (", `friction.png`", ", `friction.csv`") if friction_computed(result) else ("", "")
+    friction_figure, friction_table = ((", `friction.png`", ", `friction.csv`") if friction_computed(result)
+                                       else ("", ""))
     d_mean, d_half = result.summary("equivalent_gap")
     f_mean, f_half = result.summary("field_equivalent_gap")
     r_mean, r_half = result.summary("ridge_equivalent_gap")

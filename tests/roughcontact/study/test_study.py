@@ -96,7 +96,7 @@ def test_field_gaps_and_ratio_carry_the_solved_attraction(tiny, tiny_result):
         stack.gap_for_pressure(field.mean_pressure, 10.0), rel=1e-6)
 
 
-@pytest.mark.slow           # 16 s on the shared 2-core machine, like the end-to-end run: the CLI writes every figure
+@pytest.mark.slow           # 16 s on the shared 2-core machine, like the end-to-end run (the CLI, every figure)
 def test_parallel_plate_scene_and_a_single_load(tmp_path, capsys):
     # [screen] field = "parallel_plate": the seed's law, so the field gap is Eq. 25's and the ratio 1; one load:
     # the friction law (interpolated in F_N) is not computed and the report says so instead of listing its files
