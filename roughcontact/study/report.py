@@ -351,8 +351,9 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
     text += [f"* **Against the seed's fit (Eq. 46)**: at {low} d_eq = "
              + ", ".join(f"{d * MICRO:.2f} µm" for d in d_mean[:, 0]) + " against Eq. 46's "
              + ", ".join(f"{d * MICRO:.2f}" for d in seed_gap) + " µm and Guo et al.'s power law "
-             + ", ".join(f"{d * MICRO:.2f}" for d in guo) + f" µm at F_N = {', '.join(f'{f:g}' for f in forces)} N; "
-             f"Eq. 46 lies inside the confidence interval at {', '.join(inside) if inside else 'no load'}. "
+             + ", ".join(f"{d * MICRO:.2f}" for d in guo) + f" µm at F_N = {', '.join(f'{f:g}' for f in forces)} N "
+             "(field-equivalent gap d_field: " + ", ".join(f"{d * MICRO:.2f}" for d in f_mean[:, 0]) + " µm); "
+             f"Eq. 46 lies inside the confidence interval of d_eq at {', '.join(inside) if inside else 'no load'}. "
              f"d_eq falls with load at every voltage: {_yes(np.diff(d_mean, axis=0) < 0)}; A_R grows with load: "
              f"{_yes(np.diff(a_mean[:, :, 0], axis=0) > 0)}; A_R grows with voltage: "
              f"{_yes(np.diff(a_mean[:, :, 0], axis=1) > 0)} (realisation means).", "",
