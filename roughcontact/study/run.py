@@ -12,9 +12,10 @@ For each normal force F_N and voltage U:
 3. **Averages over the apparent area** (rings of equal area weigh equally): d_eq by seed Eq. 25
    (``DielectricStack.equivalent_gap`` of all gaps), the arithmetic mean gap, the real contact fraction, the
    ridge contact fraction A_R/A0 (:func:`~.patch.ridge_area_fraction`: the real contact closed morphologically
-   with a disc of diameter ℓ, at ℓ and at the scene's sensitivity factors on it), the mean attraction σ̄_el and
-   the ridge-area equivalent gap d_eq,R with σ_el(d_eq,R) A_R = σ̄_el A0 (the gap that the seed's friction law,
-   which applies σ_el on A_R, needs).
+   with a disc of diameter ℓ, at ℓ and at the scene's sensitivity factors on it), the mean attraction σ̄_el of
+   the scene's field model (``[screen] field``), the field-equivalent gap (Eq. 21 inverted at σ̄_el), σ̄_el of
+   Eq. 21 pixel by pixel on the same gap and the ratio of the two, and the ridge-area equivalent gap d_eq,R
+   with σ_el(d_eq,R) A_R = σ̄_el A0 (the gap that the seed's friction law, which applies σ_el on A_R, needs).
 4. **Realisations**: ``realisations`` rough patches (rng seed + r); every reported number is a mean with a 95 %
    Student-t confidence interval (:func:`~.records.confidence_interval`) over the realisations whose solves
    converged (a solve that fails from its warm start is repeated from the solver's own start first).

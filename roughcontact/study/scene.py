@@ -27,6 +27,7 @@ from surfaces.ridges import ridge_fraction
 from surfaces.validation import check_integer, check_real
 
 from ..electrostatics import DielectricStack
+from ..interactions import FIELDS, ElectrostaticInteraction
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -101,6 +102,10 @@ eps_sc = 3000.0
 d_i = 1e-06                    # m, insulator thickness
 eps_i = 3.9
 eps_a = 1.0
+# The field of the stack over the gap field (docs/electrostatics.md): "layered" (the stratum corneum and the
+# insulator couple the columns; validated against a finite-element solve) or "parallel_plate" (seed Eq. 21 pixel
+# by pixel, the seed's assumption). The report compares the two on every solved gap either way.
+field = "layered"
 
 [loads]
 # The seed's range: 0.5-2 N and 0-200 V (seed Table 1, Fig. 9).
@@ -318,16 +323,24 @@ class Skin(_Section):
 
 @dataclass(frozen=True)
 class Screen(_Section):
-    """Dielectric stack (``roughcontact.electrostatics.DielectricStack`` fields)."""
+    """Dielectric stack (``roughcontact.electrostatics.DielectricStack`` fields) and the ``field`` model of its
+    attraction over a gap field ("layered" or "parallel_plate", ``ElectrostaticInteraction.field``)."""
     section = "screen"
     d_sc: float = _field(_Real(0.0, low_open=True))
     eps_sc: float = _field(_Real(0.0, low_open=True))
     d_i: float = _field(_Real(0.0, low_open=True))
     eps_i: float = _field(_Real(0.0, low_open=True))
     eps_a: float = _field(_Real(0.0, low_open=True))
+    field: str = _field(_Choice(FIELDS))
 
     def stack(self):
-        return DielectricStack(**dataclasses.asdict(self))
+        return DielectricStack(**{key: value for key, value in dataclasses.asdict(self).items() if key != "field"})
+
+    def interaction(self, voltage: float):
+        """The attraction at ``voltage`` [V] with the scene's field model; None at 0 V (the hard wall)."""
+        if voltage == 0:
+            return None
+        return ElectrostaticInteraction(self.stack(), voltage=voltage, field=self.field)
 
 
 @dataclass(frozen=True)

@@ -45,6 +45,7 @@ def test_partial_scene_keeps_the_other_defaults_and_preset_override():
     ("[presets.reference]\nscales = \"mixed\"\n", "presets.reference.scales", 2, '"resolved", "coupled"'),
     ("\n[study]\npreset = \"auto\"\n", "study.preset", 3, "[presets.auto]"),
     ("[presets.auto]\ngrid = 64\n", "presets.auto", 1, "missing keys periods, realisations"),
+    ("[screen]\neps_a = 1.0\nfield = \"fem\"\n", "screen.field", 3, '"parallel_plate", "layered"'),
 ])
 def test_scene_errors_name_key_line_and_valid_values(text, key, line, valid):
     with pytest.raises(ValueError) as error:
