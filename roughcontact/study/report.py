@@ -303,14 +303,8 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
             f"`points.csv`, `realisations.csv`, `ridge_area_sensitivity.csv`{friction_table}"
             + (", all of it in `results.nc`." if nc_written else
                "; `results.nc` was not written (xarray/h5netcdf missing: `pip install 'roughcontact[io]'`)."), "",
-<<<<<<< HEAD
-            "Definitions: d_eq by seed Eq. 25 over the apparent area A0 (contact points included); A_R the real "
-            f"contact closed with a disc of {scene.ridge_area.coarse_graining * MICRO:g} µm diameter; d_eq,R the gap "
-            "with σ_el(d_eq,R) A_R = σ̄_el A0, which the seed's friction law (σ_el acting on A_R) needs. "
-            "Assumptions and their checks: `docs/findings/equivalent_gap.md` of the roughcontact repository.", "",
-=======
             f"Definitions: the attraction is solved with the `{scene.screen.field}` field of the stack (`[screen] "
-            "field`; `docs/electrostatics.md`). d_eq by seed Eq. 25 of the solved gap over the apparent area A0 "
+            "field`; `docs/guide/electrostatics.md`). d_eq by seed Eq. 25 of the solved gap over the apparent area A0 "
             "(contact points included): the seed's definition, the gap at which Eq. 21 gives the mean of Eq. 21 "
             "pixel by pixel. d_field, the field-equivalent gap: the uniform gap whose Eq. 21 attraction is the "
             "solve's mean attraction σ̄_el = F_el/A0 (at 0 V the same for the field of the hard-wall gap in the "
@@ -318,8 +312,7 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
             f"{scene.ridge_area.coarse_graining * MICRO:g} µm diameter; d_eq,R the uniform gap whose Eq. 21 "
             "attraction over A_R is the solved F_el, σ_el(d_eq,R) A_R = σ̄_el A0: the seed's friction law (σ_el "
             "acting on A_R) is fed d_eq,R, so its electrostatic force is the solved one. "
-            "Assumptions and their checks: `docs/equivalent_gap.md` of the roughcontact repository.", "",
->>>>>>> studyfield
+            "Assumptions and their checks: `docs/findings/equivalent_gap.md` of the roughcontact repository.", "",
             "## Equivalent air gap d_eq [µm] (Eq. 25)", "", *_table(result, d_mean, d_half, MICRO, 2, "µm"), "",
             "## Field-equivalent gap d_field [µm]", "", *_table(result, f_mean, f_half, MICRO, 2, "µm"), "",
             *_per_pixel_section(result), "",

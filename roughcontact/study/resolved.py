@@ -1,10 +1,6 @@
 """The resolved chain, one task of the study: the patch with ridges and micro-roughness in one grid, solved with
-<<<<<<< HEAD
-the electrostatic attraction at one voltage under every load in order (``docs/findings/equivalent_gap.md``)."""
-=======
 the electrostatic attraction of the scene's field model (``[screen] field``) at one voltage under every load in
-order (``docs/equivalent_gap.md``)."""
->>>>>>> studyfield
+order (``docs/findings/equivalent_gap.md``)."""
 from __future__ import annotations
 
 import time

@@ -102,7 +102,7 @@ eps_sc = 3000.0
 d_i = 1e-06                    # m, insulator thickness
 eps_i = 3.9
 eps_a = 1.0
-# The field of the stack over the gap field (docs/electrostatics.md): "layered" (the stratum corneum and the
+# The field of the stack over the gap field (docs/guide/electrostatics.md): "layered" (the stratum corneum and the
 # insulator couple the columns; validated against a finite-element solve) or "parallel_plate" (seed Eq. 21 pixel
 # by pixel, the seed's assumption). The report compares the two on every solved gap either way.
 field = "layered"
