@@ -2,6 +2,8 @@
 the default tolerance."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from surfaces import HeightField
@@ -49,4 +51,14 @@ def _checked_interaction(interaction) -> Interaction:
         raise ValueError("interaction = Interaction() is the abstract base class; pass a law such as HardWall(), "
                          "ElectrostaticInteraction(stack, voltage) or a subclass that implements energy, traction "
                          "and stiffness")
+    if interaction.smooth:
+        length = getattr(interaction, "length", None)
+        if isinstance(length, bool) or not isinstance(length, (int, float, np.floating, np.integer)) \
+                or not math.isfinite(length) or length <= 0:
+            raise ValueError(f"interaction {type(interaction).__name__} needs length, the gap scale [m] over which "
+                             f"it varies, a finite float > 0 (valid range (0, inf)); got {length!r}")
+        strength = interaction.strength
+        if strength is not None and not (isinstance(strength, (int, float, np.floating)) and strength >= 0):
+            raise ValueError(f"interaction {type(interaction).__name__}.strength, its largest attraction [Pa], must "
+                             f"be None or a float >= 0 (valid range [0, inf)); got {strength!r}")
     return interaction

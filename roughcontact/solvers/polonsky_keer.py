@@ -39,7 +39,7 @@ from ..body import ElasticHalfSpace
 from ..interactions import Interaction
 from ..io.results import ConvergenceWarning
 from .inputs import _check_body, _checked_interaction, _heights, default_tolerance
-from .result import ContactResult, SolverState
+from .result import ContactResult, SolverReport, SolverState
 
 METHOD = "polonsky-keer"
 _REFRESH = 50          # exact recomputation of u at least every _REFRESH CG steps (round-off drift)
@@ -253,7 +253,7 @@ def _nested_start(surface, half, mean_pressure, flat_position, tol, maxiter, pre
                              preconditioned=preconditioned, warn=False)
     if not result.pressure.any():
         return None, []
-    return result.pressure, result.params["nested_iterations"] + [result.iterations]
+    return result.pressure, result.solver.details["nested_iterations"] + [result.iterations]
 
 
 def _repeat_into(coarse, fine):
@@ -285,9 +285,9 @@ def _full_contact(h, half, mean_pressure, pressure, displacement):
     return h_mean - half.uniform_compliance * mean_pressure
 
 
-def solve_hard_wall(height_field, half: ElasticHalfSpace, *, mean_pressure=None, total_force=None,
-                    penetration=None, tol=None, maxiter=10000, x0=None, cold_start="nested", callback=None,
-                    preconditioned=True, interaction: Interaction | None = None, warn=True) -> ContactResult:
+def solve_hard_wall(height_field, half: ElasticHalfSpace, interaction: Interaction | None = None, *,
+                    mean_pressure=None, total_force=None, penetration=None, tol=None, maxiter=10000, x0=None,
+                    cold_start="nested", callback=None, preconditioned=True, warn=True) -> ContactResult:
     """Polonsky–Keer's solve (module docstring) of :func:`~roughcontact.solvers.dispatch.solve_contact` for the
     hard wall, or a law that vanishes (0 V); same arguments."""
     start = time.perf_counter()
@@ -308,10 +308,8 @@ def solve_hard_wall(height_field, half: ElasticHalfSpace, *, mean_pressure=None,
     heights = _heights(height_field, half)
     warm = _warm_pressure(x0, heights.shape)
     warm_started = warm is not None
-    if total_force is not None:
-        mean_pressure = check_positive("total_force", total_force) / grid.area
-    elif mean_pressure is not None:
-        mean_pressure = check_positive("mean_pressure", mean_pressure)
+    if total_force is not None or mean_pressure is not None:    # a law that vanishes (0 V) takes any sign, as
+        mean_pressure = _checked_load(total_force, mean_pressure, grid, interaction)    # its smooth neighbours
     load_control = mean_pressure is not None
     h_max = float(heights.max())
     flat_position = None if load_control else h_max - check_real("penetration", penetration)
@@ -322,11 +320,10 @@ def solve_hard_wall(height_field, half: ElasticHalfSpace, *, mean_pressure=None,
                              f"the mean gap s − ⟨h⟩ must stay > 0, i.e. penetration < max(h) − ⟨h⟩ = {limit!r} m (use "
                              "load control for full contact)")
 
-    params = {"E_star": half.E_star, "grid": grid, "tol": tol, "maxiter": int(maxiter), "method": METHOD,
-              "preconditioned": preconditioned, "start": "x0" if warm is not None else "pk", "nested_iterations": [],
-              "restart_every_entry_from": None, "full_contact": False,
+    params = {"tol": tol, "maxiter": int(maxiter), "start": "x0" if warm is not None else "pk",
               "control": next(iter(given)), "requested": float(next(iter(given.values()))),
-              "interaction": type(interaction).__name__, "kernel": half.description, "version": __version__}
+              "details": {"preconditioned": preconditioned, "nested_iterations": [], "restart_every_entry_from": None,
+                          "full_contact": False}}
 
     n_points = heights.size
     h = heights.reshape(-1)
@@ -334,10 +331,21 @@ def solve_hard_wall(height_field, half: ElasticHalfSpace, *, mean_pressure=None,
         zeros = np.zeros(n_points, half.dtype)
         return _result(zeros, zeros.copy(), h, flat_position, half, interaction, params, 0, [0.0], True,
                        "no contact: penetration <= 0", start, 0)
+    if load_control and mean_pressure <= 0:                 # nothing presses: a law that vanishes (0 V) at 0 or less
+        zeros = np.zeros(n_points, half.dtype)
+        if mean_pressure == 0:
+            return _result(zeros, zeros.copy(), h, h_max, half, interaction, params, 0, [0.0], True,
+                           "zero load: the flat touches the highest point and presses nothing", start, 0)
+        message = (f"detached: no equilibrium under the tensile load {mean_pressure:.6g} Pa, since the law "
+                   f"{type(interaction).__name__} exerts no traction (it vanishes); the bodies separate")
+        if warn:
+            warnings.warn(message, ConvergenceWarning, stacklevel=3)
+        return _result(zeros, zeros.copy(), h, h_max, half, interaction, params, 0, [math.inf], False, message,
+                       start, 0, detached=True)
     coarse_pressure = None
     if warm is None and cold_start == "nested":             # solved first, before the fine work arrays exist
         surface = height_field if isinstance(height_field, HeightField) else HeightField(grid, heights)
-        coarse_pressure, params["nested_iterations"] = _nested_start(surface, half, mean_pressure, flat_position,
+        coarse_pressure, params["details"]["nested_iterations"] = _nested_start(surface, half, mean_pressure, flat_position,
                                                                      tol, maxiter, preconditioned)
         del surface                                         # (a grid copy when the heights came as an array)
         params["start"] = "pk" if coarse_pressure is None else "nested"
@@ -347,7 +355,8 @@ def solve_hard_wall(height_field, half: ElasticHalfSpace, *, mean_pressure=None,
     if load_control and half.periodic:                      # full contact is exact: no iteration
         shift = _full_contact(h, half, mean_pressure, p, u)
         if shift is not None:
-            return _result(p, u, h, shift, half, interaction, {**params, "full_contact": True}, 0, [0.0], True,
+            params["details"]["full_contact"] = True
+            return _result(p, u, h, shift, half, interaction, params, 0, [0.0], True,
                            "full contact: the pressure that flattens h, p̄ + K⁻¹(h − ⟨h⟩), is positive everywhere "
                            "(exact)", start, 2)
     index = np.empty(n_points, np.int32 if n_points < 2 ** 31 else np.int64)   # the contact set I_c, sorted
@@ -425,7 +434,7 @@ def solve_hard_wall(height_field, half: ElasticHalfSpace, *, mean_pressure=None,
         elif not restart_every_entry and iterations - smallest_at >= STALL_STEPS:
             # the contact set cycles through re-entries (seen once: rough 1024², 0.0065 E*, PK start, where the
             # residual hovered at 1e-2 for 10⁴ steps): fall back to PK's rule, restart on every entry
-            restart_every_entry, params["restart_every_entry_from"] = True, iterations
+            restart_every_entry, params["details"]["restart_every_entry_from"] = True, iterations
         elif restart_every_entry and iterations - smallest_at >= STALL_LIMIT:
             stalled = True
             message = (f"stalled: no smaller residual in {STALL_LIMIT} steps (smallest {smallest_residual:.3g} at step "
@@ -492,7 +501,8 @@ def solve_hard_wall(height_field, half: ElasticHalfSpace, *, mean_pressure=None,
                                 total_force=total_force, penetration=penetration, tol=tol, maxiter=maxiter,
                                 cold_start=cold_start, callback=callback, preconditioned=preconditioned,
                                 interaction=interaction, warn=warn)
-        return dataclasses.replace(retry, params={**retry.params, "warm_start_stalled_at": iterations})
+        details = {**retry.solver.details, "warm_start_stalled_at": iterations}
+        return dataclasses.replace(retry, solver=dataclasses.replace(retry.solver, details=details))
     if not exact:
         transforms += recompute_displacement()
     _scale(p, alpha)
@@ -503,7 +513,15 @@ def solve_hard_wall(height_field, half: ElasticHalfSpace, *, mean_pressure=None,
                    transforms)
 
 
-def _result(p, u, h, shift, half, interaction, params, iterations, residuals, converged, message, start, transforms):
+def _checked_load(total_force, mean_pressure, grid, interaction) -> float:
+    """The mean pressure [Pa] of a load control: > 0 for the hard wall; any sign for a law that vanishes."""
+    name, value = ("total_force", total_force) if total_force is not None else ("mean_pressure", mean_pressure)
+    value = check_real(name, value) if interaction.smooth else check_positive(name, value)
+    return value / grid.area if name == "total_force" else value
+
+
+def _result(p, u, h, shift, half, interaction, params, iterations, residuals, converged, message, start, transforms,
+            detached=False):
     grid = half.grid
     gap = np.empty(p.size, half.dtype)
     contact = np.empty(p.size, np.bool_)
@@ -512,13 +530,15 @@ def _result(p, u, h, shift, half, interaction, params, iterations, residuals, co
     gap, contact = gap.reshape(grid.shape), contact.reshape(grid.shape)
     for array in (pressure, displacement, gap, contact):
         array.flags.writeable = False
-    params = {**params, "fft_pairs": transforms / 2}
+    report = SolverReport(
+        method=METHOD, converged=bool(converged), message=message, iterations=int(iterations),
+        residuals=np.asarray(residuals, dtype=np.float64), tol=params["tol"], maxiter=params["maxiter"],
+        start=params["start"], fft_pairs=transforms / 2, wall_time=time.perf_counter() - start, detached=detached,
+        kernel=half.description, version=__version__, details=params["details"])
     return ContactResult(
         pressure=pressure, displacement=displacement, gap=gap, contact=contact,
         contact_fraction=float(np.count_nonzero(contact)) / contact.size,
         mean_pressure=float(p.mean(dtype=np.float64)), mean_gap=float(gap.mean(dtype=np.float64)),
         penetration=float(h.max()) - float(shift), elastic_energy=half.elastic_energy(pressure, displacement),
-        iterations=int(iterations), residuals=np.asarray(residuals, dtype=np.float64), converged=bool(converged),
-        message=message, wall_time=time.perf_counter() - start, params=params,
-        contact_pressure=pressure, interaction_traction=np.broadcast_to(np.zeros((), half.dtype), grid.shape),
+        grid=grid, solver=report, contact_pressure=pressure, interaction_traction=np.broadcast_to(np.zeros((), half.dtype), grid.shape),
         flat_position=float(shift), interaction=interaction, control=params["control"], requested=params["requested"])

@@ -4,9 +4,11 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass, field
+from dataclasses import MISSING, dataclass, field, fields
 
 import numpy as np
+
+from surfaces import Grid
 
 from ..interactions import ElectrostaticInteraction, HardWall, Interaction
 from ..io.results import SavableResult
@@ -30,6 +32,55 @@ def boundary_edges(contact: np.ndarray, periodic=(True, True)) -> int:
 
 
 @dataclass(frozen=True, eq=False)
+class SolverReport(SavableResult):
+    """What the solver did, typed: ``method`` (a name of :data:`~roughcontact.solvers.dispatch.METHODS`),
+    ``converged``, ``message``, ``iterations``, ``residuals`` (history of the method's relative error), ``tol``
+    and ``maxiter`` it ran with, ``start`` (what it started from: "nested", "pk", "x0", "hard wall", "rigid",
+    "retract from 0 Pa"), ``fft_pairs`` (forward and backward transforms / 2, the start's included),
+    ``wall_time`` [s], ``unstable_steps`` (steps of a smooth law's solve along which the energy was concave: it
+    crossed an instability, so the equilibrium reached may depend on the path; 0 for the hard wall),
+    ``detached`` (under a tensile load no equilibrium was found: the message says why), ``kernel`` (the body's
+    description), ``version`` (of roughcontact) and ``details``, the method's own record
+    (``docs/solver.md``: Polonsky–Keer's "preconditioned", "nested_iterations", "restart_every_entry_from",
+    "full_contact", "warm_start_stalled_at"; the smooth method's "energy_history" [J])."""
+
+    method: str
+    converged: bool
+    message: str
+    iterations: int
+    residuals: np.ndarray
+    tol: float
+    maxiter: int
+    start: str
+    fft_pairs: float
+    wall_time: float
+    unstable_steps: int = 0
+    detached: bool = False
+    kernel: dict = field(default_factory=dict)
+    version: str = ""
+    details: dict = field(default_factory=dict)
+
+
+#: The fields that ContactResult held before its SolverReport (files saved then still load).
+_LEGACY_FIELDS = ("iterations", "residuals", "converged", "message", "wall_time", "params", "unstable_steps")
+#: The keys of the former ``params`` dict that are now typed on the report (or the result).
+_TYPED_PARAMS = ("E_star", "grid", "tol", "maxiter", "method", "start", "fft_pairs", "detached", "control",
+                 "requested", "interaction", "kernel", "version")
+
+
+def _report_from_legacy(legacy: dict) -> SolverReport:
+    """The SolverReport of a result saved before it had one: its former fields and ``params`` dict."""
+    params = legacy.get("params", {})
+    return SolverReport(
+        method=params.get("method", ""), converged=bool(legacy["converged"]), message=legacy["message"],
+        iterations=int(legacy["iterations"]), residuals=legacy["residuals"], tol=params.get("tol", math.nan),
+        maxiter=params.get("maxiter", 0), start=params.get("start", ""), fft_pairs=params.get("fft_pairs", math.nan),
+        wall_time=legacy.get("wall_time", math.nan), unstable_steps=int(legacy.get("unstable_steps", 0)),
+        detached=bool(params.get("detached", False)), kernel=params.get("kernel", {}),
+        version=params.get("version", ""), details={k: v for k, v in params.items() if k not in _TYPED_PARAMS})
+
+
+@dataclass(frozen=True, eq=False, init=False)
 class ContactResult(SavableResult):
     """Solution of one contact problem. Fields in SI units; see ``docs/conventions.md`` for signs.
 
@@ -39,13 +90,12 @@ class ContactResult(SavableResult):
     for the hard wall). ``mean_pressure`` <p> [Pa] is the external load (any sign; ``total_force`` [N]).
     Geometry [m]: ``displacement`` u, ``gap`` g (≥ 0, 0 on the contact set), ``flat_position`` s, with
     g = s − h + u, ``penetration`` δ = max(h) − s, ``mean_gap``; ``contact`` (bool mask), ``contact_fraction``
-    A/A0. Energies [J]: ``elastic_energy`` ½∫p u dA, ``interaction_energy`` ∫V(g) dA. Convergence:
-    ``iterations``, ``residuals`` (history of the relative error), ``converged``, ``message``, ``wall_time``
-    [s]. ``control`` ("mean_pressure", "total_force" or "penetration") and ``requested`` say what was fixed;
-    ``params`` the solver's settings and diagnostics. ``unstable_steps``: steps of a smooth law's solve along
-    which the energy was concave (the attraction out-softened the elastic stiffness): the solve crossed an
-    instability (a snap-in), so the equilibrium it reached may depend on the path to it (0 for the hard wall;
-    ``docs/interactions.md``, "Several equilibria").
+    A/A0; ``grid`` the grid it was solved on. Energies [J]: ``elastic_energy`` ½∫p u dA, ``interaction_energy``
+    ∫V(g) dA. ``control`` ("mean_pressure", "total_force" or "penetration") and ``requested`` say what was
+    fixed. ``solver``: the :class:`SolverReport` (method, convergence, cost, start, detachment); its most read
+    entries are also attributes of the result: ``converged``, ``message``, ``iterations``, ``residuals``,
+    ``wall_time`` [s], ``unstable_steps``, ``detached``. ``params``, the former dict of the solver's settings,
+    is rebuilt from the report for one release.
     """
 
     pressure: np.ndarray
@@ -57,12 +107,8 @@ class ContactResult(SavableResult):
     mean_gap: float
     penetration: float
     elastic_energy: float
-    iterations: int
-    residuals: np.ndarray
-    converged: bool
-    message: str
-    wall_time: float
-    params: dict = field(default_factory=dict)
+    grid: Grid
+    solver: SolverReport
     contact_pressure: np.ndarray | None = None
     interaction_traction: np.ndarray | None = None
     flat_position: float = math.nan
@@ -70,13 +116,87 @@ class ContactResult(SavableResult):
     interaction: Interaction = HardWall()
     control: str = ""
     requested: float = math.nan
-    unstable_steps: int = 0
+
+    def __init__(self, **values):
+        """Keyword fields as declared; a file saved before the :class:`SolverReport` gives the former fields
+        ``iterations``, ``residuals``, ``converged``, ``message``, ``wall_time``, ``params`` and
+        ``unstable_steps`` instead of ``grid`` and ``solver``."""
+        legacy = {name: values.pop(name) for name in _LEGACY_FIELDS if name in values}
+        if legacy and "solver" in values:
+            raise TypeError(f"{sorted(legacy)} are entries of the SolverReport now: give them through "
+                            "solver=dataclasses.replace(result.solver, ...)")
+        if legacy:
+            values["solver"] = _report_from_legacy(legacy)
+            values.setdefault("grid", legacy.get("params", {}).get("grid"))
+        for declared in fields(ContactResult):
+            if declared.name in values:
+                value = values.pop(declared.name)
+            elif declared.default is not MISSING:
+                value = declared.default
+            else:
+                raise TypeError(f"ContactResult() missing the field {declared.name!r}")
+            object.__setattr__(self, declared.name, value)
+        if values:
+            raise TypeError(f"ContactResult() got unexpected fields {sorted(values)}")
+        if not isinstance(self.grid, Grid) or not isinstance(self.solver, SolverReport):
+            raise TypeError(f"ContactResult needs grid (a surfaces.Grid) and solver (a SolverReport), got "
+                            f"{type(self.grid).__name__} and {type(self.solver).__name__}")
+
+    @property
+    def converged(self) -> bool:
+        """Whether the solver met its tolerance (``solver.converged``)."""
+        return self.solver.converged
+
+    @property
+    def message(self) -> str:
+        """The solver's closing message (``solver.message``)."""
+        return self.solver.message
+
+    @property
+    def iterations(self) -> int:
+        """Steps of the method (``solver.iterations``)."""
+        return self.solver.iterations
+
+    @property
+    def residuals(self) -> np.ndarray:
+        """History of the method's relative error (``solver.residuals``)."""
+        return self.solver.residuals
+
+    @property
+    def wall_time(self) -> float:
+        """Seconds the solve took (``solver.wall_time``)."""
+        return self.solver.wall_time
+
+    @property
+    def unstable_steps(self) -> int:
+        """Steps along which the energy was concave (``solver.unstable_steps``; ``docs/interactions.md``,
+        "Several equilibria")."""
+        return self.solver.unstable_steps
+
+    @property
+    def detached(self) -> bool:
+        """Whether a tensile load found no equilibrium (``solver.detached``; the message says why)."""
+        return self.solver.detached
+
+    @property
+    def params(self) -> dict:
+        """The solver's settings and diagnostics as the former dict (kept readable for one release: read
+        ``grid`` and the typed ``solver`` report instead)."""
+        report = self.solver
+        params = {"E_star": report.kernel.get("E_star"), "grid": self.grid, "tol": report.tol,
+                  "maxiter": report.maxiter, "method": report.method, "start": report.start,
+                  "control": self.control, "requested": self.requested,
+                  "interaction": type(self.interaction).__name__, "kernel": report.kernel,
+                  "version": report.version, "fft_pairs": report.fft_pairs, **report.details}
+        if report.method != "polonsky-keer":
+            params["detached"] = report.detached
+        return params
 
     @functools.cached_property
     def perimeter_edges(self) -> int:
         """Number M of pixel edges between a contact and a non-contact pixel (:func:`boundary_edges`, across the
         window's border on the grid's periodic axes)."""
-        return boundary_edges(self.contact, self.params["grid"].periodic)
+        return boundary_edges(self.contact, self.grid.periodic)
 
     @property
     def corrected_contact_fraction(self) -> float:
@@ -87,7 +207,7 @@ class ContactResult(SavableResult):
     @property
     def total_force(self) -> float:
         """Total normal force F = <p> Lx Ly [N]: the external load, positive pushing the bodies together."""
-        return self.mean_pressure * self.params["grid"].area
+        return self.mean_pressure * self.grid.area
 
     @property
     def total_energy(self) -> float:
@@ -103,7 +223,7 @@ class ContactResult(SavableResult):
             pressure = stack.pressure(self.gap, voltage)
         else:
             pressure = -np.asarray(self.interaction_traction, dtype=np.float64)
-        return float(np.sum(pressure, dtype=np.float64)) * self.params["grid"].pixel_area
+        return float(np.sum(pressure, dtype=np.float64)) * self.grid.pixel_area
 
     @property
     def equivalent_gap(self) -> float:
@@ -120,7 +240,7 @@ class ContactResult(SavableResult):
         stack, voltage = self._electrostatics()
         if voltage == 0.0:
             return math.nan
-        return stack.gap_for_pressure(self.electrostatic_force / self.params["grid"].area, voltage)
+        return stack.gap_for_pressure(self.electrostatic_force / self.grid.area, voltage)
 
     def _electrostatics(self):
         if not isinstance(self.interaction, ElectrostaticInteraction):
