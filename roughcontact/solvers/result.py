@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import MISSING, dataclass, field, fields
+from dataclasses import MISSING, dataclass, field, fields, replace
 
 import numpy as np
 
@@ -80,6 +80,11 @@ def _report_from_legacy(legacy: dict) -> SolverReport:
         version=params.get("version", ""), details={k: v for k, v in params.items() if k not in _TYPED_PARAMS})
 
 
+def _from_report(name: str, doc: str) -> property:
+    """A read-only attribute of the result that is the entry ``name`` of its SolverReport."""
+    return property(lambda result: getattr(result.solver, name), doc=f"{doc} (``solver.{name}``)")
+
+
 @dataclass(frozen=True, eq=False, init=False)
 class ContactResult(SavableResult):
     """Solution of one contact problem. Fields in SI units; see ``docs/conventions.md`` for signs.
@@ -120,12 +125,14 @@ class ContactResult(SavableResult):
     def __init__(self, **values):
         """Keyword fields as declared; a file saved before the :class:`SolverReport` gives the former fields
         ``iterations``, ``residuals``, ``converged``, ``message``, ``wall_time``, ``params`` and
-        ``unstable_steps`` instead of ``grid`` and ``solver``."""
+        ``unstable_steps`` instead of ``grid`` and ``solver``; beside ``solver`` (``dataclasses.replace``) all
+        but ``params`` replace the report's entries (for one release)."""
         legacy = {name: values.pop(name) for name in _LEGACY_FIELDS if name in values}
-        if legacy and "solver" in values:
-            raise TypeError(f"{sorted(legacy)} are entries of the SolverReport now: give them through "
-                            "solver=dataclasses.replace(result.solver, ...)")
-        if legacy:
+        if legacy and "solver" in values:                   # dataclasses.replace(result, converged=False)
+            if "params" in legacy:
+                raise TypeError("params is rebuilt from the SolverReport: give solver= (with its details) instead")
+            values["solver"] = replace(values["solver"], **legacy)
+        elif legacy:
             values["solver"] = _report_from_legacy(legacy)
             values.setdefault("grid", legacy.get("params", {}).get("grid"))
         for declared in fields(ContactResult):
@@ -142,41 +149,14 @@ class ContactResult(SavableResult):
             raise TypeError(f"ContactResult needs grid (a surfaces.Grid) and solver (a SolverReport), got "
                             f"{type(self.grid).__name__} and {type(self.solver).__name__}")
 
-    @property
-    def converged(self) -> bool:
-        """Whether the solver met its tolerance (``solver.converged``)."""
-        return self.solver.converged
-
-    @property
-    def message(self) -> str:
-        """The solver's closing message (``solver.message``)."""
-        return self.solver.message
-
-    @property
-    def iterations(self) -> int:
-        """Steps of the method (``solver.iterations``)."""
-        return self.solver.iterations
-
-    @property
-    def residuals(self) -> np.ndarray:
-        """History of the method's relative error (``solver.residuals``)."""
-        return self.solver.residuals
-
-    @property
-    def wall_time(self) -> float:
-        """Seconds the solve took (``solver.wall_time``)."""
-        return self.solver.wall_time
-
-    @property
-    def unstable_steps(self) -> int:
-        """Steps along which the energy was concave (``solver.unstable_steps``; ``docs/interactions.md``,
-        "Several equilibria")."""
-        return self.solver.unstable_steps
-
-    @property
-    def detached(self) -> bool:
-        """Whether a tensile load found no equilibrium (``solver.detached``; the message says why)."""
-        return self.solver.detached
+    converged = _from_report("converged", "Whether the solver met its tolerance.")
+    message = _from_report("message", "The solver's closing message.")
+    iterations = _from_report("iterations", "Steps of the method.")
+    residuals = _from_report("residuals", "History of the method's relative error.")
+    wall_time = _from_report("wall_time", "Seconds the solve took.")
+    unstable_steps = _from_report("unstable_steps", "Steps along which the energy was concave "
+                                  "(docs/interactions.md, \"Several equilibria\").")
+    detached = _from_report("detached", "Whether a tensile load found no equilibrium (the message says why).")
 
     @property
     def params(self) -> dict:

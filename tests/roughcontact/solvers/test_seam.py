@@ -66,8 +66,11 @@ def test_the_report_is_typed_and_the_former_params_read_the_same():
         assert result.params["fft_pairs"] == report.fft_pairs and result.params["start"] == report.start
     assert "detached" not in hard.params and smooth.params["detached"] is False
     assert smooth.params["energy_history"] == smooth.solver.details["energy_history"]
-    with pytest.raises(TypeError, match="SolverReport"):
-        dataclasses.replace(hard, iterations=3)
+    # the former fields still replace (for one release): into the report
+    changed = dataclasses.replace(hard, converged=False, iterations=3)
+    assert (changed.solver.converged, changed.solver.iterations, changed.solver.method) == (False, 3, "polonsky-keer")
+    with pytest.raises(TypeError, match="params is rebuilt from the SolverReport"):
+        dataclasses.replace(hard, params={})
 
 
 @pytest.mark.parametrize("name, method", [("hard_wall_v1.npz", "polonsky-keer"),
@@ -221,3 +224,16 @@ def test_pull_off_names_its_bad_arguments():
         pull_off(hard, hard.solve(mean_pressure=0.1), step=0.05)
     with pytest.warns(DeprecationWarning, match="tol"):
         pull_off(adhesive, start, step=0.05, rtol=0.5)
+
+
+def test_a_cold_tensile_solve_on_a_rough_patch_stays_attached():
+    # the audit's case: on a rough patch a cold solve at half the pull-off tension went straight to "detached"
+    # (descent from the undeformed surface separated) while the retract path from zero load stays attached
+    from surfaces import self_affine
+    grid = Grid((32, 32), (1e-3, 1e-3))
+    surface = self_affine(grid, hurst=0.8, rms_height=1e-6, short_cutoff=2.5e-4, rng=1)
+    problem = ContactProblem(surface, ElasticHalfSpace(grid, E_star=1e6), ExponentialAdhesion(2e-3, 2e-7))
+    found = pull_off(problem, problem.solve(mean_pressure=10.0), step=1e3, tol=0.1)
+    cold = problem.solve(mean_pressure=found.mean_pressure / 2)
+    assert cold.converged and not cold.detached and cold.contact_fraction > 0.1
+    assert cold.mean_pressure == pytest.approx(found.mean_pressure / 2, rel=1e-12)
