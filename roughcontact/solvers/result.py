@@ -31,6 +31,14 @@ def boundary_edges(contact: np.ndarray, periodic=(True, True)) -> int:
     return edges
 
 
+def _read_only_state(result, state: dict) -> None:
+    """Unpickling: the fields back, arrays read-only as when the result was made (results are immutable)."""
+    for name, value in state.items():
+        if isinstance(value, np.ndarray):
+            value.flags.writeable = False
+        object.__setattr__(result, name, value)
+
+
 @dataclass(frozen=True, eq=False)
 class SolverReport(SavableResult):
     """What the solver did, typed: ``method`` (a name of :data:`~roughcontact.solvers.dispatch.METHODS`),
@@ -59,6 +67,8 @@ class SolverReport(SavableResult):
     kernel: dict = field(default_factory=dict)
     version: str = ""
     details: dict = field(default_factory=dict)
+
+    __setstate__ = _read_only_state
 
 
 #: The fields that ContactResult held before its SolverReport (files saved then still load).
@@ -149,6 +159,7 @@ class ContactResult(SavableResult):
             raise TypeError(f"ContactResult needs grid (a surfaces.Grid) and solver (a SolverReport), got "
                             f"{type(self.grid).__name__} and {type(self.solver).__name__}")
 
+    __setstate__ = _read_only_state
     converged = _from_report("converged", "Whether the solver met its tolerance.")
     message = _from_report("message", "The solver's closing message.")
     iterations = _from_report("iterations", "Steps of the method.")

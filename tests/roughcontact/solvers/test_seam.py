@@ -237,3 +237,14 @@ def test_a_cold_tensile_solve_on_a_rough_patch_stays_attached():
     cold = problem.solve(mean_pressure=found.mean_pressure / 2)
     assert cold.converged and not cold.detached and cold.contact_fraction > 0.1
     assert cold.mean_pressure == pytest.approx(found.mean_pressure / 2, rel=1e-12)
+
+
+def test_a_pickled_result_comes_back_read_only():
+    import pickle
+    surface, body = sinusoid()
+    result = solve_contact(surface, body, mean_pressure=0.1, interaction=ExponentialAdhesion(0.05, 0.05))
+    clone = pickle.loads(pickle.dumps(result))
+    assert np.array_equal(clone.gap, result.gap) and clone.solver.iterations == result.iterations
+    for array in (clone.pressure, clone.gap, clone.contact, clone.solver.residuals):
+        with pytest.raises(ValueError, match="read-only"):
+            array[0] = 0
