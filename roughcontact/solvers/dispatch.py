@@ -4,6 +4,7 @@ total energy over the gap for a smooth law with the wall (:mod:`.energy_cg`) —
 solves the law and takes every option given."""
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from typing import Callable
 
@@ -13,6 +14,7 @@ from surfaces.validation import check_choice, check_real
 
 from ..body import ElasticHalfSpace
 from ..interactions import Interaction
+from ..io.results import ConvergenceWarning
 from .energy_cg import METHOD as ENERGY_CG
 from .energy_cg import solve_smooth
 from .inputs import _check_body, _checked_interaction, default_tolerance
@@ -20,8 +22,9 @@ from .polonsky_keer import METHOD as POLONSKY_KEER
 from .polonsky_keer import solve_hard_wall
 from .result import ContactResult
 
-#: Relative tolerance below which a solve in float32 cannot converge: its residual is computed from fields
-#: resolved to ε32 ≈ 1.2e-7, so round-off stops it near a few ε32 (docs/solver.md, "Single precision").
+#: Relative tolerance below which a solve in float32 may not converge: its residual is computed from fields
+#: resolved to ε32 ≈ 1.2e-7, so round-off may stop it near a few ε32 (a rough patch's Polonsky–Keer solve
+#: stalls there; a smooth cosine's energy solve reached 1.2e-9, but not 1e-9, in 3000 steps).
 FLOAT32_TOL_FLOOR = 4 * float(np.finfo(np.float32).eps)
 
 
@@ -82,7 +85,8 @@ def solve_contact(height_field, body: ElasticHalfSpace, *, mean_pressure=None, t
     tol : float, optional
         Relative tolerance of the method's convergence criterion (its module docstring), in (0, 1); by default
         :func:`default_tolerance` of the body's dtype (1e-8 in float64, 1e-6 in float32). In float32 a tolerance
-        below :data:`FLOAT32_TOL_FLOOR` is refused.
+        below :data:`FLOAT32_TOL_FLOOR` is warned of up front (a ConvergenceWarning): round-off may stop the
+        residual above it.
     maxiter : int
         Maximum number of steps.
     x0 : ContactResult or array, optional
@@ -118,9 +122,9 @@ def solve_contact(height_field, body: ElasticHalfSpace, *, mean_pressure=None, t
     tol = default_tolerance(body.dtype, interaction) if tol is None else \
         check_real("tol", tol, low=0.0, high=1.0, low_open=True, high_open=True)
     if body.dtype == np.float32 and tol < FLOAT32_TOL_FLOOR:
-        raise ValueError(f"tol = {tol!r} is below float32's round-off floor {FLOAT32_TOL_FLOOR:.2g}: the residual "
-                         "cannot get there (the solve would stall or run to maxiter); use tol >= "
-                         f"{FLOAT32_TOL_FLOOR:.2g} or a float64 body")
+        warnings.warn(f"tol = {tol!r} is below float32's round-off floor {FLOAT32_TOL_FLOOR:.2g}: the residual may "
+                      f"not get there (the solve may stall or run to maxiter = {maxiter}); use tol >= "
+                      f"{FLOAT32_TOL_FLOOR:.2g} or a float64 body", ConvergenceWarning, stacklevel=2)
     return chosen.solve(height_field, body, interaction, mean_pressure=mean_pressure, total_force=total_force,
                         penetration=penetration, tol=tol, maxiter=maxiter, x0=x0, callback=callback, warn=warn,
                         **given)

@@ -1,6 +1,7 @@
 """The solver seam: method registry and per-method options, the typed SolverReport, files saved before it, and
 the audit's misbehaving calls (tension, user laws, float32, 0 V, pull_off's arguments)."""
 import dataclasses
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -191,12 +192,15 @@ def test_built_in_laws_check_gaps_alike():
 
 
 # -- float32, 0 V, pull_off's arguments ----------------------------------------------------------------------------
-def test_float32_refuses_a_tolerance_below_its_round_off():
+def test_float32_warns_of_a_tolerance_below_its_round_off_up_front():
     surface, _ = sinusoid()
     single = ElasticHalfSpace(surface.grid, E_star=1 / np.pi, dtype=np.float32)
     for law in (None, ExponentialAdhesion(0.05, 0.05)):
-        with pytest.raises(ValueError, match="below float32's round-off floor"):
-            solve_contact(surface, single, mean_pressure=0.1, interaction=law, tol=1e-9)
+        with pytest.warns(ConvergenceWarning, match="below float32's round-off floor 4.8e-07"):
+            solve_contact(surface, single, mean_pressure=0.1, interaction=law, tol=1e-9, maxiter=5, warn=False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")                     # at the default tolerance: no warning
+        assert solve_contact(surface, single, mean_pressure=0.1, interaction=ExponentialAdhesion(0.05, 0.05)).converged
 
 
 def test_a_zero_volt_law_takes_any_load_like_its_neighbours():
