@@ -13,22 +13,22 @@ from ..body import ElasticHalfSpace
 from ..interactions import HardWall, Interaction
 
 
-def _check_body(half) -> None:
-    if not isinstance(half, ElasticHalfSpace):
-        raise TypeError(f"half must be an ElasticHalfSpace, got {type(half).__name__}")
+def _check_body(body) -> None:
+    if not isinstance(body, ElasticHalfSpace):
+        raise TypeError(f"body must be an ElasticHalfSpace, got {type(body).__name__}")
 
 
-def _heights(height_field, half) -> np.ndarray:
+def _heights(height_field, body) -> np.ndarray:
     if isinstance(height_field, HeightField):
-        if height_field.grid != half.grid:
-            raise ValueError(f"height_field.grid {height_field.grid} differs from the half-space grid {half.grid}")
+        if height_field.grid != body.grid:
+            raise ValueError(f"height_field.grid {height_field.grid} differs from the body's grid {body.grid}")
         heights = height_field.heights
     else:
         heights = check_finite_array("height_field", height_field)
-        if heights.shape != half.grid.shape:
-            raise ValueError(f"height_field has shape {heights.shape}, but the half-space grid has shape "
-                             f"{half.grid.shape}")
-    return np.ascontiguousarray(heights, dtype=half.dtype)
+        if heights.shape != body.grid.shape:
+            raise ValueError(f"height_field has shape {heights.shape}, but the body's grid has shape "
+                             f"{body.grid.shape}")
+    return np.ascontiguousarray(heights, dtype=body.dtype)
 
 
 def default_tolerance(dtype, interaction=None) -> float:

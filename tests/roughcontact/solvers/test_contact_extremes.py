@@ -184,7 +184,7 @@ def test_grid_mismatch_and_wrong_half_space():
     other = HeightField(Grid((8, 8), (2e-3, 2e-3)), np.zeros((8, 8)))
     with pytest.raises(ValueError, match="grid"):
         solve_contact(other, ElasticHalfSpace(grid, E_star=E_STAR), mean_pressure=1.0)
-    with pytest.raises(TypeError, match="half"):
+    with pytest.raises(TypeError, match="body must be an ElasticHalfSpace"):
         solve_contact(other, E_STAR, mean_pressure=1.0)
 
 
