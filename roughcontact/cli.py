@@ -131,7 +131,7 @@ def build_parser() -> argparse.ArgumentParser:
                      help="scene TOML file (default: the embedded scene, see 'roughcontact scene --show')")
     run.add_argument("--preset", choices=("draft", "standard", "reference", "auto"), default=argparse.SUPPRESS,
                      help="accuracy preset (default: the scene's study.preset); auto: the cheapest measured setting "
-                          "meeting --target-error (docs/presets.md)")
+                          "meeting --target-error (docs/guide/presets.md)")
     run.add_argument("--target-error", metavar="ERROR", default=argparse.SUPPRESS,
                      help="with --preset auto: the largest error accepted, e.g. 2%% or 0.02")
     run.add_argument("--out", default=DEFAULT_RUN_OUTPUT,

@@ -1,6 +1,6 @@
 """The coupled path (roughcontact.study.coupled) against the fully resolved patches of the fingerpad study (a script).
 
-    python studies/scale_coupling.py --preset standard --realisations 3     # docs/equivalent_gap.md
+    python studies/scale_coupling.py --preset standard --realisations 3     # docs/findings/equivalent_gap.md
     python studies/scale_coupling.py --fast                                  # 32² patches, 100 V, seconds
 
 (from the repository root after ``pip install -e .``). The default scene at 0.5 and 2 N and the voltages given,

@@ -1,7 +1,7 @@
 """The field of the layered capacitor over a gap field: the stratum corneum and the insulator couple the columns.
 
 The seed's law (Eq. 21) treats every pixel as an independent parallel-plate capacitor. Here the two solid
-layers are slabs with their exact lateral response and only the air gap is local (``docs/electrostatics.md``):
+layers are slabs with their exact lateral response and only the air gap is local (``docs/guide/electrostatics.md``):
 
 * the insulator (thickness ``d_i``, permittivity ``eps_i``) lies flat on the screen electrode (potential 0);
 * the stratum corneum (``d_sc``, ``eps_sc``) has a uniform thickness under the conductive tissue (potential U),
@@ -28,7 +28,7 @@ and σ_el is Eq. 21 exactly. ``model="parallel_plate"`` replaces M by its unifor
 slope factor (no lateral coupling): Eq. 21 pixel by pixel, the seed's assumption. The slope factor matters
 only where the gap varies over lengths of the gap itself: it moves the second-order response of a 10 µm
 sinusoid at a 2 µm mean gap by 13 % and the attraction of resolved skin profiles by < 0.1 %
-(``docs/electrostatics.md``).
+(``docs/guide/electrostatics.md``).
 
 Periodic grids take the slabs' operator on the grid itself; a free window is zero-padded to twice its size per
 free axis, with no flux outside the window (the skin far from the screen there).
@@ -89,6 +89,7 @@ class StackField:
         self._buffer = self._fft.empty()
         self._window = tuple(slice(0, n) for n in grid.shape)
         self._stencil = _stencil(grid, enabled=self.model == "layered")
+        self._work = None
         self.residual = None
 
     @property
@@ -147,9 +148,11 @@ class StackField:
         if self.model == "parallel_plate":
             self.residual = np.zeros_like(column)
             return 1.0 / (self.stack.dielectric_offset / EPSILON_0 + column), 0, 0.0
-        inverse_diagonal = 1.0 / (self._diagonal + column)
+        if self._work is None or self._work[0].shape != column.shape:
+            self._work = tuple(np.empty(column.shape) for _ in range(5))       # allocated once per grid
+        inverse_diagonal, product, residual, z, direction = self._work
+        np.divide(1.0, self._diagonal + column, out=inverse_diagonal)
         flux = inverse_diagonal.copy() if initial is None else np.array(initial, dtype=float)
-        product, residual, z, direction = (np.empty_like(flux) for _ in range(4))
         self.apply_elastance(flux, product)
         rz, rr = _cg_start(flux.reshape(-1), product.reshape(-1), column.reshape(-1), inverse_diagonal.reshape(-1),
                            residual.reshape(-1), z.reshape(-1), direction.reshape(-1))

@@ -99,12 +99,12 @@ def solve_contact(height_field, body: ElasticHalfSpace, *, mean_pressure=None, t
         Emit a :class:`~roughcontact.io.ConvergenceWarning` when not converged.
     cold_start : {"nested", "pk"}, Polonsky–Keer only
         Initial guess without ``x0``. ``"nested"`` (default): the pressure of the same problem on the grid
-        coarsened 2 × 2, recursively (``docs/solver.md``); grids that do not halve down to 2 × ``NESTED_MIN``
+        coarsened 2 × 2, recursively (``docs/guide/solver.md``); grids that do not halve down to 2 × ``NESTED_MIN``
         pixels fall back to ``"pk"``: Polonsky and Keer's uniform p̄ (load control) or the rigid overlap
         (displacement control).
     preconditioned : bool, Polonsky–Keer only
         Precondition the conjugate gradients with the inverse kernel K⁻¹ (default True): one more FFT pair per
-        step, fewer steps (``docs/solver.md``).
+        step, fewer steps (``docs/guide/solver.md``).
 
     An option that the method does not take (``cold_start`` or ``preconditioned`` with a smooth law) raises
     ``ValueError``.

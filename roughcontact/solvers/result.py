@@ -16,7 +16,7 @@ from ..io.results import SavableResult
 
 # Counting contact pixels over-estimates the true area by a perimeter term that falls as Δx/λ_s; Yastrebov,
 # Anciaux & Molinari (2017, Tribol. Int. 114:161) remove it by subtracting this fraction of a pixel per edge
-# between a contact and a non-contact pixel (docs/contact_area.md measures it: κ flat from 4 to 64 px).
+# between a contact and a non-contact pixel (docs/findings/contact_area.md measures it: κ flat from 4 to 64 px).
 PERIMETER_CORRECTION = (math.pi - 1 + math.log(2)) / 24
 
 
@@ -49,7 +49,7 @@ class SolverReport(SavableResult):
     crossed an instability, so the equilibrium reached may depend on the path; 0 for the hard wall),
     ``detached`` (under a tensile load no equilibrium was found: the message says why), ``kernel`` (the body's
     description), ``version`` (of roughcontact) and ``details``, the method's own record
-    (``docs/solver.md``: Polonsky–Keer's "preconditioned", "nested_iterations", "restart_every_entry_from",
+    (``docs/guide/solver.md``: Polonsky–Keer's "preconditioned", "nested_iterations", "restart_every_entry_from",
     "full_contact", "warm_start_stalled_at"; the smooth method's "energy_history" [J])."""
 
     method: str
@@ -97,7 +97,7 @@ def _from_report(name: str, doc: str) -> property:
 
 @dataclass(frozen=True, eq=False, init=False)
 class ContactResult(SavableResult):
-    """Solution of one contact problem. Fields in SI units; see ``docs/conventions.md`` for signs.
+    """Solution of one contact problem. Fields in SI units; see ``docs/reference/conventions.md`` for signs.
 
     Tractions [Pa], positive compressive: ``pressure`` p, the total normal traction that deforms the body
     (u = K p), = ``contact_pressure`` (the wall's multiplier: ≥ 0, non-zero on the contact set only) +
@@ -166,7 +166,7 @@ class ContactResult(SavableResult):
     residuals = _from_report("residuals", "History of the method's relative error.")
     wall_time = _from_report("wall_time", "Seconds the solve took.")
     unstable_steps = _from_report("unstable_steps", "Steps along which the energy was concave "
-                                  "(docs/interactions.md, \"Several equilibria\").")
+                                  "(docs/guide/interactions.md, \"Several equilibria\").")
     detached = _from_report("detached", "Whether a tensile load found no equilibrium (the message says why).")
 
     @property

@@ -1,4 +1,4 @@
-"""The multiscale fingerpad study: d_eq(F_N, U) and A_R(F_N, U) bottom-up from a scene (``docs/equivalent_gap.md``).
+"""The multiscale fingerpad study: d_eq(F_N, U) and A_R(F_N, U) bottom-up from a scene (``docs/findings/equivalent_gap.md``).
 Layer 4: imports the solvers, the body, the interaction laws, the macroscopic model and io below it.
 
 Inside, imports run one way: :mod:`.scene` (the scene file) ← :mod:`.presets` (the measured preset table);

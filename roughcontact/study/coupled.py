@@ -1,7 +1,7 @@
 """Scale coupling: the micro-roughness reduced to an interface law that a ridge-scale solve uses.
 
 The fully resolved study (:mod:`roughcontact.study`) puts ridges and micro-roughness in one grid. The coupled
-path separates them (``docs/equivalent_gap.md``, "Scale coupling"):
+path separates them (``docs/findings/equivalent_gap.md``, "Scale coupling"):
 
 1. **Micro scale** (:func:`interface_law`). A periodic patch of the micro-roughness alone on the same skin is
    brought to a sequence of mean separations ū (displacement control, from far to near, each solve started

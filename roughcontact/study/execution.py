@@ -1,6 +1,6 @@
 """Where the study's tasks run and where their records are kept: :class:`TaskStore` (finished tasks on disk, so
 an interrupted run resumes) and the executors — in this process, a local process pool, a dask.distributed
-cluster (``docs/scaling.md``)."""
+cluster (``docs/guide/scaling.md``)."""
 from __future__ import annotations
 
 import dataclasses

@@ -34,7 +34,7 @@ class PatchRecord:
     ``ridge_equivalent_gap`` d_eq,R, ``mean_gap`` [m]; ``contact_fraction``; ``ridge_area_fractions`` A_R/A0
     per coarse-graining length; ``electrostatic_pressure`` σ̄_el [Pa]; ``gap_slope`` (rms |∇g|, weighted by
     (ε_a c + g)⁻²); ``converged`` (every ring); ``iterations``, ``unstable_steps`` (concave steps: the solves
-    crossed instabilities, so the answer may depend on the path; ``docs/interactions.md``) and ``solves`` (summed
+    crossed instabilities, so the answer may depend on the path; ``docs/guide/interactions.md``) and ``solves`` (summed
     over the rings, a cold retry included); ``seconds`` of solving."""
 
     equivalent_gap: float

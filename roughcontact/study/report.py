@@ -1,5 +1,5 @@
 """Results of a fingerpad study on disk: netCDF, CSV, PNG and report.md, with the seed's friction law fed
-bottom-up (:mod:`.friction`).
+bottom-up (:mod:`roughcontact.study.friction`).
 
 :func:`write_results` writes ``results.nc`` (xarray + h5netcdf, the ``io`` dependencies; skipped
 with a message when missing), the CSV tables, the PNG figures and ``report.md`` into a results directory.
@@ -237,7 +237,7 @@ def _unstable_sentence(result: StudyResult) -> str:
     lowest = result.voltages[int(np.flatnonzero(crossed.any(axis=(0, 2)))[0])]
     return (f"{int(crossed.sum())} of {crossed.size} patch results came from solves that crossed an instability "
             f"(concave steps, from {lowest:g} V on): where the attraction snaps regions into contact the "
-            "equilibrium may depend on the path to it (`docs/interactions.md`, \"Several equilibria\").")
+            "equilibrium may depend on the path to it (`docs/guide/interactions.md`, \"Several equilibria\").")
 
 
 def report_text(result: StudyResult, nc_written: bool, seconds: float | None = None) -> str:
@@ -270,7 +270,7 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
             "Definitions: d_eq by seed Eq. 25 over the apparent area A0 (contact points included); A_R the real "
             f"contact closed with a disc of {scene.ridge_area.coarse_graining * MICRO:g} µm diameter; d_eq,R the gap "
             "with σ_el(d_eq,R) A_R = σ̄_el A0, which the seed's friction law (σ_el acting on A_R) needs. "
-            "Assumptions and their checks: `docs/equivalent_gap.md` of the roughcontact repository.", "",
+            "Assumptions and their checks: `docs/findings/equivalent_gap.md` of the roughcontact repository.", "",
             "## Equivalent air gap d_eq [µm] (Eq. 25)", "", *_table(result, d_mean, d_half, MICRO, 2, "µm"), "",
             "## Ridge contact fraction A_R/A0", "", *_table(result, a_mean[:, :, 0], a_half[:, :, 0], 1.0, 3, "-"),
             "", "## Real contact fraction", "", *_table(result, c_mean, c_half, 100.0, 2, "%"), "",
@@ -331,7 +331,7 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
                  "μ = F_T/F_N: bottom-up / bottom-up without the tangential area reduction (c₂ = 0) / seed. "
                  "Where the bottom-up A_R0 is below √c₂ μ0 F_N the seed's reduction law (Eq. 43, c₂ fitted to its "
                  "own, larger ridge area) empties the ridge area and F_T = μ0 F_N (the saturation rule of "
-                 f"`docs/theory.md`): {saturated} of {len(rows)} "
+                 f"`docs/guide/friction_model.md`): {saturated} of {len(rows)} "
                  "points.", "",
                  "| F_N [N] | " + " | ".join(f"{v:g} V" for v in voltages) + " |",
                  "|---" * (len(voltages) + 1) + "|"]

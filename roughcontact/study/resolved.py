@@ -1,5 +1,5 @@
 """The resolved chain, one task of the study: the patch with ridges and micro-roughness in one grid, solved with
-the electrostatic attraction at one voltage under every load in order (``docs/equivalent_gap.md``)."""
+the electrostatic attraction at one voltage under every load in order (``docs/findings/equivalent_gap.md``)."""
 from __future__ import annotations
 
 import time

@@ -1,4 +1,4 @@
-"""The multiscale fingerpad study: d_eq(F_N, U) and A_R(F_N, U) bottom-up from a scene (``docs/equivalent_gap.md``).
+"""The multiscale fingerpad study: d_eq(F_N, U) and A_R(F_N, U) bottom-up from a scene (``docs/findings/equivalent_gap.md``).
 
 For each normal force F_N and voltage U:
 

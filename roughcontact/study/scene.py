@@ -1,6 +1,6 @@
 """Scenes of the multiscale fingerpad study: a TOML file validated into frozen dataclasses.
 
-A scene says what to model (``docs/tutorial.md``): the fingerpad's apparent contact, the fingerprint ridges,
+A scene says what to model (``docs/getting-started/tutorial.md``): the fingerpad's apparent contact, the fingerprint ridges,
 the micro-roughness on them, the skin, the screen's dielectric stack, the loads and voltages, the A_R
 coarse-graining length and the accuracy preset. Values are SI (m, Pa, N, V). The defaults live in one place,
 :data:`DEFAULT_SCENE_TOML` (each value with its source in ``docs/references.md``); a user's file overrides any
@@ -51,7 +51,7 @@ DEFAULT_SCENE_TOML = """\
 # al. 2017, references.md §0.5) with uniform nominal pressure F_N/A0, or "fingertip": a Hertzian cap of
 # radius and E_star (seed R* = 1 cm, E* = 47.4 kPa, references.md §1.1), Hertz pressure over the disc.
 # layer = true (fingertip only): the cap is pressed onto the [skin] layer bonded on tissue of E_star, solved on
-# a free grid of layer_grid x layer_grid pixels (roughcontact.study.fingertip; docs/equivalent_gap.md, "The apparent
+# a free grid of layer_grid x layer_grid pixels (roughcontact.study.fingertip; docs/findings/equivalent_gap.md, "The apparent
 # scale on the layered skin": A0 2.5-4.2 % smaller, the outer ring's pressure 10-18 % higher at 0.5-2 N).
 model = "power_law"
 area_prefactor = 9.19e-05      # m^2 N^-area_exponent (91.9 mm^2)
@@ -119,7 +119,7 @@ sensitivity = [0.5, 0.75, 1.25]
 preset = "standard"
 seed = 0                       # realisation r uses rng seed + r
 
-# Accuracy presets, chosen from the measured speed-accuracy front (errors and costs: docs/presets.md): patch
+# Accuracy presets, chosen from the measured speed-accuracy front (errors and costs: docs/guide/presets.md): patch
 # side = periods ridge periods on grid x grid pixels; realisations of the roughness; solver tolerance; rings of
 # equal area over the apparent contact (fingertip model only); pixels_per_cutoff: the shortest roughness
 # wavelength in pixels; dtype of the solves ("float64" or "float32"); warm_start: each solve starts from its
@@ -256,7 +256,7 @@ class _Section:
 class Fingerpad(_Section):
     """Apparent contact: ``model`` "power_law" (A0 = area_prefactor F_N^area_exponent [m²], uniform nominal
     pressure) or "fingertip" (Hertz cap of ``radius`` [m] on tissue of ``E_star`` [Pa]; with ``layer`` the cap
-    pressed onto the skin's layer on that tissue, solved on ``layer_grid``² pixels)."""
+    pressed onto the skin's layer on that tissue, solved on ``layer_grid`` × ``layer_grid`` pixels)."""
     section = "fingerpad"
     model: str = _field(_Choice(("power_law", "fingertip")))
     area_prefactor: float = _field(_Real(0.0, low_open=True))
@@ -357,7 +357,7 @@ class Study(_Section):
 
 @dataclass(frozen=True)
 class Preset(_Section):
-    """Accuracy against cost (``docs/presets.md``): ``grid`` pixels per side of a patch of ``periods`` ridge
+    """Accuracy against cost (``docs/guide/presets.md``): ``grid`` pixels per side of a patch of ``periods`` ridge
     periods, ``realisations``, solver ``tolerance``, ``rings`` over the apparent area (fingertip),
     ``pixels_per_cutoff`` at the short cut-off, ``dtype`` of the solves, ``warm_start`` (continuation along
     load, else cold solves) and ``scales`` ("resolved" in one grid or "coupled" through an interface law)."""
