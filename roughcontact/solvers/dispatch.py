@@ -10,7 +10,7 @@ from typing import Callable
 
 import numpy as np
 
-from surfaces.validation import check_choice, check_real
+from surfaces.validation import check_bool, check_choice, check_real
 
 from ..body import ElasticHalfSpace
 from ..interactions import Interaction
@@ -18,6 +18,7 @@ from ..io.results import ConvergenceWarning
 from .energy_cg import METHOD as ENERGY_CG
 from .energy_cg import solve_smooth
 from .inputs import _check_body, _checked_interaction, default_tolerance
+from .polonsky_keer import COLD_STARTS
 from .polonsky_keer import METHOD as POLONSKY_KEER
 from .polonsky_keer import solve_hard_wall
 from .result import ContactResult
@@ -26,6 +27,10 @@ from .result import ContactResult
 #: resolved to ε32 ≈ 1.2e-7, so round-off may stop it near a few ε32 (a rough patch's Polonsky–Keer solve
 #: stalls there; a smooth cosine's energy solve reached 1.2e-9, but not 1e-9, in 3000 steps).
 FLOAT32_TOL_FLOOR = 4 * float(np.finfo(np.float32).eps)
+
+
+class OptionWarning(UserWarning):
+    """An option was given that the method solving the problem does not take (it is ignored)."""
 
 
 @dataclass(frozen=True)
@@ -106,19 +111,23 @@ def solve_contact(height_field, body: ElasticHalfSpace, *, mean_pressure=None, t
         Precondition the conjugate gradients with the inverse kernel K⁻¹ (default True): one more FFT pair per
         step, fewer steps (``docs/guide/solver.md``).
 
-    An option that the method does not take (``cold_start`` or ``preconditioned`` with a smooth law) raises
-    ``ValueError``.
+    Notes
+    -----
+    An option that the method does not take (``cold_start`` or ``preconditioned`` with a smooth law) is checked
+    all the same (a wrong value raises) and ignored with an :class:`OptionWarning`, as scipy.optimize does.
     """
     _check_body(body)
     interaction = _checked_interaction(interaction)
     chosen = method_for(interaction, method)
     given = {name: value for name, value in (("cold_start", cold_start), ("preconditioned", preconditioned))
              if value is not None}
-    for name in given:
-        if name not in chosen.options:
-            raise ValueError(f"{name} = {given[name]!r} is not an option of method {chosen.name!r} (interaction "
-                             f"{type(interaction).__name__}); it takes tol, maxiter, x0, callback, warn"
-                             + "".join(f", {option}" for option in chosen.options))
+    for name, value in given.items():
+        if name not in chosen.options:                     # checked all the same: a wrong value is an error
+            check_choice(name, value, COLD_STARTS) if name == "cold_start" else check_bool(name, value)
+            warnings.warn(f"{name} = {value!r} is not an option of method {chosen.name!r} (interaction "
+                          f"{type(interaction).__name__}) and is ignored; it takes tol, maxiter, x0, callback, warn"
+                          + "".join(f", {option}" for option in chosen.options), OptionWarning, stacklevel=2)
+    given = {name: value for name, value in given.items() if name in chosen.options}
     tol = default_tolerance(body.dtype, interaction) if tol is None else \
         check_real("tol", tol, low=0.0, high=1.0, low_open=True, high_open=True)
     if body.dtype == np.float32 and tol < FLOAT32_TOL_FLOOR:

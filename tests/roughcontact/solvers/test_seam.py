@@ -13,7 +13,7 @@ from roughcontact.electrostatics import DielectricStack
 from roughcontact.interactions import HardWall, Interaction
 from roughcontact.io import ConvergenceWarning
 from roughcontact.solvers import ContactResult, SolverReport, pull_off
-from roughcontact.solvers.dispatch import METHODS
+from roughcontact.solvers.dispatch import METHODS, OptionWarning
 from surfaces import Grid, HeightField
 
 from contact_checks import check_equilibrium
@@ -38,10 +38,15 @@ def flat(n=8):
 def test_an_option_the_method_does_not_take_raises():
     surface, body = sinusoid()
     law = ExponentialAdhesion(0.05, 0.05)
-    with pytest.raises(ValueError, match="cold_start = 'bogus' is not an option of method 'projected-cg-gap'"):
+    # a wrong value is an error whatever the method; a right one that the method does not take is ignored with a
+    # warning (scipy-style): the solve is the one without it
+    with pytest.raises(ValueError, match="cold_start = 'bogus' is not valid"):
         solve_contact(surface, body, mean_pressure=0.1, interaction=law, cold_start="bogus")
-    with pytest.raises(ValueError, match="preconditioned = 'yes please' is not an option"):
+    with pytest.raises(TypeError, match="preconditioned must be True or False"):
         solve_contact(surface, body, mean_pressure=0.1, interaction=law, preconditioned="yes please")
+    with pytest.warns(OptionWarning, match="cold_start = 'pk' is not an option of method 'projected-cg-gap'"):
+        ignored = solve_contact(surface, body, mean_pressure=0.1, interaction=law, cold_start="pk")
+    np.testing.assert_array_equal(ignored.gap, solve_contact(surface, body, mean_pressure=0.1, interaction=law).gap)
     with pytest.raises(ValueError, match="method = 'polonsky-keer' solves the hard wall"):
         solve_contact(surface, body, mean_pressure=0.1, interaction=law, method="polonsky-keer")
     with pytest.raises(ValueError, match="method = 'projected-cg-gap' solves a smooth law"):
