@@ -5,9 +5,9 @@
     python studies/bench_contact.py --fast                   # tiny grids, no peers, seconds
 
 (from the repository root after ``pip install -e .[bench]``). All numbers come from one run on one machine;
-see ``docs/benchmarks.md`` for the method, the peer conventions and measured values. Writes, into
+see ``docs/dev/benchmarks.md`` for the method, the peer conventions and measured values. Writes, into
 ``--output``, ``bench_contact.csv`` (every row below) and ``bench_contact.md`` (the summary table of
-docs/benchmarks.md: per grid the FFT pair, our time to solution and its ratio to the FFT floor, the other
+docs/dev/benchmarks.md: per grid the FFT pair, our time to solution and its ratio to the FFT floor, the other
 starts, and the peers' times as multiples of ours), both with their provenance.
 
 Sections (column ``section`` of the table and the CSV):
@@ -258,10 +258,10 @@ def run(sizes, pressure, threads, tol, planner, sweep_size, sweep_tols, repeat, 
                                                    planner_effort=planner)
             result, per_iteration = timed_solve(surface, halves[backend], pressure, tol, solve_repeat, **options)
             floors[backend] = floor = min(floors[backend], fft_floor(n, threads, planner, repeat, backend)[backend])
-            pairs = result.params["fft_pairs"] / max(result.iterations, 1)
+            pairs = result.solver.fft_pairs / max(result.iterations, 1)
             uncached = (f"; {per_iteration / (pairs * floors['pyfftw-rotating']):.3g} against the rotating pair"
                         if backend == "pyfftw" else "")
-            coarse = result.params["nested_iterations"]
+            coarse = result.solver.details["nested_iterations"]
             nested = f"; nested start: {'+'.join(map(str, coarse))} coarse iterations" if coarse else ""
             write(row(section="solve", solver=f"roughcontact[{label}]", n=n,
                       time_s=result.wall_time, iterations=result.iterations,
@@ -273,7 +273,7 @@ def run(sizes, pressure, threads, tol, planner, sweep_size, sweep_tols, repeat, 
             ours = ours or result
         if "pyfftw" in halves:
             decomposition, result = time_decomposition(surface, halves["pyfftw"], pressure, tol)
-            pairs = result.params["fft_pairs"] / max(result.iterations, 1)
+            pairs = result.solver.fft_pairs / max(result.iterations, 1)
             for group, per_iteration in decomposition.items():
                 write(row(section="profile", solver=group, n=n, time_s=result.wall_time, iterations=result.iterations,
                           fft_pairs_per_iteration=pairs, time_per_iteration_s=per_iteration,
@@ -308,7 +308,7 @@ def run(sizes, pressure, threads, tol, planner, sweep_size, sweep_tols, repeat, 
             sweeps[label] = (time.perf_counter() - start, results)
         cold_time, cold = sweeps["cold start"]
         for label, (seconds, results) in sweeps.items():
-            coarse = sum(sum(r.params["nested_iterations"]) for r in results)
+            coarse = sum(sum(r.solver.details["nested_iterations"]) for r in results)
             write(row(section="sweep", solver=label, n=sweep_size,
                       time_s=seconds, iterations=sum(r.iterations for r in results),
                       ratio=cold_time / seconds, contact_fraction=results[-1].contact_fraction,
@@ -339,7 +339,7 @@ def _find(rows, section, solver, n=None):
 
 
 def summary_table(rows) -> str:
-    """The Markdown tables of docs/benchmarks.md from the rows of one run: per grid the cache-warm pyFFTW pair,
+    """The Markdown tables of docs/dev/benchmarks.md from the rows of one run: per grid the cache-warm pyFFTW pair,
     our time to solution and its ratio to the FFT floor, the other starts and backends, the peers' times as
     multiples of ours; then the load sweeps."""
     def solve(n, label):
@@ -384,7 +384,7 @@ def main(argv=None):
     parser.add_argument("--no-peers", action="store_true", help="skip Tamaas and ContactMechanics")
     parser.add_argument("--peers", nargs="+", choices=list(PEERS), default=list(PEERS), help="peers to run")
     parser.add_argument("--wisdom", help="FFTW wisdom file: imported if it exists, saved at the end, so that "
-                                         "repeated runs use the same FFT plans (see docs/benchmarks.md)")
+                                         "repeated runs use the same FFT plans (see docs/dev/benchmarks.md)")
     args, provenance = parse_arguments(parser, argv, "python studies/bench_contact.py")
     output = output_directory(args.output)
     if args.fast:

@@ -30,8 +30,9 @@ def _surface_topography():
     try:
         import SurfaceTopography
     except ImportError:
-        raise ImportError("reading measured topographies needs the optional SurfaceTopography package: "
-                          "pip install 'roughcontact[topography]' (or 'SurfaceTopography>=1.3')") from None
+        raise ModuleNotFoundError("reading measured topographies needs the optional SurfaceTopography package: "
+                                  "pip install 'roughcontact[topography]' (or 'SurfaceTopography>=1.3')",
+                                  name="SurfaceTopography") from None
     return SurfaceTopography
 
 

@@ -4,7 +4,7 @@
 measured setting (the :class:`~roughcontact.study.scene.Preset` keys :data:`SETTING_KEYS` and ``realisations``), its
 CPU seconds on the default scene's four points (F_N = 0.5, 2 N; U = 0, 200 V; one FFT thread) and its error on
 each scene of the experiment, the largest relative difference of d_eq, A_R/A0 and F_T at 200 V from the
-reference setting (``docs/presets.md``). :func:`measured` looks a preset up in it, so that a run's report quotes
+reference setting (``docs/guide/presets.md``). :func:`measured` looks a preset up in it, so that a run's report quotes
 its error; :func:`choose` picks the cheapest setting whose error meets a target (``roughcontact run --preset
 auto --target-error 2%``), and :func:`auto_scene` puts it into a scene as ``[presets.auto]``.
 """
@@ -90,7 +90,7 @@ def choose(target_error: float, table=None) -> Measurement:
     if not meeting:
         best = min(entry.error for entry in table)
         raise ValueError(f"target error {100 * target_error:g} % is below every measured setting's error; valid: "
-                         f"at least {100 * best:.3g} % (docs/presets.md)")
+                         f"at least {100 * best:.3g} % (docs/guide/presets.md)")
     return min(meeting, key=lambda entry: entry.cpu_seconds)
 
 
@@ -106,12 +106,12 @@ def describe(preset: Preset, name: str, table=None) -> str:
     its setting was not measured."""
     entry = measured(preset, table)
     if entry is None:
-        return (f"The setting of preset `{name}` is not among the measured settings of `docs/presets.md`: its "
+        return (f"The setting of preset `{name}` is not among the measured settings of `docs/guide/presets.md`: its "
                 "error against the reference setting is not known.")
     errors = ", ".join(f"{100 * entry.errors[scene]:.2g} % on the {scene} scene" for scene in SCENES)
     chosen = " (chosen by --preset auto)" if name == AUTO else ""
     return (f"Measured error of preset `{name}`{chosen} against the reference setting (largest relative "
-            f"difference of d_eq, A_R/A0 and F_T at 200 V at F_N = 0.5, 2 N and U = 0, 200 V; `docs/presets.md`): "
+            f"difference of d_eq, A_R/A0 and F_T at 200 V at F_N = 0.5, 2 N and U = 0, 200 V; `docs/guide/presets.md`): "
             f"{errors}; {entry.cpu_seconds:.3g} CPU seconds for those four points. It holds for scenes like "
             "these; a scene far from them may err differently.")
 

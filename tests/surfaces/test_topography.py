@@ -186,14 +186,14 @@ def test_surface_topography_is_imported_lazily_and_its_absence_explained(monkeyp
 
 
 def test_measured_topographies_section_of_the_docs_runs(capsys):
-    """The Python block of docs/surfaces.md §7 runs and prints the shape it read from the x-y-z export."""
-    text = (Path(__file__).resolve().parents[2] / "docs" / "surfaces.md").read_text()
+    """The Python block of docs/guide/surfaces.md §7 runs and prints the shape it read from the x-y-z export."""
+    text = (Path(__file__).resolve().parents[2] / "docs" / "guide" / "surfaces.md").read_text()
     section = text[text.index("## 7. Measured topographies"):]
     blocks = re.findall(r"^```python\n(.*?)^```", section, re.MULTILINE | re.DOTALL)
     assert blocks
     namespace = {}
     for number, code in enumerate(blocks, 1):
-        exec(compile(code, f"docs/surfaces.md §7, python block {number}", "exec"), namespace)
+        exec(compile(code, f"docs/guide/surfaces.md §7, python block {number}", "exec"), namespace)
     grid = namespace["from_text"].grid          # sizes through µm text and back: a few ulp
     assert grid.shape == (64, 48) and grid.periodic == (False, False)
     assert grid.lengths == pytest.approx((0.2e-3, 0.15e-3), rel=1e-12)

@@ -47,7 +47,7 @@ def test_default_patch_converges_and_attracts_more_than_the_per_pixel_law(defaul
     heights, body, pressure = default_patch
     res = solve_contact(heights, body, mean_pressure=pressure, interaction=layered(voltage), tol=1e-8)
     per_pixel = solve_contact(heights, body, mean_pressure=pressure, tol=1e-8,
-                              interaction=ElectrostaticInteraction(STACK, voltage))
+                              interaction=ElectrostaticInteraction(STACK, voltage, field="parallel_plate"))
     assert res.converged and per_pixel.converged
     history = np.array(res.params["energy_history"])
     assert np.all(np.diff(history) <= 1e-12 * np.abs(history).max())         # the energy never rises
