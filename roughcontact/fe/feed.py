@@ -13,13 +13,14 @@ which is Eq. 43 with the equivalent c₂ = η A_R0 = A_R0² ξ / (L0 w²) [m⁴/
 and A_R0 here, a constant in the seed). If the footprint shrank isotropically instead, the area ratio would be
 (L/L0)², about twice the reduction for small reductions: ``isotropic=True``.
 
-L0 and ξ come from power-law fits over the FE runs (ξ ∝ f_N^k is the seed's form; L0 ∝ f_N^m fits the FE
-runs to a few per cent), so the law is smooth in F_N; outside the FE sweep's f_N range it is an extrapolation.
+L0 and ξ are interpolated between the FE runs as piecewise power laws (linear in log–log; ξ is a power law
+only from f_N ≈ 100 N/m up, docs/fe_fingertip.md); outside the sweep's f_N range the end segments continue.
 The FE law holds without adhesion up to F_T = μ_FE F_N; the friction law under voltage uses it at larger F_T.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, field, fields, replace
+from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
@@ -29,7 +30,6 @@ from surfaces.validation import check_finite_array
 from ..macro.friction import SlidingFrictionModel, SlidingState
 from ..macro.power_law import PowerLawContact
 from ..provenance import read_csv
-from .analysis import power_law_fit
 
 #: The default FE sweep's summary, written by ``roughcontact fingertip-fe`` (see docs/fe_fingertip.md).
 PACKAGED_SUMMARY = Path(__file__).with_name("fingertip_fe_summary.csv")
@@ -74,12 +74,23 @@ class FEAreaReduction:
             return np.where(force > 0, force / self.width(force), 0.0)
 
     def eq34(self, line_load) -> tuple:
-        """(L0 [m], ξ [m³/N²]) at f_N [N/m] from the power-law fits over the FE runs."""
-        load = np.asarray(line_load, float)
-        length_fit = power_law_fit(self.normal_forces, self.initial_lengths)
-        xi_fit = power_law_fit(self.normal_forces, self.xi)
-        return (np.exp(length_fit.intercept) * load ** length_fit.slope,
-                np.exp(xi_fit.intercept) * load ** xi_fit.slope)
+        """(L0 [m], ξ [m³/N²]) at f_N [N/m]: piecewise power laws through the FE runs (linear in log–log),
+        continued by the end segments outside them."""
+        log_load = np.log(np.asarray(line_load, float))
+        order = np.argsort(self.normal_forces)
+        log_force = np.log(self.normal_forces[order])
+
+        def segment(log_values, a, b):          # the line through runs a and b, in log–log
+            slope = (log_values[b] - log_values[a]) / (log_force[b] - log_force[a])
+            return log_values[a] + slope * (log_load - log_force[a])
+
+        def through(values):
+            log_values = np.log(values[order])
+            inside = np.interp(log_load, log_force, log_values)
+            outside = np.where(log_load < log_force[0], segment(log_values, 0, 1), segment(log_values, -2, -1))
+            return np.exp(np.where((log_load < log_force[0]) | (log_load > log_force[-1]), outside, inside))
+
+        return through(self.initial_lengths), through(self.xi)
 
     def area_ratio(self, normal_force, tangential_force) -> np.ndarray:
         """A_R/A_R0 at F_N, F_T [N] (clipped at 0)."""
@@ -109,3 +120,20 @@ def fe_reduced_state(model: SlidingFrictionModel, normal_force, voltage, reducti
     states = [replace(model, c2=float(c)).state(f, u) for c, f, u in zip(c2.ravel(), force.ravel(), voltage.ravel())]
     return SlidingState(**{f.name: np.array([getattr(s, f.name) for s in states]).reshape(force.shape)
                            for f in fields(SlidingState)})
+
+
+@lru_cache(maxsize=1)
+def _packaged() -> FEAreaReduction:
+    return FEAreaReduction.from_summary(PACKAGED_SUMMARY)
+
+
+def fe_friction_columns(model: SlidingFrictionModel, normal_force: float, voltage: float,
+                        reduction: FEAreaReduction | None = None) -> dict:
+    """The friction table's FE columns at one (F_N [N], U [V]) for ``model`` (the bottom-up friction law):
+    μ and the relative ridge-area reduction at the onset of sliding with the FE-derived reduction (default:
+    the packaged table), and the c₂ it amounts to [mm⁴/N², the seed's unit]."""
+    reduction = _packaged() if reduction is None else reduction
+    state = fe_reduced_state(model, normal_force, voltage, reduction)
+    return {"bottom_up_fe_friction_coefficient": float(state.friction_coefficient),
+            "bottom_up_fe_area_reduction": float(state.area_reduction),
+            "bottom_up_fe_c2_mm4_per_N2": float(reduction.c2(normal_force, state.initial_area)) * 1e12}

@@ -20,6 +20,9 @@ DEFAULT_NORMAL_FORCES = (25.0, 50.0, 100.0, 200.0, 400.0)
 #: The seed's exponent of ξ ∝ f_N^k (Sect. 4.3, below Eq. 34).
 SEED_EXPONENT = -1.1
 SUMMARY_CSV = "fingertip_fe_summary.csv"
+#: From this normal force per unit width up [N/m] the reduction at full slip is resolved (>= 8 %, tens of
+#: node spacings on the default mesh) and ξ(f_N) is a power law (docs/fe_fingertip.md).
+RESOLVED_FORCE = 100.0
 
 
 @dataclass(frozen=True)
@@ -37,11 +40,11 @@ class FingertipStudy:
         """Eq. 34 fitted to each run's L(f_T) up to full slip (:func:`~roughcontact.fe.analysis.fit_eq34`)."""
         return tuple(fit_eq34(run.tangential_force, run.length) for run in self.runs)
 
-    def exponent(self) -> LinearFit:
-        """ξ = C f_N^k over the runs with full slip: ``slope`` k and its standard error."""
+    def exponent(self, lowest: float = 0.0) -> LinearFit:
+        """ξ = C f_N^k over the runs with full slip and f_N >= ``lowest`` [N/m]: ``slope`` k and its standard
+        error (:func:`exponent_fit`)."""
         xi = np.array([-fit.slope for fit in self.eq34_fits()])
-        done = np.array([run.full_slip for run in self.runs]) & (xi > 0)
-        return power_law_fit(self.normal_forces[done], xi[done])
+        return exponent_fit(self.normal_forces, xi, [run.full_slip for run in self.runs], lowest)
 
     def summary_rows(self) -> list:
         """One row per normal force (SI units; per unit width)."""
@@ -60,6 +63,24 @@ class FingertipStudy:
                 "travel_full_slip_m": run.travel[-1], "full_slip": run.full_slip,
                 "increments": len(run.travel) - 1, "seconds": round(run.seconds, 1)})
         return rows
+
+
+def exponent_fit(normal_forces, xi, full_slip, lowest: float = 0.0) -> LinearFit:
+    """Power law ξ = C f_N^k through the runs with full slip, ξ > 0 and f_N >= ``lowest`` [N/m]."""
+    forces, xi = np.asarray(normal_forces, float), np.asarray(xi, float)
+    used = np.asarray(full_slip, bool) & (xi > 0) & (forces >= lowest)
+    return power_law_fit(forces[used], xi[used])
+
+
+def exponent_rows(normal_forces, xi, full_slip) -> list:
+    """The exponent of ξ(f_N) over all runs and over f_N >= ``RESOLVED_FORCE`` (the table of the command)."""
+    rows = []
+    for lowest in (0.0, RESOLVED_FORCE):
+        fit = exponent_fit(normal_forces, xi, full_slip, lowest)
+        rows.append({"lowest_normal_force_N_per_m": lowest, "exponent": fit.slope, "exponent_error": fit.slope_error,
+                     "log_prefactor": fit.intercept, "log_prefactor_error": fit.intercept_error,
+                     "rms_log_residual": fit.rms, "seed_exponent": SEED_EXPONENT})
+    return rows
 
 
 def run_fingertip_study(model: FingertipModel = FingertipModel(), normal_forces=DEFAULT_NORMAL_FORCES,
@@ -184,14 +205,13 @@ def _figure_stick_slip(study: FingertipStudy, provenance: Provenance, path: Path
 def write_fingertip_outputs(study: FingertipStudy, output, provenance: Provenance, echo: bool = False) -> list:
     """Write the study's CSV tables and PNG figures into ``output`` (each with ``provenance``); the paths."""
     output = Path(output)
-    exponent = study.exponent()
-    paths = [write_csv(output / SUMMARY_CSV, study.summary_rows(), provenance, echo=echo),
+    summary = study.summary_rows()
+    exponents = exponent_rows([row["normal_force_N_per_m"] for row in summary],
+                              [row["xi_m3_per_N2"] for row in summary], [row["full_slip"] for row in summary])
+    paths = [write_csv(output / SUMMARY_CSV, summary, provenance, echo=echo),
              write_csv(output / "fingertip_fe_curves.csv", _curve_rows(study), provenance),
              write_csv(output / "fingertip_fe_stick_slip.csv", _stick_slip_rows(study), provenance),
-             write_csv(output / "fingertip_fe_exponent.csv",
-                       [{"exponent": exponent.slope, "exponent_error": exponent.slope_error,
-                         "log_prefactor": exponent.intercept, "log_prefactor_error": exponent.intercept_error,
-                         "rms_log_residual": exponent.rms, "seed_exponent": SEED_EXPONENT}], provenance, echo=echo)]
+             write_csv(output / "fingertip_fe_exponent.csv", exponents, provenance, echo=echo)]
     shown = study.runs[int(np.argmin(np.abs(study.normal_forces - 200.0)))]
     write_csv(output / "fingertip_fe_mesh.csv",
               [{"node": i, "x_pressed_m": p[0], "y_pressed_m": p[1], "x_full_slip_m": q[0], "y_full_slip_m": q[1]}
