@@ -65,17 +65,24 @@ class FingertipStudy:
         return rows
 
 
+def _usable(normal_forces, xi, full_slip, lowest: float) -> np.ndarray:
+    """The runs with full slip, ξ > 0 and f_N >= ``lowest`` [N/m]."""
+    return np.asarray(full_slip, bool) & (np.asarray(xi, float) > 0) & (np.asarray(normal_forces, float) >= lowest)
+
+
 def exponent_fit(normal_forces, xi, full_slip, lowest: float = 0.0) -> LinearFit:
     """Power law ξ = C f_N^k through the runs with full slip, ξ > 0 and f_N >= ``lowest`` [N/m]."""
-    forces, xi = np.asarray(normal_forces, float), np.asarray(xi, float)
-    used = np.asarray(full_slip, bool) & (xi > 0) & (forces >= lowest)
-    return power_law_fit(forces[used], xi[used])
+    used = _usable(normal_forces, xi, full_slip, lowest)
+    return power_law_fit(np.asarray(normal_forces, float)[used], np.asarray(xi, float)[used])
 
 
 def exponent_rows(normal_forces, xi, full_slip) -> list:
-    """The exponent of ξ(f_N) over all runs and over f_N >= ``RESOLVED_FORCE`` (the table of the command)."""
+    """The exponent of ξ(f_N) over all runs and over f_N >= ``RESOLVED_FORCE`` (the table of the command; a
+    range with fewer than 3 usable runs is left out)."""
     rows = []
     for lowest in (0.0, RESOLVED_FORCE):
+        if _usable(normal_forces, xi, full_slip, lowest).sum() < 3:
+            continue
         fit = exponent_fit(normal_forces, xi, full_slip, lowest)
         rows.append({"lowest_normal_force_N_per_m": lowest, "exponent": fit.slope, "exponent_error": fit.slope_error,
                      "log_prefactor": fit.intercept, "log_prefactor_error": fit.intercept_error,
@@ -120,10 +127,23 @@ def _stick_slip_rows(study: FingertipStudy) -> list:
     return rows
 
 
-def _figure_fig7(study: FingertipStudy, provenance: Provenance, path: Path) -> Path:
+def _pyplot():
+    """matplotlib's pyplot on the non-interactive backend."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    return plt
+
+
+def _save(plt, figure, path: Path, provenance: Provenance) -> Path:
+    figure.tight_layout()
+    path = save_figure(figure, path, provenance)
+    plt.close(figure)
+    return path
+
+
+def _figure_fig7(study: FingertipStudy, provenance: Provenance, path: Path) -> Path:
+    plt = _pyplot()
 
     figure, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
     for run, fit in zip(study.runs, study.eq34_fits()):
@@ -140,16 +160,11 @@ def _figure_fig7(study: FingertipStudy, provenance: Provenance, path: Path) -> P
     right.set(xlabel="normal force per unit width $f_N$ [N/mm]", ylabel="contact length [mm]",
               title="(B) contact length against $f_N$")
     right.legend(fontsize=8)
-    figure.tight_layout()
-    path = save_figure(figure, path, provenance)
-    plt.close(figure)
-    return path
+    return _save(plt, figure, path, provenance)
 
 
 def _figure_fig6(run: SlidingRun, provenance: Provenance, path: Path) -> Path:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = _pyplot()
     from matplotlib.collections import PolyCollection
 
     colours = {0: "#f2c6a0", 1: "#c8745a", 2: "#8a8fa8"}
@@ -174,16 +189,11 @@ def _figure_fig6(run: SlidingRun, provenance: Provenance, path: Path) -> Path:
     axes[0].set_ylabel("y [mm]")
     figure.suptitle(f"FE finger section at $f_N$ = {run.normal_force * 1e-3:g} N/mm, μ = {run.friction} "
                     f"(colours: {', '.join(MATERIAL_NAMES)})", fontsize=10)
-    figure.tight_layout()
-    path = save_figure(figure, path, provenance)
-    plt.close(figure)
-    return path
+    return _save(plt, figure, path, provenance)
 
 
 def _figure_stick_slip(study: FingertipStudy, provenance: Provenance, path: Path) -> Path:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = _pyplot()
 
     figure, axes = plt.subplots(1, len(study.runs), figsize=(3 * len(study.runs), 3.6), sharey=True)
     for axis, run in zip(np.atleast_1d(axes), study.runs):
@@ -196,10 +206,7 @@ def _figure_stick_slip(study: FingertipStudy, provenance: Provenance, path: Path
                 axis.plot((snap.x[mask] - centre) * 1e3, np.full(mask.sum(), ratio), ".", color=colour, ms=1.5)
         axis.set(title=f"$f_N$ = {run.normal_force * 1e-3:g} N/mm", xlabel="x − contact centre [mm]")
     np.atleast_1d(axes)[0].set_ylabel(r"$f_T / (\mu f_N)$  (blue stick, red slip)")
-    figure.tight_layout()
-    path = save_figure(figure, path, provenance)
-    plt.close(figure)
-    return path
+    return _save(plt, figure, path, provenance)
 
 
 def write_fingertip_outputs(study: FingertipStudy, output, provenance: Provenance, echo: bool = False) -> list:
@@ -211,7 +218,7 @@ def write_fingertip_outputs(study: FingertipStudy, output, provenance: Provenanc
     paths = [write_csv(output / SUMMARY_CSV, summary, provenance, echo=echo),
              write_csv(output / "fingertip_fe_curves.csv", _curve_rows(study), provenance),
              write_csv(output / "fingertip_fe_stick_slip.csv", _stick_slip_rows(study), provenance),
-             write_csv(output / "fingertip_fe_exponent.csv", exponents, provenance, echo=echo)]
+             *([write_csv(output / "fingertip_fe_exponent.csv", exponents, provenance, echo=echo)] if exponents else [])]
     shown = study.runs[int(np.argmin(np.abs(study.normal_forces - 200.0)))]
     write_csv(output / "fingertip_fe_mesh.csv",
               [{"node": i, "x_pressed_m": p[0], "y_pressed_m": p[1], "x_full_slip_m": q[0], "y_full_slip_m": q[1]}

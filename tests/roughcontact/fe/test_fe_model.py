@@ -58,3 +58,18 @@ def test_contact_length_shrinks_with_tangential_force_and_more_so_at_higher_load
         assert run.sliding_length < run.initial_length
     assert high.initial_length > low.initial_length
     assert high.relative_reduction > low.relative_reduction
+
+
+@pytest.mark.slow
+def test_study_outputs_carry_provenance(coarse_runs, tmp_path):
+    from roughcontact.fe.feed import FEAreaReduction
+    from roughcontact.fe.study import SUMMARY_CSV, FingertipStudy, write_fingertip_outputs
+    from roughcontact.provenance import Provenance
+
+    study = FingertipStudy(model=FingertipModel(resolution=MeshResolution.coarse()), runs=tuple(coarse_runs))
+    provenance = Provenance(command="pytest", parameters={})
+    paths = write_fingertip_outputs(study, tmp_path, provenance)
+    assert {p.suffix for p in paths} == {".csv", ".png"} and all(p.stat().st_size > 0 for p in paths)
+    assert all(p.read_text().startswith("# roughcontact") for p in paths if p.suffix == ".csv")
+    with pytest.raises(ValueError, match="at least 3"):          # two runs: too few for the friction feed
+        FEAreaReduction.from_summary(tmp_path / SUMMARY_CSV)
