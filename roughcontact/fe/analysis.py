@@ -84,7 +84,7 @@ class LinearFit:
 
 
 def linear_fit(t, y) -> LinearFit:
-    """Ordinary least squares of y on t with the usual standard errors (σ² (XᵀX)⁻¹, σ² from the residuals)."""
+    """Ordinary least squares of y on t with the standard errors of σ² (XᵀX)⁻¹, σ² from the residuals."""
     t, y = np.asarray(t, float), np.asarray(y, float)
     if t.size < 3:
         raise ValueError(f"a fit with standard errors needs at least 3 points, got {t.size}")

@@ -107,13 +107,15 @@ class FEAreaReduction:
         force = check_finite_array("normal_force", normal_force, nonnegative=True)
         initial, xi = self.eq34(self.line_load(force))
         with np.errstate(divide="ignore", invalid="ignore"):
-            c2 = np.where(force > 0, np.asarray(initial_area, float) ** 2 * xi / (initial * self.width(force) ** 2), 0.0)
+            area = np.asarray(initial_area, float)
+            c2 = np.where(force > 0, area ** 2 * xi / (initial * self.width(force) ** 2), 0.0)
         return 2 * c2 if self.isotropic else c2
 
 
 def fe_reduced_state(model: SlidingFrictionModel, normal_force, voltage, reduction: FEAreaReduction) -> SlidingState:
     """The sliding state of ``model`` (its gap, area law, stack, μ0, τ0) with the FE-derived area reduction in
-    place of its c₂: at each (F_N, U), c₂ = ``reduction.c2(F_N, A_R0)`` (A_R0 of ``model`` does not depend on c₂)."""
+    place of its c₂: at each (F_N, U), c₂ = ``reduction.c2(F_N, A_R0)`` (A_R0 of ``model`` does not depend on
+    c₂)."""
     force, voltage = np.broadcast_arrays(np.asarray(normal_force, float), np.asarray(voltage, float))
     initial_area = model.state(force, voltage).initial_area
     c2 = reduction.c2(force, initial_area)

@@ -19,7 +19,7 @@ from surfaces.validation import check_real
 
 @dataclass(frozen=True)
 class OgdenMaterial:
-    """Ogden moduli ``mu`` μ_i [Pa] and exponents ``alpha`` α_i [-] (equal lengths), bulk modulus ``bulk`` K [Pa]."""
+    """Ogden moduli ``mu`` μ_i [Pa] and exponents ``alpha`` α_i [-] (as many), bulk modulus ``bulk`` K [Pa]."""
 
     mu: tuple
     alpha: tuple

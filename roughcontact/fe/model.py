@@ -129,7 +129,8 @@ class PressedContact:
 class FingertipModel:
     """The FE fingertip: ``section`` geometry, ``materials``, ``resolution`` of the mesh, Coulomb ``friction`` μ,
     contact ``penalty`` (λ_n / μ_skin, dimensionless), ``elastic_slip`` (γ / contact node spacing), ``tie``
-    (bone-tie penalty / λ_n), Newton ``tolerance`` (residual norm relative to the normal force)."""
+    (bone-tie penalty / λ_n), Newton ``tolerance`` (residual norm relative to the normal force),
+    ``approach_step`` (the bone's downward step while pressing / the section's half-height)."""
 
     section: FingerSection = field(default_factory=FingerSection)
     materials: FingerMaterials = field(default_factory=FingerMaterials)
@@ -139,6 +140,7 @@ class FingertipModel:
     elastic_slip: float = 0.01
     tie: float = 100.0
     tolerance: float = 1e-6
+    approach_step: float = 0.02
 
     def __post_init__(self):
         for name, kind in (("section", FingerSection), ("materials", FingerMaterials),
@@ -150,6 +152,7 @@ class FingertipModel:
         check_real("elastic_slip", self.elastic_slip, low=0.0, low_open=True)
         check_real("tie", self.tie, low=0.0, low_open=True)
         check_real("tolerance", self.tolerance, low=0.0, low_open=True)
+        check_real("approach_step", self.approach_step, low=0.0, high=0.5, low_open=True)
 
     @property
     def mesh(self) -> SectionMesh:
@@ -203,7 +206,8 @@ class FingertipModel:
         if _VERBOSE:
             plugins.append(fem.ProgressPlugin(verbose=_VERBOSE))
         dispatcher = EventDispatcher(plugins=plugins)
-        states = step.generate_states(x0=model["field"], dispatcher=dispatcher, tol=self.tolerance * model["force"], maxiter=16)
+        states = step.generate_states(x0=model["field"], dispatcher=dispatcher, tol=self.tolerance * model["force"],
+                                      maxiter=16)
         try:
             for _ in states:
                 if record is not None and record(model):
@@ -228,13 +232,14 @@ class FingertipModel:
                                tangential=nodal[order, 0] * _N_PER_MM, gap=gap[order] * _MM, slip=slip[order])
 
     def _press(self, model, normal_force: float) -> bool:
-        """Approach and press to f_N [N/m] (steps 1–2 of the protocol): the bone moves down in steps of 2 % of
-        the half-height until the plate carries f_N, then a point load brings the force to f_N exactly."""
+        """Approach and press to f_N [N/m] (steps 1–2 of the protocol): the bone moves down in steps of
+        ``approach_step`` × the half-height until the plate carries f_N, then a point load brings the force to
+        f_N exactly."""
         model["force"] = normal_force / _N_PER_MM
         b = model["boundaries"]
         items = [*model["bodies"], model["tie"], model["contact"]]
         pulp = self.section.half_height - self.section.bone_half_height + self.section.bone_offset
-        depth = np.arange(0.0, 0.9 * pulp, 0.02 * self.section.half_height) / _MM
+        depth = np.arange(0.0, 0.9 * pulp, self.approach_step * self.section.half_height) / _MM
         carried = []
 
         def record(model) -> bool:

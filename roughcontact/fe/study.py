@@ -171,7 +171,8 @@ def _figure_fig6(run: SlidingRun, provenance: Provenance, path: Path) -> Path:
     figure, axes = plt.subplots(1, 2, figsize=(10, 4.8), sharey=True)
     plate = min(run.pressed_points[:, 1].min(), run.final_points[:, 1].min())
     states = ((run.pressed_points, run.snapshots[0], "(B) pressed, before tangential travel"),
-              (run.final_points, run.snapshots[-1], "(C) onset of full slip" if run.full_slip else "(C) last increment"))
+              (run.final_points, run.snapshots[-1],
+               "(C) onset of full slip" if run.full_slip else "(C) last increment"))
     for axis, (points, snapshot, title) in zip(axes, states):
         polygons = PolyCollection(points[run.cells] * 1e3, facecolors=[colours[m] for m in run.material],
                                   edgecolors="k", linewidths=0.15)
@@ -218,7 +219,8 @@ def write_fingertip_outputs(study: FingertipStudy, output, provenance: Provenanc
     paths = [write_csv(output / SUMMARY_CSV, summary, provenance, echo=echo),
              write_csv(output / "fingertip_fe_curves.csv", _curve_rows(study), provenance),
              write_csv(output / "fingertip_fe_stick_slip.csv", _stick_slip_rows(study), provenance),
-             *([write_csv(output / "fingertip_fe_exponent.csv", exponents, provenance, echo=echo)] if exponents else [])]
+             *([write_csv(output / "fingertip_fe_exponent.csv", exponents, provenance, echo=echo)]
+               if exponents else [])]
     shown = study.runs[int(np.argmin(np.abs(study.normal_forces - 200.0)))]
     write_csv(output / "fingertip_fe_mesh.csv",
               [{"node": i, "x_pressed_m": p[0], "y_pressed_m": p[1], "x_full_slip_m": q[0], "y_full_slip_m": q[1]}

@@ -41,7 +41,8 @@ def test_contact_refinement_sets_the_spacing_at_the_bottom():
         assert spacing == pytest.approx(c * 2 * np.pi / 100 * 10e-3, rel=1e-2)
 
 
-@pytest.mark.parametrize("kwargs, match", [({"skin_thickness": 5e-3}, "must fit"), ({"half_width": -1.0}, "half_width"),
+@pytest.mark.parametrize("kwargs, match", [({"skin_thickness": 5e-3}, "must fit"),
+                                           ({"half_width": -1.0}, "half_width"),
                                            ({"nail_half_angle": 3.0}, "nail_half_angle")])
 def test_bad_sections_are_refused(kwargs, match):
     with pytest.raises(ValueError, match=match):

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 pytest.importorskip("felupe", reason="the FE fingertip needs FElupe: pip install 'roughcontact[fe]'")
-pytest.importorskip("tensortrax", reason="the FE fingertip's Ogden tissues need tensortrax: pip install 'roughcontact[fe]'")
+pytest.importorskip("tensortrax", reason="the FE fingertip's Ogden tissues need tensortrax: "
+                                         "pip install 'roughcontact[fe]'")
 
 from roughcontact.fe.analysis import fit_eq34  # noqa: E402
 from roughcontact.fe.geometry import FingerSection, MeshResolution  # noqa: E402
@@ -34,8 +35,8 @@ def test_small_load_frictionless_press_matches_2d_hertz():
 
 @pytest.fixture(scope="module")
 def coarse_runs():
-    model = FingertipModel(resolution=MeshResolution.coarse())
-    return [model.slide(force, travel_step=0.2e-3) for force in (50.0, 200.0)]
+    model = FingertipModel(resolution=MeshResolution.coarse(), approach_step=0.05)
+    return [model.slide(force, travel_step=0.25e-3) for force in (50.0, 150.0)]
 
 
 @pytest.mark.slow
