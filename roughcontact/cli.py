@@ -10,8 +10,12 @@ import os
 from importlib import metadata
 import platform
 import sys
+import time
 
+from . import study
 from ._version import __version__
+from .io.provenance import OutputPathError, output_directory, parse_arguments
+from .paper import reproduce
 
 #: Default output directory of "roughcontact figures" (ignored by git in this repository).
 DEFAULT_FIGURES_OUTPUT = "roughcontact-figures"
@@ -59,9 +63,6 @@ def _cmd_info(args, provenance) -> int:
 
 
 def _cmd_figures(args, provenance) -> int:
-    from .paper import reproduce
-    from .provenance import output_directory
-
     output = output_directory(args.output)
     table = reproduce(output, provenance)
     print(table)
@@ -70,15 +71,13 @@ def _cmd_figures(args, provenance) -> int:
 
 
 def _cmd_scene(args, provenance) -> int:
-    from .scene import DEFAULT_SCENE_TOML, load_scene
-
     try:
-        scene = load_scene(getattr(args, "scene", None))
+        scene = study.load_scene(getattr(args, "scene", None))
     except ValueError as error:
         print(f"roughcontact scene: error: {error}", file=sys.stderr)
         return USAGE_ERROR
     if args.show:
-        print(scene.to_toml() if hasattr(args, "scene") else DEFAULT_SCENE_TOML, end="")
+        print(scene.to_toml() if hasattr(args, "scene") else study.DEFAULT_SCENE_TOML, end="")
     else:
         print(f"{getattr(args, 'scene', 'the default scene')}: valid (preset {scene.study.preset}, "
               f"{len(scene.loads.normal_forces)} loads x {len(scene.loads.voltages)} voltages)")
@@ -86,24 +85,17 @@ def _cmd_scene(args, provenance) -> int:
 
 
 def _cmd_run(args, provenance) -> int:
-    import time
-
-    from .provenance import output_directory
-    from .report import write_results
-    from .presets import run_scene
-    from .study import run_study
-
     start = time.perf_counter()
     try:
-        scene = run_scene(getattr(args, "scene", None), getattr(args, "preset", None),
+        scene = study.run_scene(getattr(args, "scene", None), getattr(args, "preset", None),
                           getattr(args, "target_error", None))
         output = output_directory(args.out)
-        result = run_study(scene, output, progress=True, workers=getattr(args, "workers", None),
+        result = study.run_study(scene, output, progress=True, workers=getattr(args, "workers", None),
                            dask=getattr(args, "dask", None))
     except (ValueError, ImportError) as error:   # a scene key or parameter the preset cannot resolve, another
         print(f"roughcontact run: error: {error}", file=sys.stderr)        # scene, dask not installed
         return USAGE_ERROR
-    written = write_results(result, output, provenance, time.perf_counter() - start)
+    written = study.write_results(result, output, provenance, time.perf_counter() - start)
     if not written["netcdf"]:
         print("roughcontact run: results.nc not written: xarray and h5netcdf are not installed "
               "(pip install 'roughcontact[io]'); the CSV tables hold the results", file=sys.stderr)
@@ -139,7 +131,7 @@ def build_parser() -> argparse.ArgumentParser:
                      help="scene TOML file (default: the embedded scene, see 'roughcontact scene --show')")
     run.add_argument("--preset", choices=("draft", "standard", "reference", "auto"), default=argparse.SUPPRESS,
                      help="accuracy preset (default: the scene's study.preset); auto: the cheapest measured setting "
-                          "meeting --target-error (docs/presets.md)")
+                          "meeting --target-error (docs/guide/presets.md)")
     run.add_argument("--target-error", metavar="ERROR", default=argparse.SUPPRESS,
                      help="with --preset auto: the largest error accepted, e.g. 2%% or 0.02")
     run.add_argument("--out", default=DEFAULT_RUN_OUTPUT,
@@ -164,15 +156,13 @@ def build_parser() -> argparse.ArgumentParser:
     fingertip_fe.add_arguments(commands.add_parser(
         "fingertip-fe", help="the seed's FE fingertip: L(f_T), Eq. 34, Figs. 6-7 (needs roughcontact[fe])",
         description="Press a plane-strain hyperelastic finger section onto a plate and slide it to full slip at "
-                    "several normal forces (FElupe); write CSV + PNG (docs/fe_fingertip.md).",
+                    "several normal forces (FElupe); write CSV + PNG (docs/guide/fe_fingertip.md).",
         formatter_class=formatter))
     commands.choices["fingertip-fe"].set_defaults(run=fingertip_fe.run)
     return parser
 
 
 def main(argv=None) -> int:
-    from .provenance import OutputPathError, parse_arguments
-
     parser = build_parser()
     args, provenance = parse_arguments(parser, argv, "roughcontact")
     try:

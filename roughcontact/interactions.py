@@ -1,6 +1,6 @@
 """Interaction laws between the elastic surface and the rigid counter-face, as functions of the gap g [m].
 
-An interaction is described by three per-area quantities (``docs/conventions.md``; ``docs/interactions.md``):
+An interaction is described by three per-area quantities (``docs/reference/conventions.md``; ``docs/guide/interactions.md``):
 
 * ``energy(g)``     V(g) [J/m²], the interaction energy per unit area, V → 0 as g → ∞;
 * ``traction(g)``   p_int(g) = −dV/dg [Pa], the normal traction it exerts on the elastic body, positive
@@ -15,7 +15,7 @@ traction p_int(g) everywhere, the wall's contact pressure where g = 0.
 
 A user's own law subclasses :class:`Interaction`, is a frozen dataclass (so that results can be saved and
 pickled with it) and implements the three methods on float arrays, plus ``length``, the gap scale [m] over
-which it varies (the solver's scale for "far away"). ``docs/interactions.md`` has an example.
+which it varies (the solver's scale for "far away"). ``docs/guide/interactions.md`` has an example.
 """
 from __future__ import annotations
 
@@ -23,9 +23,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from surfaces.validation import check_finite_array, check_positive, check_real
+from surfaces.validation import check_choice, check_finite_array, check_positive, check_real
 
 from .electrostatics import DielectricStack
+from .io.results import savable_field
+
+#: How an electrostatic law takes the field (:class:`ElectrostaticInteraction`).
+FIELDS = ("parallel_plate", "layered")
 
 
 class Interaction:
@@ -80,16 +84,30 @@ class ElectrostaticInteraction(Interaction):
 
     V(g) = −w(g) = −ε0 U² / (2 h(g)), p_int = −σ_el(g) = −ε0 U² / (2 ε_a h(g)²), h(g) = c + g/ε_a
     (:class:`~roughcontact.electrostatics.DielectricStack`; only U² enters, so the sign of the voltage does
-    not matter). The parallel-plate field is taken pixel by pixel.
+    not matter).
+
+    ``field`` says how the field is taken: ``"layered"`` (the default), the stack's field over the whole gap field
+    (:mod:`roughcontact.electrostatics.field`: the stratum corneum and the insulator couple the columns;
+    ``docs/guide/electrostatics.md``), or ``"parallel_plate"``, Eq. 21 pixel by pixel (the methods below), the seed's
+    assumption. The layered law is non-local: its traction at a pixel depends on the whole gap field, so the
+    contact solver evaluates it through :class:`~roughcontact.electrostatics.field.FieldLaw`, and the per-pixel
+    methods give the parallel-plate values.
     """
 
     stack: DielectricStack = DielectricStack()
     voltage: float = 0.0
+    field: str = "layered"
 
     def __post_init__(self):
         if not isinstance(self.stack, DielectricStack):
             raise TypeError(f"stack must be a DielectricStack, got {type(self.stack).__name__}")
         object.__setattr__(self, "voltage", check_real("voltage", self.voltage))
+        check_choice("field", self.field, FIELDS)
+
+    @property
+    def local(self) -> bool:
+        """Whether the traction at a pixel depends on its own gap only (the parallel plate)."""
+        return self.field == "parallel_plate"
 
     @property
     def vanishes(self) -> bool:
@@ -167,6 +185,8 @@ class MaugisDugdale(Interaction):
 
 #: The laws that results can be saved and loaded with (by class name).
 LAWS = {law.__name__: law for law in (HardWall, ElectrostaticInteraction, ExponentialAdhesion, MaugisDugdale)}
+for _kind in (*LAWS.values(), DielectricStack):        # a result holding a law (and its stack) loads them by name
+    savable_field(_kind)
 
 
 __all__ = ["Interaction", "HardWall", "ElectrostaticInteraction", "ExponentialAdhesion", "MaugisDugdale"]

@@ -1,7 +1,7 @@
 """Reproduction of the seed paper's figures 3, 4, 5, 9, 10, 11 and of the numbers it quotes (checkpoint table).
 
 ``reproduce(output_dir)`` writes one PNG and one CSV per figure plus ``checkpoints.csv`` and returns the
-:class:`CheckpointTable`; every file carries its provenance (:mod:`roughcontact.provenance`). Every "computed"
+:class:`CheckpointTable`; every file carries its provenance (:mod:`roughcontact.io.provenance`). Every "computed"
 value in the table is computed here from the model; the "quoted" values are the numbers printed in Heß &
 Forsbach (2020). Figures use matplotlib's object API with the Agg
 canvas (no pyplot state, no rcParams edits); matplotlib is imported only when a figure is drawn.
@@ -15,7 +15,7 @@ import numpy as np
 
 from .electrostatics import EPSILON_0, DielectricStack
 from .macro import PowerLawContact, SavkoorBriggsPeeling, SlidingFrictionModel
-from .provenance import Provenance, output_directory, save_figure, write_columns, write_csv
+from .io.provenance import Provenance, output_directory, save_figure, write_columns, write_csv
 
 #: The seed's voltage for Figs. 3–5 [V] and the two equivalent gaps it compares [m].
 VOLTAGE = 200.0
@@ -120,7 +120,7 @@ def _force_where_ratio_reaches(model, ratio, voltage, forces):
 
 
 def checkpoint_table() -> CheckpointTable:
-    """Compute every number the seed quotes for its macroscopic model and compare (see docs/paper_checkpoints.md)."""
+    """Compute every number the seed quotes for its macroscopic model and compare (see docs/validation/paper_checkpoints.md)."""
     stack = DielectricStack()
     w_gap = float(stack.work_of_adhesion(GAP_REALISTIC, VOLTAGE))
     w_contact = float(stack.work_of_adhesion(0.0, VOLTAGE))
@@ -338,7 +338,7 @@ FIGURES = {"3": figure3, "4": figure4, "5": figure5, "9": figure9, "10": figure1
 
 def reproduce(output_dir, provenance: Provenance | None = None) -> CheckpointTable:
     """Write every figure (PNG + CSV) and ``checkpoints.csv`` into ``output_dir`` (created if missing, only its
-    last level: :func:`~roughcontact.provenance.output_directory`); return the checkpoint table. Each file
+    last level: :func:`~roughcontact.io.output_directory`); return the checkpoint table. Each file
     carries ``provenance`` (default: this call and its output directory)."""
     output_dir = output_directory(output_dir)
     provenance = provenance or Provenance("roughcontact.paper.reproduce", {"output_dir": str(output_dir)})

@@ -11,16 +11,29 @@ os.environ.setdefault("MPLBACKEND", "Agg")
 os.environ.setdefault("ROUGHCONTACT_FFTW_PLANNER", "FFTW_ESTIMATE")
 os.environ.setdefault("ROUGHCONTACT_FFT_THREADS", "1")
 
-EXPERIMENTS = Path(__file__).resolve().parents[1] / "experiments"
+STUDIES = Path(__file__).resolve().parents[1] / "studies"
+
+
+@pytest.fixture(scope="session", autouse=True)
+def wisdom_cache(tmp_path_factory):
+    """The FFTW wisdom cache of the session: a fresh directory, not the user's ``~/.cache/roughcontact``, whose
+    plans (from any earlier run) would decide whether a test's measured plan adds wisdom."""
+    path = tmp_path_factory.mktemp("fftw-wisdom")
+    previous, os.environ["ROUGHCONTACT_CACHE"] = os.environ.get("ROUGHCONTACT_CACHE"), str(path)
+    yield path
+    if previous is None:
+        del os.environ["ROUGHCONTACT_CACHE"]
+    else:
+        os.environ["ROUGHCONTACT_CACHE"] = previous
 
 
 @pytest.fixture(scope="session")
 def load_experiment():
-    """``load_experiment(name)`` imports the script ``experiments/<name>.py`` as the module ``name``, registered in
+    """``load_experiment(name)`` imports the script ``studies/<name>.py`` as the module ``name``, registered in
     ``sys.modules`` (dataclasses look their module up there)."""
     def load(name):
         if name not in sys.modules:
-            spec = importlib.util.spec_from_file_location(name, EXPERIMENTS / f"{name}.py")
+            spec = importlib.util.spec_from_file_location(name, STUDIES / f"{name}.py")
             sys.modules[name] = module = importlib.util.module_from_spec(spec)
             spec.loader.exec_module(module)
         return sys.modules[name]
@@ -29,7 +42,7 @@ def load_experiment():
 
 @pytest.fixture(scope="session")
 def fast_run(load_experiment, tmp_path_factory):
-    """``fast_run(name)`` runs ``experiments/<name>.py`` in fast mode (``--fast --output <new tmp dir>``) and
+    """``fast_run(name)`` runs ``studies/<name>.py`` in fast mode (``--fast --output <new tmp dir>``) and
     returns that directory."""
     def run(name):
         path = tmp_path_factory.mktemp(name)
@@ -41,7 +54,7 @@ def fast_run(load_experiment, tmp_path_factory):
 @pytest.fixture(scope="session")
 def read_csv():
     """``read_csv(path)``: the rows of a CSV file as dicts of strings, after checking its provenance line."""
-    from roughcontact.provenance import read_csv as read_rows
+    from roughcontact.io import read_csv as read_rows
 
     def read(path):
         with open(path) as stream:

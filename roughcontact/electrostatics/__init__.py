@@ -1,10 +1,16 @@
 """The electrostatics of the layered stack: stratum corneum | air gap | insulator (Heß & Forsbach 2020).
 
 :mod:`~roughcontact.electrostatics.stack` holds the seed's parallel-plate capacitor (Eqs. 18–25), pure numpy:
-importing this package loads neither numba nor an FFT library.
+importing this package loads neither numba nor an FFT library. :mod:`~roughcontact.electrostatics.field` solves
+the layered stack's field over a gap field (``solve_field``), loaded on first use.
 """
 from __future__ import annotations
 
+from surfaces.lazy import lazy_attributes
+
 from .stack import EPSILON_0, DielectricStack, ElectricFields
 
-__all__ = ["EPSILON_0", "DielectricStack", "ElectricFields"]
+# the field model loads the FFT backends: imported on first use
+_LAZY = {"solve_field": "field", "FieldSolution": "field", "StackField": "field"}
+
+__getattr__, __dir__, __all__ = lazy_attributes(__name__, _LAZY, ["EPSILON_0", "DielectricStack", "ElectricFields"])

@@ -3,7 +3,7 @@
 All quantities SI. ``gap`` is the air-gap thickness d_a [m] (>= 0, zero at contact points), ``voltage`` the
 voltage U across the stack [V] (only U² enters). Everything broadcasts over ``gap`` and ``voltage`` arrays.
 
-Sign convention (``docs/conventions.md``): :meth:`DielectricStack.pressure` returns the *magnitude* of the
+Sign convention (``docs/reference/conventions.md``): :meth:`DielectricStack.pressure` returns the *magnitude* of the
 attractive electrostatic stress σ_el >= 0. As a surface traction in the contact solver's convention
 (positive = compressive) it enters as ``-σ_el``. The interaction energy per unit area is
 ``V(d) = -w(d)`` (:meth:`DielectricStack.energy`) and ``σ_el = dV/dd``.
@@ -125,6 +125,15 @@ class DielectricStack:
     def energy(self, gap, voltage) -> np.ndarray:
         """Interaction energy per unit area V(d) = -w(d) [J/m²]; ``dV/dd = σ_el``."""
         return -self.work_of_adhesion(gap, voltage)
+
+    def gap_for_pressure(self, mean_pressure: float, voltage: float) -> float:
+        """The uniform gap d [m] whose Eq. 21 attraction at ``voltage`` is ``mean_pressure`` [Pa] (Eq. 21 inverted):
+        d = eps_a (|U| sqrt(ε0 / (2 eps_a σ)) − c). Negative for σ above full contact's (Eq. 23); ``nan`` at U = 0."""
+        if voltage == 0.0:
+            return float("nan")
+        mean_pressure = check_positive("mean_pressure", mean_pressure)
+        thickness = abs(float(voltage)) * np.sqrt(EPSILON_0 / (2 * self.eps_a * mean_pressure))
+        return float(self.eps_a * (thickness - self.dielectric_offset))
 
     # -- Eq. 25 --------------------------------------------------------------------------------------------
     def equivalent_gap(self, gap_field, weights=None) -> float:

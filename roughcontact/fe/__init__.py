@@ -12,5 +12,5 @@ that combination.
 Modules: ``geometry`` (the parametric section and its mesh), ``materials`` (Ogden tissues), ``model`` (the FE
 model and its press-and-slide protocol), ``analysis`` (contact length, Eq. 34 fit, power laws), ``study``
 (the sweep over f_N and the outputs of ``roughcontact fingertip-fe``), ``feed`` (the area reduction of the
-friction law). See ``docs/fe_fingertip.md``.
+friction law). See ``docs/guide/fe_fingertip.md``.
 """

@@ -28,7 +28,7 @@ def run(args, provenance) -> int:
     except ImportError:
         print('roughcontact fingertip-fe: error: needs FElupe: pip install "roughcontact[fe]"', file=sys.stderr)
         return 2
-    from ..provenance import output_directory
+    from ..io.provenance import output_directory
     from .geometry import MeshResolution
     from .model import FingertipModel
     from .study import run_fingertip_study, write_fingertip_outputs

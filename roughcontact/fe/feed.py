@@ -14,7 +14,7 @@ and A_R0 here, a constant in the seed). If the footprint shrank isotropically in
 (L/L0)², about twice the reduction for small reductions: ``isotropic=True``.
 
 L0 and ξ are interpolated between the FE runs as piecewise power laws (linear in log–log; ξ is a power law
-only from f_N ≈ 100 N/m up, docs/fe_fingertip.md); outside the sweep's f_N range the end segments continue.
+only from f_N ≈ 100 N/m up, docs/guide/fe_fingertip.md); outside the sweep's f_N range the end segments continue.
 The FE law holds without adhesion up to F_T = μ_FE F_N; the friction law under voltage uses it at larger F_T.
 """
 from __future__ import annotations
@@ -29,9 +29,9 @@ from surfaces.validation import check_finite_array
 
 from ..macro.friction import SlidingFrictionModel, SlidingState
 from ..macro.power_law import PowerLawContact
-from ..provenance import read_csv
+from ..io.provenance import read_csv
 
-#: The default FE sweep's summary, written by ``roughcontact fingertip-fe`` (see docs/fe_fingertip.md).
+#: The default FE sweep's summary, written by ``roughcontact fingertip-fe`` (see docs/guide/fe_fingertip.md).
 PACKAGED_SUMMARY = Path(__file__).with_name("fingertip_fe_summary.csv")
 
 
@@ -102,8 +102,8 @@ class FEAreaReduction:
         return ratio ** 2 if self.isotropic else ratio
 
     def c2(self, normal_force, initial_area) -> np.ndarray:
-        """The equivalent c₂ = A_R0² ξ/(L0 w²) of Eq. 44 [m⁴/N²] (the linear mapping; ×2 for ``isotropic``, its
-        small-reduction limit)."""
+        """The equivalent c₂ = A_R0² ξ/(L0 w²) of Eq. 44 [m⁴/N²] (the linear mapping; ×2 for ``isotropic``,
+        its small-reduction limit)."""
         force = check_finite_array("normal_force", normal_force, nonnegative=True)
         initial, xi = self.eq34(self.line_load(force))
         with np.errstate(divide="ignore", invalid="ignore"):

@@ -34,7 +34,7 @@ def _check_count(name: str, value, low: int) -> int:
 
 @dataclass(frozen=True)
 class FingerSection:
-    """Geometry of the finger's cross-section [m]; defaults in ``docs/fe_fingertip.md`` (after Wu et al.)."""
+    """Geometry of the finger's cross-section [m]; defaults in ``docs/guide/fe_fingertip.md`` (after Wu et al.)."""
 
     half_width: float = 8.0e-3
     half_height: float = 7.0e-3

@@ -5,7 +5,7 @@ Each tissue is an Ogden solid (Ogden 1973) with a nearly-incompressible volumetr
     ψ = Σ_i 2 μ_i/α_i² (λ̄1^α_i + λ̄2^α_i + λ̄3^α_i − 3) + K (J̄ − 1)²/2,
 
 λ̄ the isochoric principal stretches; the initial shear modulus is μ = Σ μ_i and α = 2 is neo-Hooke. The
-default values are assumptions (Wu et al.'s coefficients were not available; ``docs/fe_fingertip.md`` gives
+default values are assumptions (Wu et al.'s coefficients were not available; ``docs/guide/fe_fingertip.md`` gives
 their sources and the measured sensitivity of the results to them).
 """
 from __future__ import annotations
@@ -73,7 +73,7 @@ def _nail():
 
 @dataclass(frozen=True)
 class FingerMaterials:
-    """The three tissues; ``docs/fe_fingertip.md`` states the defaults (assumed) and their sensitivity."""
+    """The three tissues; ``docs/guide/fe_fingertip.md`` states the defaults (assumed) and their sensitivity."""
 
     skin: OgdenMaterial = field(default_factory=_skin)
     subcutaneous: OgdenMaterial = field(default_factory=_subcutaneous)

@@ -30,7 +30,7 @@ import numpy as np
 
 from surfaces.validation import check_real
 
-from ..results import ConvergenceWarning
+from ..io.results import ConvergenceWarning
 from .analysis import contact_length
 from .geometry import FingerSection, MeshResolution, SectionMesh, mesh_section
 from .materials import FingerMaterials

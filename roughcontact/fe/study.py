@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..provenance import Provenance, save_figure, write_csv
+from ..io.provenance import Provenance, save_figure, write_csv
 from .analysis import LinearFit, fit_eq34, power_law_fit
 from .geometry import MATERIAL_NAMES
 from .model import FingertipModel, SlidingRun
@@ -21,7 +21,7 @@ DEFAULT_NORMAL_FORCES = (25.0, 50.0, 100.0, 200.0, 400.0)
 SEED_EXPONENT = -1.1
 SUMMARY_CSV = "fingertip_fe_summary.csv"
 #: From this normal force per unit width up [N/m] the reduction at full slip is resolved (>= 8 %, tens of
-#: node spacings on the default mesh) and ξ(f_N) is a power law (docs/fe_fingertip.md).
+#: node spacings on the default mesh) and ξ(f_N) is a power law (docs/guide/fe_fingertip.md).
 RESOLVED_FORCE = 100.0
 
 

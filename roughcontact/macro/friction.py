@@ -33,7 +33,7 @@ import numpy as np
 from surfaces.validation import check_finite_array, check_real
 
 from ..electrostatics import DielectricStack
-from ..results import SavableResult
+from ..io.results import SavableResult
 from .gap import LinearGap, _inputs
 from .power_law import MILLIMETRE, PowerLawContact
 
@@ -76,7 +76,7 @@ class SlidingFrictionModel:
     """Pressure-controlled sliding friction with electroadhesion and tangential area reduction (Eqs. 40–45).
 
     ``mu0`` μ0 [-], ``contact`` the ridge-area law: a power law (Eq. 9) or any object with a method
-    ``area(normal_force, work_of_adhesion)`` [m²] (e.g. ``roughcontact.report.TabulatedArea``), ``stack`` the
+    ``area(normal_force, work_of_adhesion)`` [m²] (e.g. :class:`~roughcontact.macro.TabulatedArea`), ``stack`` the
     dielectric stack (Eqs. 21–22),
     ``gap_model`` any callable (F_N [N], U [V]) -> d_eq [m], ``c2`` [m⁴/N²] of η = c₂/A_R0 (Eq. 44),
     ``tau0`` the intrinsic interfacial shear strength τ0 [Pa] of Eq. 40 (0: pressure-controlled, Eq. 41).

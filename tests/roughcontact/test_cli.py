@@ -11,10 +11,11 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from roughcontact import __version__, provenance
+from roughcontact import __version__
 from roughcontact.cli import DEFAULT_FIGURES_OUTPUT, info, main
+from roughcontact.io import provenance
+from roughcontact.io import read_csv
 from roughcontact.paper import checkpoint_table
-from roughcontact.provenance import read_csv
 
 FIGURES = ["fig3_apparent_area", "fig4_ridge_area", "fig5_peeling", "fig9_area_reduction_gap",
            "fig10_tangential_force", "fig11_friction_coefficient"]

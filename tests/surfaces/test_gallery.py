@@ -5,9 +5,9 @@ from pathlib import Path
 
 import pytest
 
-from roughcontact.provenance import read_csv
+from roughcontact.io import read_csv
 
-SCRIPT = Path(__file__).parents[2] / "experiments" / "surface_gallery.py"
+SCRIPT = Path(__file__).parents[2] / "studies" / "surface_gallery.py"
 
 
 def test_gallery_fast(tmp_path, monkeypatch, capsys):

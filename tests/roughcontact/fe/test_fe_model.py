@@ -20,7 +20,7 @@ from roughcontact.fe.model import FingertipModel  # noqa: E402
 def test_small_load_frictionless_press_matches_2d_hertz():
     # a round neo-Hookean section, rigid core, load for a Hertz half-width a = R/20 (a ≪ R and ≪ the 7 mm of
     # tissue under the core); a/h ≈ 10 on this mesh gives 1.6 % (3 % is the bar; 0.14 % at a/h = 32, see
-    # docs/fe_fingertip.md); a wrong E* by 10 % would move L by 5 %
+    # docs/guide/fe_fingertip.md); a wrong E* by 10 % would move L by 5 %
     radius, shear, poisson = 10e-3, 10e3, 0.3
     materials = FingerMaterials.homogeneous(shear, poisson)
     half_width = radius / 20
@@ -66,7 +66,7 @@ def test_contact_length_shrinks_with_tangential_force_and_more_so_at_higher_load
 def test_study_outputs_carry_provenance(coarse_runs, tmp_path):
     from roughcontact.fe.feed import FEAreaReduction
     from roughcontact.fe.study import SUMMARY_CSV, FingertipStudy, write_fingertip_outputs
-    from roughcontact.provenance import Provenance
+    from roughcontact.io.provenance import Provenance
 
     study = FingertipStudy(model=FingertipModel(resolution=MeshResolution.coarse()), runs=tuple(coarse_runs))
     provenance = Provenance(command="pytest", parameters={})

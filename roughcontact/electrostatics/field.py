@@ -1,0 +1,400 @@
+"""The field of the layered capacitor over a gap field: the stratum corneum and the insulator couple the columns.
+
+The seed's law (Eq. 21) treats every pixel as an independent parallel-plate capacitor. Here the two solid
+layers are slabs with their exact lateral response and only the air gap is local (``docs/guide/electrostatics.md``):
+
+* the insulator (thickness ``d_i``, permittivity ``eps_i``) lies flat on the screen electrode (potential 0);
+* the stratum corneum (``d_sc``, ``eps_sc``) has a uniform thickness under the conductive tissue (potential U),
+  both its faces following the skin surface;
+* the air gap g(x) ≥ 0 between them is a column per pixel (g = 0 at contact), with the derivative-expansion
+  factor of a tilted gap, 1 + |∇g|²/3 on its capacitance (exact to second order in the slope).
+
+Unknown: the flux density D(x) [C/m²], the normal electric displacement through the air column (positive
+for U > 0). A flux mode D̂(q) raises the insulator's surface potential by D̂ tanh(q d_i) / (ε0 eps_i q) and
+drops the stratum corneum's by D̂ tanh(q d_sc) / (ε0 eps_sc q) (a flat slab's exact Dirichlet-to-Neumann
+operator; d/(ε0 eps) at q = 0); the column drops D g / (ε0 eps_a). The three drops add up to U:
+
+    (M + R) D = U,   M̂(q) = [tanh(q d_sc)/(eps_sc q) + tanh(q d_i)/(eps_i q)] / ε0,   M̂(0) = c / ε0,
+                     R = diag(g / (ε0 eps_a (1 + |∇g|²/3))),   c = d_sc/eps_sc + d_i/eps_i,
+
+symmetric positive definite for every g ≥ 0 (contact needs no special case). The interaction energy per unit
+area at fixed voltage is the minimum of a quadratic form,
+
+    W(g) = min_D  ½⟨D (M + R) D⟩ − U⟨D⟩  =  −½ U ⟨D⟩,
+
+and the attraction on the skin is its derivative per pixel area, σ_el = N ∂W/∂g = ½ Σ_k D_k² ∂R_k/∂g (virtual
+work; D² / (2 ε0 eps_a) — the air-side Maxwell stress — where the gap is flat). For a uniform gap D = ε0 U / h(g)
+and σ_el is Eq. 21 exactly. ``model="parallel_plate"`` replaces M by its uniform value c/ε0 and drops the
+slope factor (no lateral coupling): Eq. 21 pixel by pixel, the seed's assumption. The slope factor matters
+only where the gap varies over lengths of the gap itself: it moves the second-order response of a 10 µm
+sinusoid at a 2 µm mean gap by 13 % and the attraction of resolved skin profiles by < 0.1 %
+(``docs/guide/electrostatics.md``).
+
+Periodic grids take the slabs' operator on the grid itself; a free window is zero-padded to twice its size per
+free axis, with no flux outside the window (the skin far from the screen there).
+"""
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from surfaces import Grid, HeightField
+from surfaces.validation import check_choice, check_finite_array, check_integer, check_real
+
+from ..fft import make_backend
+from ..io.results import ConvergenceWarning
+from .stack import EPSILON_0, DielectricStack
+
+MODELS = ("layered", "parallel_plate")
+DEFAULT_TOL = 1e-10       # relative residual of the field solve ‖U − (M + R) D‖ / (U √n)
+
+
+def _elastance(stack: DielectricStack, q: np.ndarray, model: str) -> np.ndarray:
+    """M̂(q) ε0 [m]: the solid layers' air-equivalent thickness seen by the flux mode q (q = 0: c)."""
+    if model == "parallel_plate":
+        return np.full(q.shape, stack.dielectric_offset)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = np.tanh(q * stack.d_sc) / (stack.eps_sc * q) + np.tanh(q * stack.d_i) / (stack.eps_i * q)
+    out[q == 0] = stack.dielectric_offset
+    return out
+
+
+class StackField:
+    """The operator M + R of one grid, built once (FFT plan, multiplier) and solved for many gap fields.
+
+    ``grid`` gives shape, size and periodicity (a free axis is zero-padded to twice its length). Solutions are
+    at unit voltage: D scales with U, the attraction with U².
+    """
+
+    def __init__(self, stack: DielectricStack, grid: Grid, model: str = "layered", backend: str = "pyfftw",
+                 threads=None):
+        if not isinstance(stack, DielectricStack):
+            raise TypeError(f"stack must be a DielectricStack, got {type(stack).__name__}")
+        if not isinstance(grid, Grid):
+            raise TypeError(f"grid must be a surfaces.Grid, got {type(grid).__name__}")
+        self.stack, self.grid = stack, grid
+        self.model = check_choice("model", model, MODELS)
+        self.padded_grid = Grid(tuple(n if p else 2 * n for n, p in zip(grid.shape, grid.periodic)),
+                                tuple(length if p else 2 * length for length, p in zip(grid.lengths, grid.periodic)),
+                                periodic=True)
+        self.padded = self.padded_grid.shape != grid.shape
+        q = np.hypot(*self.padded_grid.wavevectors(real=True))
+        self._multiplier = _elastance(stack, q, model) / (EPSILON_0 * self.padded_grid.size)
+        self._diagonal = float(np.mean(_elastance(stack, np.hypot(*self.padded_grid.wavevectors()), model))
+                               / EPSILON_0)
+        self._fft = make_backend(backend, self.padded_grid.shape, threads=threads)
+        self._buffer = self._fft.empty()
+        self._window = tuple(slice(0, n) for n in grid.shape)
+        self._stencil = _stencil(grid, enabled=self.model == "layered")
+        self._work = None
+        self.residual = None
+
+    @property
+    def pixel_elastance(self) -> float:
+        """The diagonal of M [m²/F]: a pixel's own share of the solid layers' elastance (Jacobi preconditioner)."""
+        return self._diagonal
+
+    def apply_elastance(self, flux: np.ndarray, out: np.ndarray) -> np.ndarray:
+        """out ← M D [V] for a flux D [C/m²] on the window (one FFT pair)."""
+        if self.padded:
+            self._buffer[...] = 0.0
+            self._buffer[self._window] = flux
+        else:
+            self._buffer[...] = flux
+        self._fft.forward(self._buffer)
+        self._fft.spectrum *= self._multiplier
+        self._fft.backward(self._buffer)
+        out[...] = self._buffer[self._window]
+        return out
+
+    def slope_factor(self, gap: np.ndarray) -> np.ndarray:
+        """1 + |∇g|²/3 per pixel (central differences; one-sided at a free window's edges); 1 for the plate."""
+        factor = np.empty(gap.shape)
+        _slope_factor_into(np.ascontiguousarray(gap, dtype=float), self._stencil, factor)
+        return factor
+
+    def column_elastance(self, gap: np.ndarray, factor=None) -> np.ndarray:
+        """R = g / (ε0 eps_a (1 + |∇g|²/3)) [m²/F] per pixel: the air column's voltage per unit flux."""
+        return gap / (EPSILON_0 * self.stack.eps_a * (self.slope_factor(gap) if factor is None else factor))
+
+    def attraction(self, gap: np.ndarray, unit_flux: np.ndarray, factor=None) -> np.ndarray:
+        """σ_el / U² = ½ Σ_k D₁,k² ∂R_k/∂g [Pa/V²] per pixel: the virtual work of opening the gap at each pixel
+        at fixed voltage, for the unit-voltage flux D₁ of ``gap`` (``factor``: its slope factor, if known)."""
+        out = np.empty(gap.shape)
+        _attraction_into(np.ascontiguousarray(gap, dtype=float), np.ascontiguousarray(unit_flux),
+                         self.slope_factor(gap) if factor is None else factor, self._stencil,
+                         EPSILON_0 * self.stack.eps_a, out)
+        return out
+
+    def solve(self, gap, initial=None, tol: float = DEFAULT_TOL, maxiter=None) -> tuple:
+        """The unit-voltage flux D₁ [C/m²/V] with (M + R) D₁ = 1 on the window, by Jacobi-preconditioned CG.
+
+        ``initial`` is a warm start (a previous D₁). Returns ``(D₁, iterations, relative residual)``; the residual
+        field 1 − (M + R) D₁ stays on ``self.residual``.
+        """
+        gap = check_finite_array("gap", gap, nonnegative=True)
+        if gap.shape != self.grid.shape:
+            raise ValueError(f"gap has shape {gap.shape}, the grid has {self.grid.shape}; they must match")
+        tol = check_real("tol", tol, low=0.0, low_open=True)
+        maxiter = None if maxiter is None else check_integer("maxiter", maxiter, low=1)
+        return self.solve_columns(self.column_elastance(gap), initial, tol, maxiter)
+
+    def solve_columns(self, column, initial=None, tol: float = DEFAULT_TOL, maxiter=None) -> tuple:
+        """:meth:`solve` for the column elastance R [m²/F] of a gap (checked and formed by the caller)."""
+        maxiter = 10 * column.size if maxiter is None else maxiter
+        if self.model == "parallel_plate":
+            self.residual = np.zeros_like(column)
+            return 1.0 / (self.stack.dielectric_offset / EPSILON_0 + column), 0, 0.0
+        if self._work is None or self._work[0].shape != column.shape:
+            self._work = tuple(np.empty(column.shape) for _ in range(5))       # allocated once per grid
+        inverse_diagonal, product, residual, z, direction = self._work
+        np.divide(1.0, self._diagonal + column, out=inverse_diagonal)
+        flux = inverse_diagonal.copy() if initial is None else np.array(initial, dtype=float)
+        self.apply_elastance(flux, product)
+        rz, rr = _cg_start(flux.reshape(-1), product.reshape(-1), column.reshape(-1), inverse_diagonal.reshape(-1),
+                           residual.reshape(-1), z.reshape(-1), direction.reshape(-1))
+        target = (tol * tol) * column.size
+        iterations = 0
+        while rr > target and iterations < maxiter:
+            self.apply_elastance(direction, product)
+            step = rz / _cg_curvature(direction.reshape(-1), product.reshape(-1), column.reshape(-1))
+            rz_old = rz
+            rz, rr = _cg_update(step, direction.reshape(-1), product.reshape(-1), flux.reshape(-1),
+                                residual.reshape(-1), z.reshape(-1), inverse_diagonal.reshape(-1))
+            _cg_direction(direction.reshape(-1), z.reshape(-1), rz / rz_old)
+            iterations += 1
+        self.residual = residual
+        return flux, iterations, float(np.sqrt(rr / column.size))
+
+
+def _stencil(grid: Grid, enabled: bool) -> tuple:
+    """The central differences of the slope factor per axis: (ahead, behind) neighbour indices and 1/width [1/m]
+    (periodic axes wrap, a free axis takes one-sided differences at its ends); an axis of at most two pixels,
+    or ``enabled`` false, has 1/width = 0 (no slope)."""
+    stencil = []
+    for n, spacing, periodic in zip(grid.shape, grid.spacing, grid.periodic):
+        index = np.arange(n)
+        ahead, behind = (index + 1) % n, (index - 1) % n
+        if not periodic:
+            ahead[-1], behind[0] = n - 1, 0
+        inverse_width = 1.0 / ((ahead - behind) % n * spacing) if n > 2 and enabled else np.zeros(n)
+        stencil += [ahead, behind, inverse_width]
+    return tuple(stencil)
+
+
+@njit(cache=True)
+def _slope_factor_into(gap, stencil, factor):
+    """factor ← 1 + |∇g|²/3 by the central differences of ``stencil`` (:func:`_stencil`)."""
+    ahead_x, behind_x, inverse_x, ahead_y, behind_y, inverse_y = stencil
+    nx, ny = gap.shape
+    for i in range(nx):
+        for j in range(ny):
+            slope_x = (gap[ahead_x[i], j] - gap[behind_x[i], j]) * inverse_x[i]
+            slope_y = (gap[i, ahead_y[j]] - gap[i, behind_y[j]]) * inverse_y[j]
+            factor[i, j] = 1.0 + (slope_x * slope_x + slope_y * slope_y) / 3.0
+
+
+@njit(cache=True)
+def _attraction_into(gap, flux, factor, stencil, permittivity, out):
+    """out ← ½ Σ_k D_k² ∂R_k/∂g per pixel for R = g/(permittivity · factor): the column's own D²/(2 ε f) and,
+    through the neighbours' slopes, Aᵀ(w A g) with w = −D² g/(3 ε f²) (A the central differences)."""
+    ahead_x, behind_x, inverse_x, ahead_y, behind_y, inverse_y = stencil
+    nx, ny = gap.shape
+    for i in range(nx):
+        for j in range(ny):
+            out[i, j] = flux[i, j] ** 2 / (2.0 * permittivity * factor[i, j])
+    for i in range(nx):
+        for j in range(ny):
+            weight = -flux[i, j] ** 2 * gap[i, j] / (3.0 * permittivity * factor[i, j] ** 2)
+            value = weight * (gap[ahead_x[i], j] - gap[behind_x[i], j]) * inverse_x[i] * inverse_x[i]
+            out[ahead_x[i], j] += value
+            out[behind_x[i], j] -= value
+            value = weight * (gap[i, ahead_y[j]] - gap[i, behind_y[j]]) * inverse_y[j] * inverse_y[j]
+            out[i, ahead_y[j]] += value
+            out[i, behind_y[j]] -= value
+
+
+@njit(cache=True)
+def _cg_start(flux, product, column, inverse_diagonal, residual, z, direction):
+    """residual ← 1 − (M D + R D) (``product`` holds M D), z = direction ← P⁻¹ residual; returns (r·z, r·r)."""
+    rz, rr = 0.0, 0.0
+    for i in range(flux.size):
+        value = 1.0 - product[i] - column[i] * flux[i]
+        residual[i] = value
+        z[i] = direction[i] = inverse_diagonal[i] * value
+        rz += value * z[i]
+        rr += value * value
+    return rz, rr
+
+
+@njit(cache=True)
+def _cg_curvature(direction, product, column):
+    """product ← M p + R p (``product`` holds M p); returns p·(M + R) p."""
+    total = 0.0
+    for i in range(direction.size):
+        product[i] += column[i] * direction[i]
+        total += direction[i] * product[i]
+    return total
+
+
+@njit(cache=True)
+def _cg_update(step, direction, product, flux, residual, z, inverse_diagonal):
+    """D += α p, r −= α (M + R) p, z ← P⁻¹ r; returns (r·z, r·r)."""
+    rz, rr = 0.0, 0.0
+    for i in range(flux.size):
+        flux[i] += step * direction[i]
+        value = residual[i] - step * product[i]
+        residual[i] = value
+        z[i] = inverse_diagonal[i] * value
+        rz += value * z[i]
+        rr += value * value
+    return rz, rr
+
+
+@njit(cache=True)
+def _cg_direction(direction, z, beta):
+    for i in range(direction.size):
+        direction[i] = z[i] + beta * direction[i]
+
+
+@dataclass(frozen=True)
+class FieldSolution:
+    """The field of the stack over one gap field at one voltage (``solve_field``). SI units.
+
+    ``flux`` D [C/m²] and ``pressure`` σ_el [Pa] (the attraction, N ∂W/∂g) per pixel, shaped like the gap given;
+    ``traction`` −σ_el in the contact solver's convention (positive compressive). ``mean_pressure`` and
+    ``energy`` (W = −½ U ⟨D⟩ [J/m²]) are averages over the window (the apparent area).
+    """
+
+    model: str
+    voltage: float
+    stack: DielectricStack
+    grid: Grid
+    flux: np.ndarray
+    pressure: np.ndarray
+    iterations: int
+    residual: float
+
+    @property
+    def traction(self) -> np.ndarray:
+        """−σ_el [Pa]: the attraction as a traction on the skin (positive compressive)."""
+        return -self.pressure
+
+    @property
+    def mean_pressure(self) -> float:
+        """⟨σ_el⟩ [Pa] over the window: F_el / A0."""
+        return float(np.mean(self.pressure))
+
+    @property
+    def electrostatic_force(self) -> float:
+        """F_el = ⟨σ_el⟩ A0 [N] on the window (per unit length [N/m] for a profile: ⟨σ_el⟩ L)."""
+        length_x, length_y = self.grid.lengths
+        return self.mean_pressure * (length_x if self.grid.is_profile else length_x * length_y)
+
+    @property
+    def energy(self) -> float:
+        """W = −½ U ⟨D⟩ [J/m²]: the interaction energy per unit area at fixed voltage (−w of Eq. 22)."""
+        return float(-0.5 * self.voltage * np.mean(self.flux))
+
+    @property
+    def equivalent_gap(self) -> float:
+        """The uniform gap d [m] whose Eq. 21 attraction equals ⟨σ_el⟩ (independent of the voltage).
+
+        Negative where the mean attraction exceeds full contact's (Eq. 23); ``nan`` only at U = 0 (no field).
+        """
+        if self.voltage == 0.0:
+            return float("nan")
+        return self.stack.gap_for_pressure(self.mean_pressure, self.voltage)
+
+
+def solve_field(stack: DielectricStack, gap, lengths=None, voltage: float = 1.0, model: str = "layered",
+                periodic=True, tol: float = DEFAULT_TOL, maxiter=None, backend: str = "pyfftw") -> FieldSolution:
+    """The field of ``stack`` over the air-gap field ``gap`` [m] at ``voltage`` U [V] (module docstring).
+
+    ``gap`` is a 1-D profile or a 2-D field [m] (g ≥ 0), or a :class:`~surfaces.HeightField` (its grid then
+    gives ``lengths`` and ``periodic``). ``lengths`` is the window's size [m] (a scalar for a profile);
+    ``periodic`` a bool or one per axis (a free axis is zero-padded). ``model`` is ``"layered"`` (the slabs'
+    lateral field) or ``"parallel_plate"`` (Eq. 21 per pixel). ``tol`` bounds the field solve's relative residual.
+    """
+    shape = np.shape(gap.heights if isinstance(gap, HeightField) else gap)
+    grid, gap = _grid_and_gap(gap, lengths, periodic)
+    voltage = check_real("voltage", voltage)
+    field = StackField(stack, grid, model=model, backend=backend, threads=1)
+    unit_flux, iterations, residual = field.solve(gap, tol=tol, maxiter=maxiter)
+    if residual > tol:
+        warnings.warn(f"field solve stopped at relative residual {residual:.3g} > tol = {tol:g} after "
+                      f"{iterations} iterations", ConvergenceWarning, stacklevel=2)
+    return FieldSolution(model=model, voltage=voltage, stack=stack, grid=grid,
+                         flux=(voltage * unit_flux).reshape(shape),
+                         pressure=(voltage ** 2 * field.attraction(gap, unit_flux)).reshape(shape),
+                         iterations=iterations, residual=residual)
+
+
+def _grid_and_gap(gap, lengths, periodic) -> tuple:
+    """(Grid, 2-D gap array) from a HeightField or an array with its window ``lengths`` and ``periodic``."""
+    if isinstance(gap, HeightField):
+        if lengths is not None:
+            raise ValueError("lengths is given by the HeightField's grid; pass lengths=None")
+        return gap.grid, np.asarray(gap.heights, dtype=float)
+    values = check_finite_array("gap", gap, nonnegative=True)
+    if values.ndim == 1:
+        values = values[:, None]
+    if values.ndim != 2:
+        raise ValueError(f"gap must be a 1-D profile or a 2-D field, got {values.ndim} dimensions")
+    if lengths is None:
+        raise ValueError("lengths (the window's size in m) is required for a gap array")
+    if np.ndim(lengths) == 0:
+        length = check_real("lengths", lengths, low=0.0, low_open=True)
+        lengths = (length, length / values.shape[0]) if values.shape[1] == 1 else (length, length)
+    periodic = (periodic, True) if values.shape[1] == 1 and np.ndim(periodic) == 0 else periodic
+    return Grid(values.shape, tuple(lengths), periodic=periodic), values
+
+
+class FieldLaw:
+    """The layered attraction as a non-local interaction law on one grid, for the energy-based contact solver.
+
+    :meth:`evaluate` solves the field at a gap (warm-started from a previous flux) and returns the interaction
+    energy Σ V = N Φ(D) with Φ(D) = ½⟨D (M + R) D⟩ − U⟨D⟩, exact to second order in the field solve's error
+    (and never below the exact minimum), the traction p_int = −σ_el (:meth:`StackField.attraction`) and the
+    diagonal stiffness k = ∂p_int/∂g ≈ G_ii (D ∂R_ii/∂g_i)², with G_ii ≈ 1/(M_ii + R_ii) (exact for the
+    parallel plate).
+    """
+
+    def __init__(self, stack: DielectricStack, voltage: float, grid: Grid, model: str = "layered",
+                 tol: float = DEFAULT_TOL, backend: str = "pyfftw", threads=None):
+        self.field = StackField(stack, grid, model=model, backend=backend, threads=threads)
+        self.voltage, self.tol = float(voltage), tol
+        self.fft_pairs = 0                     # over all evaluations: one per CG iteration and per start
+        self.evaluations = 0
+
+    def evaluate(self, gap, traction, stiffness, flux, columns, start=None) -> float:
+        """traction, stiffness, the unit-voltage flux and the column elastance (grid-shaped) ← the law at
+        ``gap``; returns Σ V [J/m² per pixel, summed].
+
+        ``start``: (columns, flux) of a nearby evaluation, whose flux starts the field solve."""
+        field = self.field
+        factor = field.slope_factor(gap)
+        column = field.column_elastance(gap, factor)
+        initial = None
+        if start is not None:
+            # the start's flux, each column updated to first order: δD ≈ −δR D / (M_ii + R_ii) (exact for an
+            # isolated open pixel)
+            start_column, start_flux = start
+            initial = start_flux * (field.pixel_elastance + start_column) / (field.pixel_elastance + column)
+        unit_flux, iterations, residual = field.solve_columns(column, initial=initial, tol=self.tol)
+        if residual > self.tol:
+            raise FloatingPointError(f"the field solve stalled at relative residual {residual:.3g} "
+                                     f"(tol {self.tol:g}) after {iterations} iterations")
+        self.fft_pairs += iterations + (field.model == "layered")
+        self.evaluations += 1
+        squared_voltage = self.voltage ** 2
+        flux[...] = unit_flux
+        columns[...] = column
+        traction[...] = -squared_voltage * field.attraction(gap, unit_flux, factor)
+        stiffness[...] = squared_voltage * unit_flux ** 2 / (
+            (EPSILON_0 * field.stack.eps_a * factor) ** 2 * (field.pixel_elastance + column))
+        # Φ = U² (−½⟨D₁⟩ − ½⟨D₁ ρ₁⟩) with ρ₁ = 1 − (M + R) D₁ the residual of the unit-voltage solve
+        return float(-0.5 * squared_voltage * (np.sum(unit_flux) + np.vdot(unit_flux, self.field.residual)))

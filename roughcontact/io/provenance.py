@@ -1,0 +1,161 @@
+"""Output files that say where they came from: the one writer of ``roughcontact figures``, ``roughcontact run``
+and the scripts in ``studies/``.
+
+Every CSV written here starts with one comment line, and every PNG carries the same line in its metadata
+(PNG text chunks ``Comment`` and ``Software``)::
+
+    # roughcontact 0.1.0, 2026-01-31T12:00:00+00:00, command: roughcontact figures --output out, parameters: {...}
+
+Readers skip it: ``pandas.read_csv(path, comment="#")``, ``numpy.loadtxt(path, delimiter=",", skiprows=2)``
+(numpy counts the comment among the skipped lines; comment lines after it are skipped anyway), or
+:func:`read_csv` here. ``PIL.Image.open(path).text["Comment"]`` returns a PNG's line.
+
+:func:`output_directory` validates an output directory before anything is computed: it creates only the
+last level of the path (a missing parent is a typo more often than a wish) and raises
+:class:`OutputPathError`, a ``ValueError`` with a one-line message, for a path that cannot hold the outputs.
+"""
+from __future__ import annotations
+
+import csv
+import json
+import os
+import shlex
+import sys
+from dataclasses import dataclass, field
+from datetime import datetime, timezone
+from pathlib import Path
+
+from .._version import __version__
+
+#: Resolution of the PNG figures [dots per inch].
+FIGURE_DPI = 120
+
+
+class OutputPathError(ValueError):
+    """An output path that cannot hold the outputs (a file, a missing parent, no write permission)."""
+
+
+def _now() -> str:
+    return datetime.now(timezone.utc).isoformat(timespec="seconds")
+
+
+@dataclass(frozen=True)
+class Provenance:
+    """Library version, date (UTC, ISO 8601), command line and parameters of one run."""
+
+    command: str
+    parameters: dict
+    version: str = __version__
+    date: str = field(default_factory=_now)
+
+    @classmethod
+    def of_command(cls, program: str, argv, parameters: dict) -> Provenance:
+        """The provenance of ``program`` (a command line, e.g. ``python studies/x.py``) run with the
+        arguments ``argv`` (a list, shell-quoted here)."""
+        return cls(command=" ".join([program, shlex.join(map(str, argv))]).strip(), parameters=dict(parameters))
+
+    @property
+    def line(self) -> str:
+        """``roughcontact <version>, <date>, command: <command>, parameters: <JSON>`` (no comment sign)."""
+        parameters = json.dumps(self.parameters, default=str, ensure_ascii=False)
+        return f"roughcontact {self.version}, {self.date}, command: {self.command}, parameters: {parameters}"
+
+    @property
+    def png_metadata(self) -> dict:
+        """PNG text chunks for matplotlib's ``savefig(..., metadata=...)``."""
+        return {"Software": f"roughcontact {self.version}", "Comment": self.line}
+
+
+def parse_arguments(parser, argv, program: str) -> tuple:
+    """``(args, provenance)``: ``parser``'s arguments from ``argv`` (default: the command line) and the
+    provenance of running ``program`` with them (the parameters: the parsed arguments, callables left out)."""
+    argv = sys.argv[1:] if argv is None else list(argv)
+    args = parser.parse_args(argv)
+    parameters = {key: value for key, value in vars(args).items() if not callable(value)}
+    return args, Provenance.of_command(program, argv, parameters)
+
+
+def output_directory(path) -> Path:
+    """``path`` as a writable directory, created if missing (only its last level). Raises
+    :class:`OutputPathError` for an empty path, a file, a missing parent or a directory without write access."""
+    if not str(path).strip():
+        raise OutputPathError("the output path is empty")
+    path = Path(path)
+    if path.exists() and not path.is_dir():
+        raise OutputPathError(f"output path {path} is a file, not a directory")
+    if not path.exists():
+        if not path.parent.is_dir():
+            raise OutputPathError(f"the parent of the output directory, {path.parent}, does not exist "
+                                  "(only the last level of the path is created)")
+        try:
+            path.mkdir()
+        except OSError as error:
+            raise OutputPathError(f"cannot create the output directory {path}: {error.strerror}") from None
+    if not os.access(path, os.W_OK | os.X_OK):
+        raise OutputPathError(f"the output directory {path} is not writable")
+    return path
+
+
+def write_csv(path, rows, provenance: Provenance | None, columns=None, echo=False) -> Path:
+    """Write ``rows`` (dicts) to the CSV file ``path`` after the provenance comment, with ``columns`` as header
+    (default: the first row's keys; other keys are ignored, missing ones left empty); ``echo`` also prints
+    each row as ``key=value, …``. ``provenance=None`` writes no comment line, for a reader that cannot skip one."""
+    rows = list(rows)
+    with open(path, "w", newline="") as stream:
+        if provenance is not None:
+            stream.write(f"# {provenance.line}\n")
+        writer = csv.DictWriter(stream, fieldnames=columns or list(rows[0]), extrasaction="ignore", restval="")
+        writer.writeheader()
+        writer.writerows(rows)
+    if echo:
+        for row in rows:
+            print(", ".join(f"{key}={value:.4g}" if isinstance(value, float) else f"{key}={value}"
+                            for key, value in row.items()))
+    return Path(path)
+
+
+def write_atomic(path, text: str) -> Path:
+    """Write ``text`` to ``path`` through a sibling ``.part`` file renamed over it: a reader (or a resumed run)
+    sees the old file or the whole new one, never a half-written one."""
+    path = Path(path)
+    temporary = path.with_name(path.name + ".part")
+    temporary.write_text(text)
+    os.replace(temporary, path)
+    return path
+
+
+def write_columns(path, header, columns, provenance: Provenance) -> Path:
+    """Write equal-length numeric ``columns`` under the names ``header`` to the CSV file ``path`` (full
+    precision), after the provenance comment."""
+    import numpy as np
+
+    np.savetxt(path, np.column_stack(columns), delimiter=",", comments="",
+               header=f"# {provenance.line}\n{','.join(header)}")
+    return Path(path)
+
+
+def read_csv(path) -> list:
+    """The rows of a CSV file written here, as dicts of strings (comment lines skipped)."""
+    with open(path, newline="") as stream:
+        return list(csv.DictReader(line for line in stream if not line.startswith("#")))
+
+
+def save_figure(figure, path, provenance: Provenance, dpi=FIGURE_DPI, colors=None) -> Path:
+    """Save the matplotlib ``figure`` as a PNG at ``path`` with the provenance in its metadata; ``colors``:
+    quantise to a palette of that many colours (small files for the docs)."""
+    if colors is None:
+        figure.savefig(path, dpi=dpi, metadata=provenance.png_metadata)
+        return Path(path)
+    import io
+
+    from PIL import Image, PngImagePlugin
+
+    buffer = io.BytesIO()
+    figure.savefig(buffer, dpi=dpi, format="png")
+    buffer.seek(0)
+    text = PngImagePlugin.PngInfo()
+    for key, value in provenance.png_metadata.items():
+        text.add_text(key, value)
+    with Image.open(buffer) as image:
+        image.convert("RGB").quantize(colors=colors).save(path, optimize=True, pnginfo=text)
+    return Path(path)

@@ -1,0 +1,16 @@
+"""Independent references: analytic contact solutions (:mod:`.analytic`: Hertz, Westergaard, the bisinusoid,
+Maugis–Dugdale, Johnson's adhesive sinusoid) and the benchmark problem of the solver studies
+(:mod:`.benchmark`). Layer 1: imports nothing of roughcontact."""
+from __future__ import annotations
+
+from .analytic import (bisinusoid_area_low_load, bisinusoid_area_near_full_contact, bisinusoid_full_contact_pressure,
+                       hertz_contact_radius, hertz_elastic_energy, hertz_force, hertz_penetration, hertz_pressure,
+                       johnson_sinusoid_load, maugis_cohesive_stress, maugis_dugdale_load, maugis_dugdale_pull_off,
+                       westergaard_contact_half_width, westergaard_elastic_energy_density,
+                       westergaard_full_contact_pressure, westergaard_mean_gap, westergaard_pressure)
+
+__all__ = ["bisinusoid_area_low_load", "bisinusoid_area_near_full_contact", "bisinusoid_full_contact_pressure",
+           "hertz_contact_radius", "hertz_elastic_energy", "hertz_force", "hertz_penetration", "hertz_pressure",
+           "johnson_sinusoid_load", "maugis_cohesive_stress", "maugis_dugdale_load", "maugis_dugdale_pull_off",
+           "westergaard_contact_half_width", "westergaard_elastic_energy_density",
+           "westergaard_full_contact_pressure", "westergaard_mean_gap", "westergaard_pressure"]

@@ -1,0 +1,721 @@
+"""Contact with a smooth interaction law and the impenetrable flat: the minimum of the total energy over the gap.
+
+Unknown: the gap g ≥ 0 [m] on a periodic grid (``docs/guide/interactions.md``); a free surface is solved as the
+periodic body of its zero-padded grid, the law and the wall acting on the window only (:class:`_PaddedBody`). With u = g + h − s, the body's
+displacement fluctuation u_f = (g − ⟨g⟩) + (h − ⟨h⟩) fixes the elastic traction fluctuation p_el = K⁻¹ u_f
+(zero mean). The external load λ = ⟨p⟩ [Pa] is the mean traction. Total energy per unit area:
+
+    load control (λ = P̄ fixed, any sign):      Π/A = ½⟨u_f p_el⟩ + ⟨V(g)⟩ + P̄ ⟨g⟩
+    flat position s fixed, Φ(0) > 0 (layer):    Π/A = ½⟨u_f p_el⟩ + ⟨V(g)⟩ + ½ ū²/Φ(0),  ū = ⟨g⟩ + ⟨h⟩ − s
+    flat position s fixed, Φ(0) = 0:            Π/A = ½⟨u_f p_el⟩ + ⟨V(g)⟩  subject to ⟨g⟩ = s − ⟨h⟩
+
+Its gradient per pixel area, G = p_el + λ − p_int(g), is the wall's contact pressure: the minimum has G = 0
+where g > 0 and G ≥ 0 where g = 0 (complementarity). Under load control the flat sits at
+s = ⟨g⟩ + ⟨h⟩ − Φ(0) P̄; under the constraint λ is its multiplier.
+
+Method: projected non-linear conjugate gradients (Polak–Ribière⁺) on the free set F = {g > 0} ∪ {g = 0, G < 0},
+preconditioned by the compliance K (the inverse of the elastic Hessian; its q = 0 mode given the largest
+compliance), with a projected Armijo line search on Π started from the step that minimises the local
+quadratic model (curvature ⟨d, K⁻¹ d⟩ − ⟨k d²⟩). No point whose gap can be stable closes by more than 2 (g + law
+length) in one step (no tunnelling through an energy barrier into contact). Each step costs one FFT
+pair for z = K r and one for K⁻¹ d, plus one where the projection clipped the step; the pointwise work is in
+fused numba passes (the built-in laws evaluated inside them; a user's law through its numpy methods).
+Π decreases monotonically; a step along which Π is concave (⟨d, K⁻¹ d⟩ ≤ ⟨k d²⟩ plus the layer's mean
+term) crosses an instability and is counted on the result (``unstable_steps``). After such a step the next
+one skips the model and its K⁻¹ d: it tries twice the last length with the trial's exact p_el, and its own
+curvature is that along the step taken, ⟨Δg, Δp_el⟩ − ⟨k Δg²⟩ (a snap-in step: two FFT pairs, not three).
+Convergence criterion, with ``gap_scale`` the rms height of h (the law's length on a flat surface):
+
+    sqrt(⟨(K r)²⟩_F) ≤ tol · gap_scale,   r = G on F,
+
+the displacement that the residual traction would still cause. Under load control a tensile load with no
+contact left and every pixel pulled harder than the law attracts it has no equilibrium: reported, not
+iterated.
+"""
+from __future__ import annotations
+
+import math
+import time
+import warnings
+
+import numpy as np
+from numba import njit
+
+from surfaces.validation import check_integer, check_real
+
+from .._version import __version__
+from ..body.elastic import apply_inverse_multiplier, apply_multiplier
+from ..electrostatics import EPSILON_0
+from ..electrostatics.field import FieldLaw
+from ..interactions import ElectrostaticInteraction, ExponentialAdhesion, MaugisDugdale
+from ..io.results import ConvergenceWarning
+from .inputs import _heights
+from .polonsky_keer import solve_hard_wall
+from .result import ContactResult, SolverState
+
+METHOD = "projected-cg-gap"
+ARMIJO = 1e-4             # sufficient-decrease constant of the projected line search
+MAX_HALVINGS = 40         # line-search step halvings before the direction is given up
+APPROACH = 2.0            # a stable point closes by at most this times (gap + law length) in one step
+ENERGY_ROUND_OFF = 1e-12  # relative round-off of the energy sums (float64), below which a rise is not a rise
+START_TOL = 1e-2          # tolerance of the hard-wall solve that starts a cold solve (a guess, not the answer)
+FIELD_TOL_FACTOR = 0.1   # the layered field's solves to this times the solve's relative residual,
+FIELD_TOL_FLOOR = 1e-12  # but no tighter than this
+FIELD_TOL_CEILING = 1e-4 # and no looser
+_REFRESH = 50             # exact recomputation of p_el at least every _REFRESH incremental steps
+
+# built-in laws evaluated inside the kernels: (kind, a, b, c)
+_ELECTROSTATIC, _EXPONENTIAL, _DUGDALE, _USER = 0, 1, 2, -1
+
+
+def _law_code(law):
+    """(kind, a, b, c) of a built-in local law for :func:`_law_at`; ``_USER`` for any other (numpy methods, or the
+    layered field)."""
+    if isinstance(law, ElectrostaticInteraction) and law.local:
+        stack = law.stack                                   # V = −a/h, h = c + g b, a = ε0 U²/2, b = 1/ε_a
+        return _ELECTROSTATIC, 0.5 * EPSILON_0 * law.voltage ** 2, 1.0 / stack.eps_a, stack.dielectric_offset
+    if isinstance(law, ExponentialAdhesion):                # V = −a e^(−g b), b = 1/ρ
+        return _EXPONENTIAL, law.work_of_adhesion, 1.0 / law.length, 0.0
+    if isinstance(law, MaugisDugdale):
+        return _DUGDALE, law.cohesive_stress, law.length, 0.0
+    return _USER, 0.0, 0.0, 0.0
+
+
+@njit(cache=True)
+def _law_at(kind, a, b, c, g):
+    """V [J/m²], p_int = −dV/dg [Pa] and k = dp_int/dg [Pa/m] of a built-in law at the gap g."""
+    if kind == 0:                                           # one division: 1/h
+        inverse = 1.0 / (c + g * b)
+        energy = -a * inverse
+        traction = energy * inverse * b
+        return energy, traction, -2.0 * traction * inverse * b
+    if kind == 1:                                           # b = 1/ρ
+        e = a * math.exp(-g * b)
+        return -e, -e * b, e * b * b
+    if g < b:
+        return -a * (b - g), -a, 0.0
+    return 0.0, 0.0, 0.0
+
+
+@njit(cache=True)
+def _evaluate_law(kind, a, b, c, g, window, h_f, pel, traction, stiffness):
+    """traction, stiffness ← the law at every g in the window (0 outside); returns the sums of
+    :func:`_work_terms` and Σ V, in one pass."""
+    gap_sum, work, pel_sum, energy_sum = 0.0, 0.0, 0.0, 0.0
+    for i in range(g.size):
+        if window[i]:
+            energy, traction[i], stiffness[i] = _law_at(kind, a, b, c, g[i])
+            energy_sum += energy
+        else:
+            traction[i], stiffness[i] = 0.0, 0.0
+        gap_sum += g[i]
+        work += (g[i] + h_f[i]) * pel[i]
+        pel_sum += pel[i]
+    return gap_sum, work, pel_sum, energy_sum
+
+
+def _evaluate(law, code, g, window, h_f, pel, traction, stiffness) -> tuple:
+    """The law's traction and stiffness at g in the window into the two arrays (0 outside; numba for a built-in
+    law); returns Σ g, Σ (g + h_f) p_el, Σ p_el and Σ V (the sums of Π/A, :meth:`_Energy.value`)."""
+    if code[0] != _USER:
+        return _evaluate_law(*code, g, window, h_f, pel, traction, stiffness)
+    traction[:], stiffness[:] = 0.0, 0.0
+    inside = g[window]
+    traction[window], stiffness[window] = law.traction(inside), law.stiffness(inside)
+    return _work_terms(g, h_f, pel) + (float(np.sum(law.energy(inside), dtype=np.float64)),)
+
+
+@njit(cache=True)
+def _open_mean_imbalance(g, pel, traction):
+    """⟨p_int − p_el⟩ over the open points (g > 0), the multiplier of the mean-gap constraint; and their number."""
+    total, count = 0.0, 0
+    for i in range(g.size):
+        if g[i] > 0:
+            total += traction[i] - pel[i]
+            count += 1
+    return total, count
+
+
+@njit(cache=True)
+def _residual(g, pel, traction, load, window, r, free):
+    """G = p_el + λ − p_int; the free set F = {g > 0} ∪ {g = 0, G < 0} ∪ (outside the window, where there is no
+    wall); r ← G on F, 0 elsewhere. Returns |F|, Σ r, the number of points at the wall and the largest attraction."""
+    n_free, sum_r, at_wall, largest_pull = 0, 0.0, 0, 0.0
+    for i in range(g.size):
+        gradient = pel[i] + load - traction[i]
+        largest_pull = max(largest_pull, -traction[i])
+        if g[i] > 0 or gradient < 0 or not window[i]:
+            free[i] = True
+            r[i] = gradient
+            n_free += 1
+            sum_r += gradient
+        else:
+            free[i] = False
+            r[i] = 0.0
+        if g[i] <= 0 and window[i]:
+            at_wall += 1
+    return n_free, sum_r, at_wall, largest_pull
+
+
+@njit(cache=True)
+def _mask_shift(z, free, shift, r, r_prev):
+    """z ← z + shift on F, 0 elsewhere; returns Σ z, Σ z², Σ r z and Σ r_prev z."""
+    total, zz, rz, pz = 0.0, 0.0, 0.0, 0.0
+    for i in range(z.size):
+        if free[i]:
+            value = z[i] + shift
+            z[i] = value
+            total += value
+            zz += value * value
+            rz += r[i] * value
+            pz += r_prev[i] * value
+        else:
+            z[i] = 0.0
+    return total, zz, rz, pz
+
+
+@njit(cache=True)
+def _centre_on_free(values, free, mean):
+    for i in range(values.size):
+        if free[i]:
+            values[i] -= mean
+
+
+@njit(cache=True)
+def _direction(d, z, free, beta, r):
+    """d ← β d − z on F, 0 elsewhere; returns Σ d and the slope Σ r d."""
+    total, slope = 0.0, 0.0
+    for i in range(d.size):
+        if free[i]:
+            value = beta * d[i] - z[i]
+            d[i] = value
+            total += value
+            slope += r[i] * value
+        else:
+            d[i] = 0.0
+    return total, slope
+
+
+@njit(cache=True)
+def _dot(x, y):
+    total = 0.0
+    for i in range(x.size):
+        total += x[i] * y[i]
+    return total
+
+
+@njit(cache=True)
+def _centred_into(d, mean, out):
+    for i in range(d.size):
+        out[i] = d[i] - mean
+
+
+@njit(cache=True)
+def _fluctuation_into(g, h_f, out):
+    """out ← u_f = (g − ⟨g⟩) + h_f, the displacement fluctuation of the gap g."""
+    total = 0.0
+    for i in range(g.size):
+        total += g[i]
+    mean = total / g.size
+    for i in range(g.size):
+        out[i] = g[i] - mean + h_f[i]
+
+
+@njit(cache=True)
+def _closing_limit(g, d, stiffness, inside, length, pixel_compliance, approach):
+    """The step τ by which a stable approaching point of the window (k K_ii < 1) closes by ``approach`` (g + ρ);
+    inf for any other point."""
+    if d < 0 and inside and stiffness * pixel_compliance < 1.0:
+        return approach * (g + length) / -d
+    return np.inf
+
+
+@njit(cache=True)
+def _curvature_and_cap(g, d, w, stiffness, window, length, pixel_compliance, approach):
+    """Σ d K⁻¹d, Σ k d², and the largest step τ by which no stable approaching point closes by more than
+    ``approach`` (g + ρ) (inf if none)."""
+    dw, kdd, cap = 0.0, 0.0, np.inf
+    for i in range(d.size):
+        dw += d[i] * w[i]
+        kdd += stiffness[i] * d[i] * d[i]
+        cap = min(cap, _closing_limit(g[i], d[i], stiffness[i], window[i], length, pixel_compliance, approach))
+    return dw, kdd, cap
+
+
+@njit(cache=True)
+def _cap(g, d, stiffness, window, length, pixel_compliance, approach):
+    """The cap of :func:`_curvature_and_cap` alone."""
+    cap = np.inf
+    for i in range(d.size):
+        cap = min(cap, _closing_limit(g[i], d[i], stiffness[i], window[i], length, pixel_compliance, approach))
+    return cap
+
+
+@njit(cache=True)
+def _step_curvature(g, trial, pel, step, stiffness):
+    """Σ Δg Δp_el − Σ k Δg² and Σ Δg for the step taken, Δg = trial − g, Δp_el = step − pel (exact)."""
+    curvature, total = 0.0, 0.0
+    for i in range(g.size):
+        dg = trial[i] - g[i]
+        curvature += dg * (step[i] - pel[i] - stiffness[i] * dg)
+        total += dg
+    return curvature, total
+
+
+@njit(cache=True)
+def _trial_gap(g, d, tau, r, window, trial):
+    """trial ← g + τ d, clipped at 0 in the window; returns whether any point was clipped and Σ r (trial − g)."""
+    clipped, predicted = False, 0.0
+    for i in range(g.size):
+        value = g[i] + tau * d[i]
+        if value < 0 and window[i]:
+            value = 0.0
+            clipped = True
+        trial[i] = value
+        predicted += r[i] * (value - g[i])
+    return clipped, predicted
+
+
+@njit(cache=True)
+def _advance_traction(pel, w, tau, out):
+    for i in range(pel.size):
+        out[i] = pel[i] + tau * w[i]
+
+
+@njit(cache=True)
+def _work_terms(gap, h_f, pel):
+    """Σ g, Σ (g + h_f) p_el and Σ p_el: the elastic energy ½⟨u_f p_el⟩ without a pass over u_f."""
+    gap_sum, work, total = 0.0, 0.0, 0.0
+    for i in range(gap.size):
+        gap_sum += gap[i]
+        work += (gap[i] + h_f[i]) * pel[i]
+        total += pel[i]
+    return gap_sum, work, total
+
+
+@njit(cache=True)
+def _restore_mean(g, target):
+    """g ← max(g + c, 0) with c such that ⟨g⟩ = target > 0: the Euclidean projection onto {g ≥ 0, ⟨g⟩ = target}
+    (Newton on the convex, piecewise linear mean, from above: exact in a few passes)."""
+    n = g.size
+    total = 0.0
+    for i in range(n):
+        total += g[i]
+    c = target - total / n
+    for _ in range(100):
+        excess, positive = 0.0, 0
+        for i in range(n):
+            value = g[i] + c
+            if value > 0:
+                excess += value
+                positive += 1
+        excess = excess / n - target
+        if excess <= 1e-15 * target or positive == 0:
+            break
+        c -= excess * n / positive
+    for i in range(n):
+        g[i] = max(g[i] + c, 0.0)
+
+
+class _Energy:
+    """Π/A for one control (module docstring): the load term and the elastic traction of a gap field."""
+
+    def __init__(self, h, body, load, flat_position):
+        self.body, self.load, self.flat_position = body, load, flat_position
+        self.h_mean = float(h.mean(dtype=np.float64))
+        self.h_f = (h - self.h_mean).astype(body.dtype)
+        self.uniform = body.uniform_compliance                  # Φ(0) [m/Pa]
+        self.constrained = load is None and self.uniform == 0.0
+        self.mean_target = None if flat_position is None else flat_position - self.h_mean
+
+    def elastic_traction(self, g, out, work):
+        """out ← p_el = K⁻¹ u_f for the flat gap g (one FFT pair); ``work`` (grid-shaped) holds u_f."""
+        _fluctuation_into(g, self.h_f, work.reshape(-1))
+        return self.body.stiffness_into(work, out).reshape(-1)
+
+    def external_load(self, g, pel, traction):
+        """λ [Pa] at the gap g: P̄, the layer's ū/Φ(0), or (under the ⟨g⟩ constraint) the multiplier that
+        balances the open points' mean traction."""
+        if self.load is not None:
+            return self.load
+        if not self.constrained:
+            return (float(g.mean(dtype=np.float64)) + self.h_mean - self.flat_position) / self.uniform
+        imbalance, n_open = _open_mean_imbalance(g, pel, traction)
+        return imbalance / max(n_open, 1)
+
+    def value(self, g_sum, work, pel_sum, energy_sum, n):
+        """Π/A [J/m²] from the pass sums, and the magnitude of its parts (for the round-off allowance)."""
+        g_mean = g_sum / n
+        elastic = 0.5 * (work - g_mean * pel_sum) / n
+        interaction = energy_sum / n
+        if self.load is not None:
+            external = self.load * g_mean
+        elif not self.constrained:
+            external = 0.5 * (g_mean + self.h_mean - self.flat_position) ** 2 / self.uniform
+        else:
+            external = 0.0
+        return elastic + interaction + external, abs(elastic) + abs(interaction) + abs(external)
+
+
+class _PaddedBody:
+    """The free surface on its zero-padded 2n × 2n transform grid, as a periodic body: the padded operator K_T is
+    a Fourier multiplier with an exact inverse and a positive uniform mode. With the law and the wall acting on
+    the window only and the padding's displacement left free, the minimum has zero traction on the padding, so
+    the window's displacement is the free surface's (``docs/guide/interactions.md``)."""
+
+    def __init__(self, half):
+        self.dtype, self._fft, self._multiplier = half.dtype, half._fft, half._multiplier
+        self._size = float(half.transform_shape[0] * half.transform_shape[1])
+        self.uniform_compliance = float(self._multiplier[0, 0]) * self._size
+        self.largest_compliance = float(self._multiplier.max()) * self._size
+        self.pixel_compliance = half.pixel_compliance
+
+    def empty(self):
+        return self._fft.empty()
+
+    def _displacement_into(self, pressure, out):
+        self._fft.forward(pressure)
+        apply_multiplier(self._fft.spectrum, self._multiplier)
+        self._fft.backward(out)
+        return out
+
+    def stiffness_into(self, displacement, out):
+        self._fft.forward(displacement)
+        apply_inverse_multiplier(self._fft.spectrum, self._multiplier, self._size ** 2, 0.0)
+        self._fft.backward(out)
+        return out
+
+
+def _start(heights, half, load, flat_position, x0, tol, maxiter):
+    """What the solve starts from: ``x0``, else the hard-wall solution at the same control where it exists (None
+    otherwise: the undeformed surface); its name and FFT pairs."""
+    if isinstance(x0, ContactResult):
+        if x0.gap.shape != heights.shape:
+            raise ValueError(f"x0 has shape {x0.gap.shape}, but the grid has shape {heights.shape}")
+        return x0, "x0", 0.0
+    if x0 is not None:
+        raise TypeError(f"x0 of a smooth interaction must be a ContactResult (its gap starts the solve), got "
+                        f"{type(x0).__name__}")
+    h_max = float(heights.max())
+    if load is not None and load > 0:
+        start = solve_hard_wall(heights, half, mean_pressure=load, tol=max(tol, START_TOL), maxiter=maxiter,
+                                warn=False)
+    elif flat_position is not None and flat_position < h_max:
+        start = solve_hard_wall(heights, half, penetration=h_max - flat_position, tol=max(tol, START_TOL),
+                                maxiter=maxiter, warn=False)
+    else:
+        return None, "rigid", 0.0
+    return start, "hard wall", start.params["fft_pairs"]
+
+
+def solve_smooth(height_field, half, law, *, mean_pressure=None, total_force=None, penetration=None, tol,
+                 maxiter=10000, x0=None, callback=None, warn=True) -> ContactResult:
+    """Solve the contact of ``height_field`` with the flat under the smooth ``law`` (module docstring).
+
+    Called by :func:`~roughcontact.solvers.dispatch.solve_contact` for a smooth interaction: ``mean_pressure`` [Pa] or
+    ``total_force`` [N] of any sign (external load control), or ``penetration`` δ = max(h) − s [m] of any sign.
+    ``x0``: a previous result, whose gap starts the solve.
+    """
+    start = time.perf_counter()
+    grid = half.grid
+    given = {name: value for name, value in (("mean_pressure", mean_pressure), ("total_force", total_force),
+                                             ("penetration", penetration)) if value is not None}
+    if len(given) != 1:
+        raise ValueError(f"give exactly one of mean_pressure, total_force, penetration; got {sorted(given) or 'none'}")
+    (control, requested), = given.items()
+    requested = check_real(control, requested)
+    tol = check_real("tol", tol, low=0.0, high=1.0, low_open=True, high_open=True)
+    check_integer("maxiter", maxiter, low=0)
+    if callback is not None and not callable(callback):
+        raise TypeError(f"callback must be callable, got {type(callback).__name__}")
+    heights = _heights(height_field, half)
+    load = requested / grid.area if control == "total_force" else requested if control == "mean_pressure" else None
+    flat_position = None if load is not None else float(heights.max()) - requested
+    begin, start_kind, start_pairs = _start(heights, half, load, flat_position, x0, tol, maxiter)
+    nx, ny = grid.shape
+    if half.periodic:                                       # the grid itself
+        body, h = half, heights.reshape(-1)
+        window = np.ones(h.size, np.bool_)
+        largest_compliance = max(float(half.compliance(2 * math.pi / max(grid.lengths))), half.uniform_compliance)
+    else:                                                   # the window in the corner of the padded grid
+        body = _PaddedBody(half)
+        padded = np.zeros(half.transform_shape)
+        padded[:nx, :ny] = heights
+        h = padded.reshape(-1)
+        window = np.zeros(half.transform_shape, np.bool_)
+        window[:nx, :ny] = True
+        window = window.reshape(-1)
+        largest_compliance = body.largest_compliance
+    scale_to_body = h.size / heights.size                   # external load per body pixel = per window pixel / this
+    energy = _Energy(h, body, None if load is None else load / scale_to_body, flat_position)
+    if energy.constrained and energy.mean_target <= 0:
+        raise ValueError(f"penetration = {requested!r} m leaves no room for a gap on a periodic half-space: the mean "
+                         f"gap ⟨g⟩ = s − ⟨h⟩ must be > 0, i.e. penetration < max(h) − ⟨h⟩ = "
+                         f"{float(h.max()) - energy.h_mean!r} m")
+    g, start_pairs = _start_gap(begin, h, body, window, heights, flat_position, start_pairs)
+    if energy.constrained:
+        _restore_mean(g, energy.mean_target)
+    deviation = heights - float(heights.mean(dtype=np.float64))
+    gap_scale = float(np.sqrt(np.mean(deviation * deviation, dtype=np.float64))) or law.length or 1.0
+    state = _Solver(g, energy, law, gap_scale, start_pairs, window, largest_compliance, scale_to_body, grid)
+    return state.run(tol, maxiter, callback, warn, half, heights, control, requested, start_kind, start)
+
+
+def _start_gap(begin, h, body, window, heights, flat_position, start_pairs):
+    """The starting gap on the body's grid (flat) from the start's gap (periodic) or from its traction and flat
+    position (padded free surface: the padding's displacement is K_T of the window's traction); clipped at 0 in
+    the window. Returns it and the FFT pairs spent."""
+    if begin is None:                                       # the undeformed surface under the flat
+        position = float(heights.max()) if flat_position is None else flat_position
+        g = (position - h).astype(body.dtype)
+    elif window.all():
+        g = np.array(begin.gap, dtype=body.dtype).reshape(-1)
+    else:
+        traction = body.empty()
+        traction[...] = 0.0
+        nx, ny = heights.shape
+        traction[:nx, :ny] = begin.pressure
+        displacement = body._displacement_into(traction, body.empty())
+        g = (displacement.reshape(-1) - h + begin.flat_position).astype(body.dtype)
+        start_pairs += 1.0
+    g[window] = np.maximum(g[window], 0.0)
+    return g, start_pairs
+
+
+class _Solver:
+    """The work arrays and the iteration of :func:`solve_smooth` (fields, not closures, so that each step's
+    buffers swap without allocation)."""
+
+    def __init__(self, g, energy, law, gap_scale, start_pairs, window, largest_compliance, scale_to_body, grid):
+        body = energy.body
+        self.energy, self.law, self.body, self.gap_scale = energy, law, body, gap_scale
+        self.window, self.largest_compliance, self.scale_to_body = window, largest_compliance, scale_to_body
+        self.code = _law_code(law)
+        n, dtype = g.size, body.dtype
+        self.n = n
+        self.g, self.trial = g, np.empty(n, dtype)
+        self.pel_field, self.trial_field, self.work, self.z_field, self.w_field = (body.empty() for _ in range(5))
+        self.d, self.r, self.r_prev = np.zeros(n, dtype), np.zeros(n, dtype), np.zeros(n, dtype)
+        self.free = np.zeros(n, np.bool_)
+        self.law_now = [np.zeros(n, dtype) for _ in range(4)]     # p_int, k at g (the layered law: flux, R)
+        self.law_trial = [np.zeros(n, dtype) for _ in range(4)]   # the same at the trial gap
+        self.window_view = tuple(slice(0, m) for m in grid.shape)  # the grid in the corner of the body's fields
+        self.field = None                                          # the layered law, evaluated by field solves
+        if isinstance(law, ElectrostaticInteraction) and not law.local:
+            self.field = FieldLaw(law.stack, law.voltage, grid, model=law.field)
+        self.pixel_compliance = body.pixel_compliance
+        # float32 fields carry the energy's terms to a few ε32: a smaller rise is round-off, not a rise
+        self.round_off = max(ENERGY_ROUND_OFF, 3 * float(np.finfo(dtype).eps))
+        self.transforms = 2 * start_pairs                      # the start's solve included
+        self.unstable_steps = 0                                # accepted steps along which Π was concave
+        self.snapping = False                                  # whether the last accepted step was concave
+
+    def elastic(self, gap, field):
+        self.transforms += 2
+        return self.energy.elastic_traction(gap, field, self.work)
+
+    def evaluate(self, gap, pel, arrays):
+        """Π/A, its magnitude and Σ V at ``gap`` with elastic traction ``pel``; the law evaluated into ``arrays``."""
+        if self.field is None:
+            sums = _evaluate(self.law, self.code, gap, self.window, self.energy.h_f, pel, *arrays[:2])
+        else:
+            sums = _work_terms(gap, self.energy.h_f, pel) + (self.evaluate_field(gap, arrays),)
+        return self.energy.value(*sums, self.n) + (sums[-1],)
+
+    def evaluate_field(self, gap, arrays):
+        """The layered law's traction, stiffness and flux at ``gap`` into ``arrays`` (window only), warm-started
+        from the accepted gap's flux; returns Σ V."""
+        shape, inside = self.pel_field.shape, self.window_view
+        traction, stiffness, flux, columns = (array.reshape(shape)[inside] for array in arrays)
+        start = tuple(array.reshape(shape)[inside] for array in self.law_now[3:1:-1]) \
+            if self.field.evaluations else None
+        return self.field.evaluate(gap.reshape(shape)[inside], traction, stiffness, flux, columns, start=start)
+
+    def run(self, tol, maxiter, callback, warn, half, heights, control, requested, start_kind, start):
+        energy, body, n = self.energy, self.body, self.n
+        pel = self.elastic(self.g, self.pel_field)
+        value, magnitude, interaction = self.evaluate(self.g, pel, self.law_now)
+        history, residuals = [value], []
+        iterations, converged, message, detached = 0, False, "", False
+        previous_rz, tau, since_exact = 0.0, 0.0, 0
+        while True:
+            g, d, r, free = self.g, self.d, self.r, self.free
+            traction = self.law_now[0]
+            load = energy.external_load(g, pel, traction)
+            n_free, sum_r, at_wall, largest_pull = _residual(g, pel, traction, load, self.window, r, free)
+            # preconditioned residual z = K r on F (+ the largest compliance for the mean mode); zero mean on F
+            # under the ⟨g⟩ constraint
+            z = body._displacement_into(r.reshape(self.z_field.shape), self.z_field).reshape(-1)
+            self.transforms += 2
+            sum_z, zz, rz, prz = _mask_shift(z, free, (self.largest_compliance - energy.uniform) * sum_r / n, r,
+                                             self.r_prev)
+            if energy.constrained and n_free:           # centred on F, and the moments of the centred z
+                _, zz, rz, prz = _mask_shift(z, free, -sum_z / n_free, r, self.r_prev)
+            residual = math.sqrt(zz / n) / self.gap_scale
+            residuals.append(residual)
+            if self.field is not None:                  # the field solves as accurate as the step needs
+                self.field.tol = min(FIELD_TOL_CEILING, max(FIELD_TOL_FLOOR, FIELD_TOL_FACTOR * residual))
+            if callback is not None and iterations:
+                try:
+                    callback(SolverState(iterations, residual, at_wall / heights.size))
+                except StopIteration:
+                    message = f"halted by callback after {iterations} iterations (relative residual {residual:.3g})"
+                    break
+            if residual <= tol:
+                if since_exact:                             # accept only on an exactly recomputed p_el
+                    pel, since_exact = self.elastic(g, self.pel_field), 0
+                    residuals.pop()
+                    continue
+                converged, message = True, f"converged: relative residual {residual:.3g} <= tol {tol:g}"
+                break
+            if energy.load is not None and energy.load < 0 and at_wall == 0 \
+                    and largest_pull < -energy.load * self.scale_to_body:
+                detached = True
+                message = (f"no equilibrium: the tensile load {energy.load * self.scale_to_body:.6g} Pa exceeds the "
+                           f"attraction at every point (largest {largest_pull:.6g} Pa) with no contact left; the "
+                           "body separates (beyond pull-off)")
+                break
+            if iterations >= maxiter:
+                message = f"not converged after {iterations} iterations: relative residual {residual:.3g} (tol {tol:g})"
+                break
+            iterations += 1
+            beta = max(0.0, (rz - prz) / previous_rz) if previous_rz > 0 else 0.0     # Polak–Ribière⁺
+            accepted, step = False, None
+            for attempt_beta in ((beta, 0.0) if beta > 0 else (0.0,)):
+                if attempt_beta == 0.0 and beta > 0:        # retry along the preconditioned steepest descent
+                    d[:] = 0.0
+                sum_d, slope = _direction(d, z, free, attempt_beta, r)
+                if energy.constrained and n_free:       # centred on F: Σ r (d − m) = slope − m Σ r
+                    _centre_on_free(d, free, sum_d / n_free)
+                    slope -= sum_d / n_free * sum_r
+                    sum_d = 0.0
+                if slope >= 0:                              # not a descent direction
+                    continue
+                accepted, tau, step, since_exact, step_value = self.line_search(slope, sum_d, pel, value, magnitude,
+                                                                                tau, since_exact)
+                if accepted:
+                    break
+            if not accepted:
+                message = (f"stalled after {iterations} iterations: no decrease of the energy along the steepest "
+                           f"descent (relative residual {residual:.3g}, tol {tol:g})")
+                break
+            self.g, self.trial = self.trial, self.g
+            self.pel_field, self.trial_field = self.trial_field, self.pel_field
+            self.law_now, self.law_trial = self.law_trial, self.law_now
+            self.r, self.r_prev = self.r_prev, self.r
+            previous_rz = rz
+            pel = step
+            value, magnitude, interaction = step_value
+            history.append(value)
+        if not converged and warn:
+            warnings.warn(message, ConvergenceWarning, stacklevel=4)
+        return self.result(pel, interaction, half, heights, control, requested, iterations, residuals, converged,
+                           message, start, start_kind, tol, maxiter, detached, history)
+
+    def line_search(self, slope, sum_d, pel, value, magnitude, tau, since_exact):
+        """Projected Armijo search along d. Where the last step was concave (the solve is crossing an instability)
+        it first tries twice that step's length, evaluated exactly, without the model's FFT pair; otherwise, or if
+        that fails, it starts from the minimiser of the quadratic model along d (twice the last length where Π is
+        concave along d) and halves. Every first try is capped so that no stable point tunnels into contact.
+        Returns (accepted, τ, the trial's p_el, steps since an exact p_el, the trial's Π/A, its magnitude and Σ V
+        (None if rejected))."""
+        body, n, g, d = self.body, self.n, self.g, self.d
+        stiffness, length = self.law_now[1], float(self.law.length)
+        rejected = math.inf                                 # the snap-in try's length, if Armijo rejected it
+        if self.snapping:
+            first = min(2 * tau, _cap(g, d, stiffness, self.window, length, self.pixel_compliance, APPROACH))
+            trial = self.trial_step(first, None, pel, value, magnitude, since_exact)
+            if trial is not None:                           # concave along the step taken: the next one snaps too
+                curvature, total = _step_curvature(g, self.trial, pel, trial[0], stiffness)
+                self.snapping = self.curvature(curvature / n, total / n) <= 0
+                self.unstable_steps += self.snapping
+                return (True, first) + trial
+            rejected = first
+        self.snapping = False
+        d_mean = sum_d / n
+        _centred_into(d, d_mean, self.work.reshape(-1))
+        w = body.stiffness_into(self.work, self.w_field).reshape(-1)        # K⁻¹ d_f
+        self.transforms += 2
+        dw, kdd, cap = _curvature_and_cap(g, d, w, stiffness, self.window, length, self.pixel_compliance, APPROACH)
+        curvature = self.curvature((dw - kdd) / n, d_mean)
+        concave = curvature <= 0
+        if not concave:
+            tau = min(-slope / n / curvature, cap)
+        else:                                               # concave along d: step out; the cap and Armijo bound it
+            tau = min(2 * tau if tau > 0 else -slope / max(dw, 1e-300), cap, rejected / 2)
+        for _ in range(MAX_HALVINGS):
+            trial = self.trial_step(tau, w, pel, value, magnitude, since_exact)
+            if trial is not None:
+                self.snapping = concave
+                self.unstable_steps += concave
+                return (True, tau) + trial
+            tau *= 0.5
+        return False, tau, pel, since_exact, None
+
+    def curvature(self, curvature, mean):
+        """Π's curvature per unit area along a step from Σ Δg K⁻¹Δg − Σ k Δg² over n and ⟨Δg⟩: plus the layer's
+        uniform compression ⟨Δg⟩²/Φ(0) where the flat position is fixed."""
+        if not self.energy.constrained and self.energy.load is None:
+            curvature += mean ** 2 / self.energy.uniform
+        return curvature
+
+    def trial_step(self, tau, w, pel, value, magnitude, since_exact):
+        """The trial gap g + τ d projected onto g ≥ 0 (and ⟨g⟩ restored under that constraint) into ``trial``, and
+        its p_el: τ w added where nothing was clipped and ``w`` = K⁻¹d is given, else exact. Returns (p_el, steps
+        since an exact p_el, (Π/A, its magnitude, Σ V)) if the trial passes the Armijo test, else None."""
+        energy, n, g, trial, r = self.energy, self.n, self.g, self.trial, self.r
+        clipped, predicted = _trial_gap(g, self.d, tau, r, self.window, trial)
+        if clipped and energy.constrained:
+            _restore_mean(trial, energy.mean_target)
+            predicted = _dot(r, trial) - _dot(r, g)
+        exact = w is None or clipped or since_exact >= _REFRESH
+        if exact:
+            step = self.elastic(trial, self.trial_field)
+        else:
+            step = self.trial_field.reshape(-1)
+            _advance_traction(pel, w, tau, step)
+        evaluated = self.evaluate(trial, step, self.law_trial)
+        if evaluated[0] <= value + ARMIJO * predicted / n + self.round_off * magnitude:
+            return step, 0 if exact else since_exact + 1, evaluated
+        return None
+
+    def result(self, pel, interaction, half, heights, control, requested, iterations, residuals, converged, message,
+               start, start_kind, tol, maxiter, detached, history):
+        """The ContactResult on the window (the whole grid when periodic)."""
+        energy, law, g = self.energy, self.law, self.g
+        grid = half.grid
+        g_mean = float(g.mean(dtype=np.float64))
+        traction = self.law_now[0]
+        load = energy.external_load(g, pel, traction)
+        mean_displacement = energy.uniform * load
+        flat_position = g_mean + energy.h_mean - mean_displacement
+        nx, ny = grid.shape
+        body_shape = self.pel_field.shape
+
+        def window(values):
+            return np.array(values.reshape(body_shape)[:nx, :ny], dtype=half.dtype)
+
+        pressure = window(pel + load)
+        displacement = window(g - g_mean + energy.h_f + mean_displacement)
+        gap, traction = window(g), window(traction)
+        contact = gap <= 0
+        contact_pressure = np.where(contact, pressure - traction, 0.0).astype(half.dtype)
+        for array in (pressure, displacement, gap, contact, contact_pressure, traction):
+            array.flags.writeable = False
+        params = {"E_star": half.E_star, "grid": grid, "tol": tol, "maxiter": int(maxiter), "method": METHOD,
+                  "start": start_kind, "interaction": type(law).__name__, "kernel": half.description,
+                  "version": __version__, "control": control, "requested": requested,
+                  "fft_pairs": self.transforms / 2 + (self.field.fft_pairs if self.field else 0),
+                  "detached": detached,
+                  "energy_history": [float(v) * grid.area * self.scale_to_body for v in history]}
+        return ContactResult(
+            pressure=pressure, displacement=displacement, gap=gap, contact=contact,
+            contact_fraction=float(np.count_nonzero(contact)) / contact.size,
+            mean_pressure=float(load) * self.scale_to_body, mean_gap=float(gap.mean(dtype=np.float64)),
+            penetration=float(heights.max()) - flat_position,
+            elastic_energy=half.elastic_energy(pressure, displacement), iterations=int(iterations),
+            residuals=np.asarray(residuals, dtype=np.float64), converged=bool(converged), message=message,
+            wall_time=time.perf_counter() - start, params=params, contact_pressure=contact_pressure,
+            interaction_traction=traction, flat_position=float(flat_position),
+            interaction_energy=interaction * grid.pixel_area,
+            interaction=law, control=control, requested=float(requested), unstable_steps=self.unstable_steps)

@@ -1,0 +1,52 @@
+"""The input checks that every contact solver shares: the body, the heights on its grid, the interaction law,
+the default tolerance."""
+from __future__ import annotations
+
+import numpy as np
+
+from surfaces import HeightField
+from surfaces.validation import check_finite_array
+
+from ..body import ElasticHalfSpace
+from ..interactions import HardWall, Interaction
+
+
+def _check_body(half) -> None:
+    if not isinstance(half, ElasticHalfSpace):
+        raise TypeError(f"half must be an ElasticHalfSpace, got {type(half).__name__}")
+
+
+def _heights(height_field, half) -> np.ndarray:
+    if isinstance(height_field, HeightField):
+        if height_field.grid != half.grid:
+            raise ValueError(f"height_field.grid {height_field.grid} differs from the half-space grid {half.grid}")
+        heights = height_field.heights
+    else:
+        heights = check_finite_array("height_field", height_field)
+        if heights.shape != half.grid.shape:
+            raise ValueError(f"height_field has shape {heights.shape}, but the half-space grid has shape "
+                             f"{half.grid.shape}")
+    return np.ascontiguousarray(heights, dtype=half.dtype)
+
+
+def default_tolerance(dtype, interaction=None) -> float:
+    """The default relative tolerance of a solve in ``dtype``: 1e-8 in float64; in float32 1e-6 for the hard wall
+    (its round-off floor is near 1e-7) and 1e-5 with a smooth law (the energy's round-off stops the line search
+    near 4e-6)."""
+    if np.dtype(dtype) == np.float64:
+        return 1e-8
+    return 1e-5 if interaction is not None and interaction.smooth and not interaction.vanishes else 1e-6
+
+
+def _checked_interaction(interaction) -> Interaction:
+    """The law to solve with (HardWall() for None), checked."""
+    if interaction is None:
+        return HardWall()
+    if not isinstance(interaction, Interaction):
+        raise TypeError(f"interaction must be an Interaction (roughcontact.interactions), got "
+                        f"{type(interaction).__name__}")
+    if type(interaction) is Interaction:
+        raise ValueError("interaction = Interaction() is the abstract base class; pass a law such as HardWall(), "
+                         "ElectrostaticInteraction(stack, voltage) or a subclass that implements energy, traction "
+                         "and stiffness")
+    return interaction

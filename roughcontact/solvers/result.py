@@ -1,0 +1,142 @@
+"""The result of a contact solve: :class:`ContactResult` (fields, summary numbers, the solver's record; savable)
+and :class:`SolverState`, what a solver's ``callback`` sees after each step."""
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..interactions import ElectrostaticInteraction, HardWall, Interaction
+from ..io.results import SavableResult
+
+
+# Counting contact pixels over-estimates the true area by a perimeter term that falls as Δx/λ_s; Yastrebov,
+# Anciaux & Molinari (2017, Tribol. Int. 114:161) remove it by subtracting this fraction of a pixel per edge
+# between a contact and a non-contact pixel (docs/findings/contact_area.md measures it: κ flat from 4 to 64 px).
+PERIMETER_CORRECTION = (math.pi - 1 + math.log(2)) / 24
+
+
+def boundary_edges(contact: np.ndarray, periodic=(True, True)) -> int:
+    """Number M of pixel edges between a contact and a non-contact pixel; across the window's border only on
+    the ``periodic`` axes."""
+    edges = 0
+    for axis, wraps in enumerate(periodic):
+        edges += int(np.count_nonzero(np.diff(contact, axis=axis)))          # boolean diff: neighbours differ
+        if wraps:
+            edges += int(np.count_nonzero(contact.take(0, axis) != contact.take(-1, axis)))
+    return edges
+
+
+@dataclass(frozen=True, eq=False)
+class ContactResult(SavableResult):
+    """Solution of one contact problem. Fields in SI units; see ``docs/reference/conventions.md`` for signs.
+
+    Tractions [Pa], positive compressive: ``pressure`` p, the total normal traction that deforms the body
+    (u = K p), = ``contact_pressure`` (the wall's multiplier: ≥ 0, non-zero on the contact set only) +
+    ``interaction_traction`` p_int(g) of the ``interaction`` law (everywhere; −σ_el(g) for electroadhesion, 0
+    for the hard wall). ``mean_pressure`` <p> [Pa] is the external load (any sign; ``total_force`` [N]).
+    Geometry [m]: ``displacement`` u, ``gap`` g (≥ 0, 0 on the contact set), ``flat_position`` s, with
+    g = s − h + u, ``penetration`` δ = max(h) − s, ``mean_gap``; ``contact`` (bool mask), ``contact_fraction``
+    A/A0. Energies [J]: ``elastic_energy`` ½∫p u dA, ``interaction_energy`` ∫V(g) dA. Convergence:
+    ``iterations``, ``residuals`` (history of the relative error), ``converged``, ``message``, ``wall_time``
+    [s]. ``control`` ("mean_pressure", "total_force" or "penetration") and ``requested`` say what was fixed;
+    ``params`` the solver's settings and diagnostics. ``unstable_steps``: steps of a smooth law's solve along
+    which the energy was concave (the attraction out-softened the elastic stiffness): the solve crossed an
+    instability (a snap-in), so the equilibrium it reached may depend on the path to it (0 for the hard wall;
+    ``docs/guide/interactions.md``, "Several equilibria").
+    """
+
+    pressure: np.ndarray
+    displacement: np.ndarray
+    gap: np.ndarray
+    contact: np.ndarray
+    contact_fraction: float
+    mean_pressure: float
+    mean_gap: float
+    penetration: float
+    elastic_energy: float
+    iterations: int
+    residuals: np.ndarray
+    converged: bool
+    message: str
+    wall_time: float
+    params: dict = field(default_factory=dict)
+    contact_pressure: np.ndarray | None = None
+    interaction_traction: np.ndarray | None = None
+    flat_position: float = math.nan
+    interaction_energy: float = 0.0
+    interaction: Interaction = HardWall()
+    control: str = ""
+    requested: float = math.nan
+    unstable_steps: int = 0
+
+    @functools.cached_property
+    def perimeter_edges(self) -> int:
+        """Number M of pixel edges between a contact and a non-contact pixel (:func:`boundary_edges`, across the
+        window's border on the grid's periodic axes)."""
+        return boundary_edges(self.contact, self.params["grid"].periodic)
+
+    @property
+    def corrected_contact_fraction(self) -> float:
+        """A/A0 with the pixel-perimeter correction (N − c M)/N_total, c = (π − 1 + ln 2)/24 per contact edge
+        (Yastrebov et al. 2017; derived for square pixels)."""
+        return (np.count_nonzero(self.contact) - PERIMETER_CORRECTION * self.perimeter_edges) / self.contact.size
+
+    @property
+    def total_force(self) -> float:
+        """Total normal force F = <p> Lx Ly [N]: the external load, positive pushing the bodies together."""
+        return self.mean_pressure * self.params["grid"].area
+
+    @property
+    def total_energy(self) -> float:
+        """Elastic plus interaction energy [J] (the external load's work not included)."""
+        return self.elastic_energy + self.interaction_energy
+
+    @property
+    def electrostatic_force(self) -> float:
+        """Total electrostatic attraction F_el = ∫σ_el dA [N] (≥ 0) of an electrostatic solve, from the field the
+        solve used: Eq. 21 of ``gap`` pixel by pixel, or the layered field (the solved traction)."""
+        stack, voltage = self._electrostatics()
+        if self.interaction.local:
+            pressure = stack.pressure(self.gap, voltage)
+        else:
+            pressure = -np.asarray(self.interaction_traction, dtype=np.float64)
+        return float(np.sum(pressure, dtype=np.float64)) * self.params["grid"].pixel_area
+
+    @property
+    def equivalent_gap(self) -> float:
+        """Equivalent air gap d_eq of seed Eq. 25 over the solved window (contact points included) [m]:
+        ``DielectricStack.equivalent_gap`` of ``gap``, the seed's definition whatever field the solve used."""
+        stack, _ = self._electrostatics()
+        return stack.equivalent_gap(self.gap)
+
+    @property
+    def field_equivalent_gap(self) -> float:
+        """The uniform gap d [m] whose Eq. 21 attraction equals F_el/A0 of the solve (:attr:`electrostatic_force`):
+        the field-true counterpart of Eq. 25 (equal to it for the parallel-plate law; negative where the mean
+        attraction exceeds full contact's, ``nan`` at 0 V)."""
+        stack, voltage = self._electrostatics()
+        if voltage == 0.0:
+            return math.nan
+        return stack.gap_for_pressure(self.electrostatic_force / self.params["grid"].area, voltage)
+
+    def _electrostatics(self):
+        if not isinstance(self.interaction, ElectrostaticInteraction):
+            raise ValueError(f"the result's interaction is {type(self.interaction).__name__}, not an "
+                             "ElectrostaticInteraction; use DielectricStack.equivalent_gap(result.gap) for another stack")
+        return self.interaction.stack, self.interaction.voltage
+
+    def __repr__(self):
+        return (f"ContactResult(contact_fraction={self.contact_fraction:.6g}, mean_pressure={self.mean_pressure:.6g} "
+                f"Pa, mean_gap={self.mean_gap:.6g} m, converged={self.converged}, iterations={self.iterations})")
+
+
+@dataclass(frozen=True)
+class SolverState:
+    """What a ``callback`` sees after each CG step: iteration, relative rms gap error, contact fraction."""
+
+    iteration: int
+    residual: float
+    contact_fraction: float

@@ -1,0 +1,44 @@
+"""The multiscale fingerpad study: d_eq(F_N, U) and A_R(F_N, U) bottom-up from a scene (``docs/findings/equivalent_gap.md``).
+Layer 4: imports the solvers, the body, the interaction laws, the macroscopic model and io below it.
+
+Inside, imports run one way: :mod:`.scene` (the scene file) ← :mod:`.presets` (the measured preset table);
+:mod:`.fingertip` (the cap on the layered skin) ← :mod:`.apparent` (apparent area and nominal pressures) and
+:mod:`.patch` (the periodic patch and what is measured on its gap) ← :mod:`.records` (a task's records, a
+point's intervals) ← :mod:`.resolved` (ridges and roughness in one grid) and :mod:`.coupled` (the roughness as
+an interface law on the ridges) ← :mod:`.execution` (task store, pool, dask) ← :mod:`.run` (:func:`run_study`)
+← :mod:`.friction` (the seed's friction law fed bottom-up) ← :mod:`.report` (results on disk).
+
+The names below load their module on first use (PEP 562), so ``roughcontact.study.scene`` stays light.
+"""
+from __future__ import annotations
+
+from surfaces.lazy import lazy_attributes
+
+# public name -> submodule that defines it
+_LAZY = {
+    "DEFAULT_SCENE_TOML": "scene",
+    "Scene": "scene",
+    "load_scene": "scene",
+    "run_scene": "presets",
+    "fingertip_contact": "fingertip",
+    "apparent_contact": "apparent",
+    "apparent_scale": "apparent",
+    "patch_body": "patch",
+    "patch_grid": "patch",
+    "patch_surface": "patch",
+    "ridge_area_fraction": "patch",
+    "PatchRecord": "records",
+    "PointResult": "records",
+    "confidence_interval": "records",
+    "solve_chain": "resolved",
+    "InterfaceLaw": "coupled",
+    "coupled_chain": "coupled",
+    "interface_law": "coupled",
+    "TaskStore": "execution",
+    "StudyResult": "run",
+    "run_study": "run",
+    "bottom_up_friction": "friction",
+    "write_results": "report",
+}
+
+__getattr__, __dir__, __all__ = lazy_attributes(__name__, _LAZY, [])

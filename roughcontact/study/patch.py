@@ -1,0 +1,121 @@
+"""The ridge and roughness scales of the study: the periodic patch (grid, ridge and roughness heights, the skin
+under it) and what is measured on its solved gap — the ridge contact fraction A_R/A0 by morphological closing,
+the weighted gap slope, the ridge-area equivalent gap d_eq,R."""
+from __future__ import annotations
+
+import numpy as np
+import scipy.fft
+
+from surfaces import Grid, parallel_ridges, self_affine
+
+from .fingertip import skin_body
+from .scene import Scene
+
+
+def closing_lengths(scene: Scene) -> tuple:
+    """The closing diameters ℓ of A_R [m]: the scene's coarse-graining length, then its sensitivity factors on it."""
+    length = scene.ridge_area.coarse_graining
+    return (length, *(factor * length for factor in scene.ridge_area.sensitivity))
+
+
+def patch_grid(scene: Scene):
+    """The periodic patch grid: ``grid`` × ``grid`` pixels over ``periods`` ridge periods per side."""
+    side = scene.preset.periods * scene.ridges.period
+    return Grid((scene.preset.grid,) * 2, (side, side), periodic=True)
+
+
+def resolved_short_cutoff(scene: Scene) -> float:
+    """The micro-roughness short cut-off in use [m]: the scene's, raised to ``pixels_per_cutoff`` pixels."""
+    spacing = patch_grid(scene).spacing[0]
+    cutoff = max(scene.roughness.short_cutoff, scene.preset.pixels_per_cutoff * spacing)
+    if scene.roughness.enabled and cutoff >= scene.roughness.long_cutoff:
+        raise ValueError(f"roughness.long_cutoff = {scene.roughness.long_cutoff!r} m is not above the shortest "
+                         f"wavelength the preset resolves, {cutoff:g} m (presets.{scene.study.preset}.grid = "
+                         f"{scene.preset.grid} px, pixels_per_cutoff = {scene.preset.pixels_per_cutoff:g}); "
+                         "raise the grid or the long cut-off")
+    return cutoff
+
+
+def ridge_heights(scene: Scene, grid=None, realisation: int = 0) -> np.ndarray:
+    """Heights [m] of the parallel ridges on ``grid`` (default: the patch grid), with the sweat pores of
+    ``realisation`` (rng stream (seed + realisation, 1), apart from the roughness's); zero when disabled."""
+    grid = patch_grid(scene) if grid is None else grid
+    ridges = scene.ridges
+    if not ridges.enabled:
+        return np.zeros(grid.shape)
+    return parallel_ridges(grid, period=ridges.period, height=ridges.height, ridge_width_ratio=ridges.width_ratio,
+                           pore_density=ridges.pore_density, pore_diameter=ridges.pore_diameter,
+                           pore_depth=ridges.pore_depth,
+                           rng=np.random.default_rng((scene.study.seed + realisation, 1))).heights
+
+
+def roughness_heights(scene: Scene, realisation: int) -> np.ndarray:
+    """Heights [m] of the micro-roughness of ``realisation`` on the patch grid (rng seed + realisation); zero
+    when disabled."""
+    grid = patch_grid(scene)
+    if not scene.roughness.enabled:
+        return np.zeros(grid.shape)
+    if scene.roughness.long_cutoff > grid.lengths[0]:
+        raise ValueError(f"roughness.long_cutoff = {scene.roughness.long_cutoff!r} m exceeds the patch side "
+                         f"{grid.lengths[0]:g} m (presets.{scene.study.preset}.periods x ridges.period); "
+                         "valid range (short_cutoff, patch side]")
+    return self_affine(grid, scene.roughness.hurst, rms_height=scene.roughness.rms_height,
+                       long_cutoff=scene.roughness.long_cutoff, short_cutoff=resolved_short_cutoff(scene),
+                       rng=scene.study.seed + realisation).heights
+
+
+def patch_surface(scene: Scene, realisation: int) -> np.ndarray:
+    """Heights [m] of the patch of ``realisation``: ridges plus micro-roughness."""
+    heights = ridge_heights(scene, realisation=realisation) + roughness_heights(scene, realisation)
+    if not heights.any():
+        raise ValueError("the patch is flat: enable ridges (ridges.enabled, ridges.height > 0) or roughness "
+                         "(roughness.enabled)")
+    return heights
+
+
+def patch_body(scene: Scene, grid=None, threads=None):
+    """The skin under the patch on ``grid`` (default: the patch grid): a half-space of ``skin.E_star``, or the
+    layer bonded on it; in the preset's dtype, with ``threads`` FFT threads (default: ``roughcontact.fft``'s)."""
+    grid = patch_grid(scene) if grid is None else grid
+    return skin_body(grid, scene.skin, scene.skin.E_star, threads=threads, dtype=scene.preset.dtype)
+
+
+def realisation_count(scene: Scene) -> int:
+    """Distinct patches: the preset's realisations, one when nothing in the patch is random."""
+    pores = scene.ridges.enabled and scene.ridges.pore_density > 0
+    return scene.preset.realisations if scene.roughness.enabled or pores else 1
+
+
+def ridge_area_fraction(contact: np.ndarray, spacing: float, length: float) -> float:
+    """A_R/A0 of a periodic contact mask: the fraction covered after a morphological closing (dilation, then
+    erosion) with a disc of diameter ``length`` [m] on pixels of ``spacing`` [m]; micro-contacts closer than
+    ``length`` merge into one ridge contact. A disc under one pixel radius leaves the mask as it is. Periodic
+    convolutions by FFT (counts rounded), so the cost does not grow with the disc."""
+    contact = np.asarray(contact, dtype=float)
+    radius = 0.5 * length / spacing
+    if radius < 1:
+        return float(np.mean(contact))
+    rows, columns = (np.fft.fftfreq(n, 1 / n) for n in contact.shape)     # signed pixel offsets, wrapped
+    disc = (rows[:, None] ** 2 + columns[None, :] ** 2 <= radius ** 2).astype(float)
+    kernel = scipy.fft.rfft2(disc)
+
+    def covered(mask):
+        return scipy.fft.irfft2(scipy.fft.rfft2(mask) * kernel, s=contact.shape)
+
+    dilated = (covered(contact) > 0.5).astype(float)
+    return float(np.mean(covered(dilated) > disc.sum() - 0.5))
+
+
+def gap_slope(gap, weights, spacing) -> float:
+    """rms gap slope |∇g| weighted by ``weights`` (periodic central differences)."""
+    gx = (np.roll(gap, -1, 0) - np.roll(gap, 1, 0)) / (2 * spacing[0])
+    gy = (np.roll(gap, -1, 1) - np.roll(gap, 1, 1)) / (2 * spacing[1])
+    return float(np.sqrt(np.sum(weights * (gx ** 2 + gy ** 2)) / np.sum(weights)))
+
+
+def ridge_equivalent_gap(stack, equivalent_gap: float, ridge_area_fraction: float) -> float:
+    """d_eq,R [m]: the uniform gap over A_R that carries the attraction σ̄_el A0 of ``equivalent_gap`` d_eq [m]
+    over A0, σ_el(d_eq,R) A_R = σ_el(d_eq) A0, i.e. (c + d_eq,R/ε_a)² = (A_R/A0)(c + d_eq/ε_a)² (seed Eq. 21);
+    0 where A_R/A0 (``ridge_area_fraction``) is too small for a positive gap."""
+    electrical = np.sqrt(ridge_area_fraction) * stack.electrical_thickness(equivalent_gap)
+    return max(float(stack.eps_a * (electrical - stack.dielectric_offset)), 0.0)

@@ -1,0 +1,128 @@
+"""Measured errors and costs of the study's settings, and the cheapest setting for a target error.
+
+``preset_errors.csv`` beside this module is written by ``studies/preset_pareto.py --library``: one row per
+measured setting (the :class:`~roughcontact.study.scene.Preset` keys :data:`SETTING_KEYS` and ``realisations``), its
+CPU seconds on the default scene's four points (F_N = 0.5, 2 N; U = 0, 200 V; one FFT thread) and its error on
+each scene of the experiment, the largest relative difference of d_eq, A_R/A0 and F_T at 200 V from the
+reference setting (``docs/guide/presets.md``). :func:`measured` looks a preset up in it, so that a run's report quotes
+its error; :func:`choose` picks the cheapest setting whose error meets a target (``roughcontact run --preset
+auto --target-error 2%``), and :func:`auto_scene` puts it into a scene as ``[presets.auto]``.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from surfaces.validation import check_real
+
+from ..io.provenance import read_csv, write_csv
+from .scene import AUTO, Preset, Scene, load_scene
+
+#: The measured table (package data).
+TABLE_PATH = Path(__file__).with_name("preset_errors.csv")
+#: The Preset keys that a measured setting fixes (with ``realisations``); ``rings`` acts on the fingertip model
+#: only, which the measurement does not use.
+SETTING_KEYS = ("grid", "periods", "tolerance", "dtype", "warm_start", "scales", "pixels_per_cutoff")
+_TYPES = {"grid": int, "periods": int, "realisations": int, "tolerance": float, "pixels_per_cutoff": float,
+          "dtype": str, "scales": str, "warm_start": lambda text: {"True": True, "False": False}[text]}
+#: The scenes of the measurement: the default one, on which the presets are chosen, and two that are not.
+SCENES = ("default", "rough", "smooth")
+
+
+@dataclass(frozen=True)
+class Measurement:
+    """One measured setting: ``setting`` (the :data:`SETTING_KEYS` and ``realisations``), ``cpu_seconds`` of the
+    default scene's four points, ``errors`` per scene (fractions) and ``error``, the largest of them."""
+
+    setting: dict
+    cpu_seconds: float
+    errors: dict
+    error: float
+
+    def preset(self, rings: int) -> Preset:
+        """The setting as a :class:`Preset`, with ``rings`` (not measured) given."""
+        return Preset(rings=rings, **self.setting)
+
+    def matches(self, preset: Preset) -> bool:
+        return all(getattr(preset, key) == value for key, value in self.setting.items())
+
+
+def read_table(path=TABLE_PATH) -> tuple:
+    """The measured settings of the CSV table ``path`` (default: the library's), by increasing cost."""
+    rows = read_csv(path)
+    table = [Measurement(setting={key: _TYPES[key](row[key]) for key in (*SETTING_KEYS, "realisations")},
+                         cpu_seconds=float(row["cpu_seconds"]),
+                         errors={scene: float(row[f"error_{scene}"]) for scene in SCENES},
+                         error=float(row["error"])) for row in rows]
+    return tuple(sorted(table, key=lambda entry: entry.cpu_seconds))
+
+
+def write_table(entries, provenance, path=TABLE_PATH) -> Path:
+    """Write the per-setting ``entries`` (dicts with the :data:`SETTING_KEYS`, ``realisations``,
+    ``cpu_seconds``, ``error_<scene>`` for each of :data:`SCENES` and ``error``) as the table ``path``."""
+    columns = (*SETTING_KEYS, "realisations", "cpu_seconds", *(f"error_{scene}" for scene in SCENES), "error")
+    return write_csv(path, entries, provenance, columns)
+
+
+def measured(preset: Preset, table=None) -> Measurement | None:
+    """The measurement of ``preset``'s setting, or None when it was not measured."""
+    return next((entry for entry in (read_table() if table is None else table) if entry.matches(preset)), None)
+
+
+def parse_target(text) -> float:
+    """A target error as a fraction: ``"2%"`` → 0.02, ``"0.02"`` → 0.02; in (0, 1]."""
+    original = text
+    text = str(text).strip()
+    scale = 0.01 if text.endswith("%") else 1.0
+    try:
+        value = float(text.removesuffix("%")) * scale
+    except ValueError:
+        raise ValueError(f"target error {original!r} is not a number or a percentage (e.g. 2% or 0.02)") from None
+    return check_real("target error", value, low=0.0, high=1.0, low_open=True)
+
+
+def choose(target_error: float, table=None) -> Measurement:
+    """The cheapest measured setting whose error (the largest over the measured scenes) is at most
+    ``target_error`` (a fraction in (0, 1])."""
+    target_error = check_real("target_error", target_error, low=0.0, high=1.0, low_open=True)
+    table = read_table() if table is None else table
+    meeting = [entry for entry in table if entry.error <= target_error]
+    if not meeting:
+        best = min(entry.error for entry in table)
+        raise ValueError(f"target error {100 * target_error:g} % is below every measured setting's error; valid: "
+                         f"at least {100 * best:.3g} % (docs/guide/presets.md)")
+    return min(meeting, key=lambda entry: entry.cpu_seconds)
+
+
+def auto_scene(scene: Scene, target_error: float, table=None) -> Scene:
+    """``scene`` at the cheapest setting meeting ``target_error``, held as ``presets.auto`` (``rings`` from the
+    scene's standard preset)."""
+    chosen = choose(target_error, table)
+    return scene.with_setting(chosen.preset(rings=scene.presets["standard"].rings))
+
+
+def describe(preset: Preset, name: str, table=None) -> str:
+    """One sentence for a run's report: the measured error and cost of ``preset`` (named ``name``), or that
+    its setting was not measured."""
+    entry = measured(preset, table)
+    if entry is None:
+        return (f"The setting of preset `{name}` is not among the measured settings of `docs/guide/presets.md`: its "
+                "error against the reference setting is not known.")
+    errors = ", ".join(f"{100 * entry.errors[scene]:.2g} % on the {scene} scene" for scene in SCENES)
+    chosen = " (chosen by --preset auto)" if name == AUTO else ""
+    return (f"Measured error of preset `{name}`{chosen} against the reference setting (largest relative "
+            f"difference of d_eq, A_R/A0 and F_T at 200 V at F_N = 0.5, 2 N and U = 0, 200 V; `docs/guide/presets.md`): "
+            f"{errors}; {entry.cpu_seconds:.3g} CPU seconds for those four points. It holds for scenes like "
+            "these; a scene far from them may err differently.")
+
+
+def run_scene(path=None, preset: str | None = None, target_error=None, table=None) -> Scene:
+    """The scene of ``roughcontact run``: the scene file ``path`` (None: the default scene) at ``preset``, or,
+    with ``preset`` "auto", at the cheapest measured setting whose error meets ``target_error`` (a fraction or
+    a percentage such as ``"2%"``); ``target_error`` goes with "auto" only."""
+    if (preset == AUTO) != (target_error is not None):
+        raise ValueError(f"--preset auto and --target-error go together (got preset {preset!r}, target error "
+                         f"{target_error!r})")
+    if preset != AUTO:
+        return load_scene(path, preset=preset)
+    return auto_scene(load_scene(path), parse_target(target_error), table)

@@ -1,0 +1,389 @@
+"""Results of a fingerpad study on disk: netCDF, CSV, PNG and report.md, with the seed's friction law fed
+bottom-up (:mod:`roughcontact.study.friction`).
+
+:func:`write_results` writes ``results.nc`` (xarray + h5netcdf, the ``io`` dependencies; skipped
+with a message when missing), the CSV tables, the PNG figures and ``report.md`` into a results directory.
+"""
+from __future__ import annotations
+
+import importlib.util
+
+import numpy as np
+
+from .._version import __version__
+from ..fe.feed import fe_friction_columns
+from ..io.provenance import save_figure, write_csv
+from ..macro import LinearGap, PowerLawGap, SlidingFrictionModel
+from .friction import HOLDS_WITHIN, assumption_errors, bottom_up_friction
+from .presets import describe
+from .records import CONFIDENCE
+from .run import StudyResult
+
+MICRO = 1e6          # m -> µm in tables and figures
+MM2 = 1e6            # m² -> mm²
+#: Modules that writing results.nc needs (the ``io`` dependencies).
+NETCDF_MODULES = ("xarray", "h5netcdf", "h5py")
+
+
+def _friction_rows(result: StudyResult) -> list:
+    model, seed = bottom_up_friction(result), SlidingFrictionModel.paper_table1()
+    rigid = bottom_up_friction(result, c2=0.0)
+    rows = []
+    for force in result.normal_forces:
+        for voltage in result.voltages:
+            ours, theirs = model.state(force, voltage), seed.state(force, voltage)
+            unreduced = rigid.state(force, voltage)
+            rows.append({"normal_force_N": force, "voltage_V": voltage,
+                         "bottom_up_gap_um": float(ours.gap) * MICRO, "seed_gap_um": float(theirs.gap) * MICRO,
+                         "bottom_up_ridge_area_mm2": float(ours.initial_area) * MM2,
+                         "seed_ridge_area_mm2": float(theirs.initial_area) * MM2,
+                         "bottom_up_tangential_force_N": float(ours.tangential_force),
+                         "seed_tangential_force_N": float(theirs.tangential_force),
+                         "bottom_up_friction_coefficient": float(ours.friction_coefficient),
+                         "seed_friction_coefficient": float(theirs.friction_coefficient),
+                         "bottom_up_c2_0_friction_coefficient": float(unreduced.friction_coefficient),
+                         "bottom_up_area_saturated": bool(ours.area_saturated)})
+            # hook (roughcontact.fe, numpy only): the ridge-area reduction of the FE fingertip instead of c2
+            rows[-1].update(fe_friction_columns(model, force, voltage))
+    return rows
+
+
+# ---------------------------------------------------------------------------------------------------------
+# Tables
+# ---------------------------------------------------------------------------------------------------------
+#: Per-point fields: (StudyResult field, CSV/netCDF name, scale, unit, description).
+FIELDS = (
+    ("equivalent_gap", "equivalent_gap", MICRO, "um", "Eq. 25 equivalent air gap over the apparent area"),
+    ("ridge_equivalent_gap", "ridge_equivalent_gap", MICRO, "um",
+     "gap with sigma_el(d) A_R = mean sigma_el A0 (the friction law's gap)"),
+    ("mean_gap", "mean_gap", MICRO, "um", "arithmetic mean air gap over the apparent area"),
+    ("contact_fraction", "real_contact_fraction", 1.0, "1", "real (pixel) contact area / apparent area"),
+    ("electrostatic_pressure", "electrostatic_pressure", 1e-3, "kPa", "mean sigma_el over the apparent area"),
+    ("gap_slope", "gap_slope", 1.0, "1", "rms gap slope weighted by (c + g)^-2 (parallel-plate check)"),
+)
+
+
+def _point_rows(result: StudyResult) -> list:
+    rows = []
+    ridge_mean, ridge_half = result.summary("ridge_area_fractions")
+    means = {name: result.summary(name) for name, *_ in FIELDS}
+    for i, force in enumerate(result.normal_forces):
+        for j, voltage in enumerate(result.voltages):
+            point = result.points[i][j]
+            row = {"normal_force_N": force, "voltage_V": voltage,
+                   "apparent_area_mm2": point.apparent_area * MM2,
+                   "nominal_pressure_kPa": force / point.apparent_area * 1e-3}
+            for name, column, scale, unit, _ in FIELDS:
+                row[f"{column}_{unit}"] = means[name][0][i, j] * scale
+                row[f"{column}_ci95_{unit}"] = means[name][1][i, j] * scale
+            row["ridge_area_fraction"] = ridge_mean[i, j, 0]
+            row["ridge_area_fraction_ci95"] = ridge_half[i, j, 0]
+            row["electrostatic_force_N"] = means["electrostatic_pressure"][0][i, j] * point.apparent_area
+            row["converged"] = all(point.converged)
+            row["solve_seconds"] = point.seconds
+            rows.append(row)
+    return rows
+
+
+def _sensitivity_rows(result: StudyResult) -> list:
+    mean, half = result.summary("ridge_area_fractions")
+    return [{"normal_force_N": force, "voltage_V": voltage, "coarse_graining_um": length * MICRO,
+             "ridge_area_fraction": mean[i, j, k], "ridge_area_fraction_ci95": half[i, j, k]}
+            for i, force in enumerate(result.normal_forces) for j, voltage in enumerate(result.voltages)
+            for k, length in enumerate(result.coarse_graining)]
+
+
+def _realisation_rows(result: StudyResult) -> list:
+    rows = []
+    for i, force in enumerate(result.normal_forces):
+        for j, voltage in enumerate(result.voltages):
+            point = result.points[i][j]
+            for r in range(len(point.equivalent_gap)):
+                rows.append({"normal_force_N": force, "voltage_V": voltage, "realisation": r,
+                             **{f"{column}_{unit}": getattr(point, name)[r] * scale
+                                for name, column, scale, unit, _ in FIELDS},
+                             "ridge_area_fraction": point.ridge_area_fractions[0][r],
+                             "converged": point.converged[r], "iterations": point.iterations[r],
+                             "unstable_steps": point.unstable_steps[r]})
+    return rows
+
+
+# ---------------------------------------------------------------------------------------------------------
+# netCDF
+# ---------------------------------------------------------------------------------------------------------
+def dataset(result: StudyResult):
+    """The study as an ``xarray.Dataset`` (SI units in every variable's ``units``; scene, preset, seed and
+    version in the attributes)."""
+    import xarray as xr
+    scene = result.scene
+    coords = {"normal_force": ("normal_force", result.normal_forces, {"units": "N"}),
+              "voltage": ("voltage", result.voltages, {"units": "V"}),
+              "realisation": ("realisation", np.arange(result.array("equivalent_gap").shape[-1])),
+              "coarse_graining": ("coarse_graining", np.array(result.coarse_graining), {"units": "m"})}
+    dims = ("normal_force", "voltage", "realisation")
+    units = {"equivalent_gap": "m", "ridge_equivalent_gap": "m", "mean_gap": "m", "contact_fraction": "1",
+             "electrostatic_pressure": "Pa", "gap_slope": "1", "iterations": "1", "unstable_steps": "1"}
+    descriptions = {name: text for name, _, _, _, text in FIELDS}
+    variables = {name: (dims, result.array(name), {"units": unit, "long_name": descriptions.get(name, name)})
+                 for name, unit in units.items()}
+    variables["converged"] = (dims, result.array("converged").astype(np.int8), {"units": "1"})
+    variables["ridge_area_fraction"] = (("normal_force", "voltage", "coarse_graining", "realisation"),
+                                        result.array("ridge_area_fractions"),
+                                        {"units": "1", "long_name": "A_R / A0 after closing at coarse_graining"})
+    variables["apparent_area"] = (("normal_force",), result.array("apparent_area")[:, 0], {"units": "m2"})
+    variables["solve_seconds"] = (("normal_force", "voltage"), result.array("seconds"), {"units": "s"})
+    friction = _friction_rows(result) if len(result.normal_forces) > 1 else []
+    for key, unit in (("bottom_up_tangential_force_N", "N"), ("seed_tangential_force_N", "N"),
+                      ("bottom_up_friction_coefficient", "1"), ("seed_friction_coefficient", "1")):
+        if friction:
+            values = np.array([row[key] for row in friction]).reshape(len(result.normal_forces), -1)
+            variables[key.removesuffix("_N")] = (("normal_force", "voltage"), values, {"units": unit})
+    attrs = {"title": "roughcontact multiscale fingerpad study", "roughcontact_version": __version__,
+             "preset": scene.study.preset, "seed": scene.study.seed, "scene_toml": scene.to_toml(),
+             "short_cutoff_in_use": result.short_cutoff, "confidence": CONFIDENCE}
+    for key, value in scene.flat().items():
+        attrs[f"scene.{key}"] = int(value) if isinstance(value, bool) else value
+    return xr.Dataset(variables, coords=coords, attrs=attrs)
+
+
+# ---------------------------------------------------------------------------------------------------------
+# Figures
+# ---------------------------------------------------------------------------------------------------------
+def _figures(result: StudyResult, out, provenance) -> list:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    forces, voltages = result.normal_forces, result.voltages
+    d_mean, d_half = result.summary("equivalent_gap")
+    a_mean, a_half = result.summary("ridge_area_fractions")
+    gap_mean = result.summary("mean_gap")[0]
+    written = []
+    line = np.linspace(forces[0], forces[-1], 50)
+
+    figure, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
+    for j, voltage in enumerate(voltages):
+        left.errorbar(forces, d_mean[:, j] * MICRO, yerr=d_half[:, j] * MICRO, marker="o", capsize=3,
+                      label=f"Eq. 25, {voltage:g} V")
+    left.plot(line, LinearGap.paper_table1()(line, 0.0) * MICRO, "k--", label="seed Eq. 46 (fit)")
+    guo = np.linspace(0.5, 4.5, 50)
+    left.plot(guo, PowerLawGap.guo2019()(guo, 0.0) * MICRO, "k:", label="Guo et al. 2019, 150 V")
+    left.set(xlabel="normal force F_N [N]", ylabel="equivalent air gap [µm]", title="d_eq vs load")
+    left.legend(fontsize=7)
+    right.plot(forces, gap_mean[:, 0] * MICRO, "s-", label="arithmetic mean gap, 0 V")
+    right.plot(forces, d_mean[:, 0] * MICRO, "o-", label="Eq. 25, 0 V")
+    right.set(xlabel="normal force F_N [N]", ylabel="gap [µm]", title="mean gap vs Eq. 25")
+    right.legend(fontsize=7)
+    figure.tight_layout()
+    written.append(save_figure(figure, out / "equivalent_gap.png", provenance))
+    plt.close(figure)
+
+    figure, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
+    for i, force in enumerate(forces):
+        left.errorbar(voltages, d_mean[i] * MICRO, yerr=d_half[i] * MICRO, marker="o", capsize=3,
+                      label=f"{force:g} N")
+        right.errorbar(voltages, a_mean[i, :, 0], yerr=a_half[i, :, 0], marker="o", capsize=3, label=f"{force:g} N")
+    left.set(xlabel="voltage U [V]", ylabel="d_eq (Eq. 25) [µm]", title="voltage dependence of d_eq")
+    right.set(xlabel="voltage U [V]", ylabel="A_R / A0", title="ridge contact fraction vs voltage")
+    left.legend(fontsize=7)
+    right.legend(fontsize=7)
+    figure.tight_layout()
+    written.append(save_figure(figure, out / "voltage_dependence.png", provenance))
+    plt.close(figure)
+
+    if len(forces) > 1:
+        model, seed = bottom_up_friction(result), SlidingFrictionModel.paper_table1()
+        figure, axes = plt.subplots(1, 3, figsize=(14, 4))
+        for j, voltage in enumerate(voltages):
+            ours, theirs = model.state(line, voltage), seed.state(line, voltage)
+            colour = f"C{j}"
+            axes[0].plot(line, ours.initial_area * MM2, color=colour, label=f"bottom-up {voltage:g} V")
+            axes[0].plot(line, theirs.initial_area * MM2, "--", color=colour)
+            axes[1].plot(line, ours.tangential_force, color=colour, label=f"{voltage:g} V")
+            axes[1].plot(line, theirs.tangential_force, "--", color=colour)
+            axes[2].plot(line, ours.friction_coefficient, color=colour, label=f"{voltage:g} V")
+            axes[2].plot(line, theirs.friction_coefficient, "--", color=colour)
+        axes[0].set(xlabel="F_N [N]", ylabel="ridge area A_R0 [mm²]", title="A_R (solid) vs seed Eq. 9 (dashed)")
+        axes[1].set(xlabel="F_N [N]", ylabel="F_T [N]", title="friction force (dashed: seed Table 1)")
+        axes[2].set(xlabel="F_N [N]", ylabel="μ = F_T/F_N", title="friction coefficient (dashed: seed)")
+        for axis in axes:
+            axis.legend(fontsize=7)
+        figure.tight_layout()
+        written.append(save_figure(figure, out / "friction.png", provenance))
+        plt.close(figure)
+    return written
+
+
+# ---------------------------------------------------------------------------------------------------------
+# report.md
+# ---------------------------------------------------------------------------------------------------------
+def _cell(mean, half, scale=1.0, digits=2) -> str:
+    text = f"{mean * scale:.{digits}f}"
+    return text if not np.isfinite(half) else f"{text} ± {half * scale:.{digits}f}"
+
+
+def _table(result, mean, half, scale=1.0, digits=2, unit="") -> list:
+    header = "| F_N [N] | " + " | ".join(f"{v:g} V" for v in result.voltages) + " |"
+    lines = [header, "|---" * (len(result.voltages) + 1) + "|"]
+    for i, force in enumerate(result.normal_forces):
+        lines.append(f"| {force:g} | " + " | ".join(_cell(mean[i, j], half[i, j], scale, digits)
+                                                   for j in range(len(result.voltages))) + " |")
+    note = f"\n({unit}; ± the {CONFIDENCE:.0%} confidence half-width over the realisations)"
+    return lines + ([note] if unit else [])
+
+
+def _unstable_sentence(result: StudyResult) -> str:
+    """How many patch results crossed an instability on the way (concave solver steps), and from which voltage."""
+    crossed = result.array("unstable_steps") > 0                 # (forces, voltages, realisations)
+    if not crossed.any():
+        return "No solve crossed an instability."
+    lowest = result.voltages[int(np.flatnonzero(crossed.any(axis=(0, 2)))[0])]
+    return (f"{int(crossed.sum())} of {crossed.size} patch results came from solves that crossed an instability "
+            f"(concave steps, from {lowest:g} V on): where the attraction snaps regions into contact the "
+            "equilibrium may depend on the path to it (`docs/guide/interactions.md`, \"Several equilibria\").")
+
+
+def report_text(result: StudyResult, nc_written: bool, seconds: float | None = None) -> str:
+    """The Markdown report: what was computed, tables with intervals, and where the equivalent-gap
+    assumption holds and where it fails, with numbers."""
+    scene, preset = result.scene, result.scene.preset
+    forces, voltages = result.normal_forces, result.voltages
+    d_mean, d_half = result.summary("equivalent_gap")
+    r_mean, r_half = result.summary("ridge_equivalent_gap")
+    a_mean, a_half = result.summary("ridge_area_fractions")
+    c_mean, c_half = result.summary("contact_fraction")
+    slope = result.summary("gap_slope")[0]
+    errors = assumption_errors(result)
+    realisations = result.array("equivalent_gap").shape[-1]
+    converged = result.array("converged")
+    text = ["# Multiscale fingerpad study", "",
+            f"roughcontact {__version__}, preset `{scene.study.preset}`: patch {preset.periods} ridge period(s) "
+            f"= {preset.periods * scene.ridges.period * 1e3:g} mm on {preset.grid}² pixels, {realisations} "
+            f"realisation(s) (seed {scene.study.seed}), solver tolerance {preset.tolerance:g}, micro-roughness "
+            f"short cut-off in use {result.short_cutoff * MICRO:.3g} µm. Scene: `scene.toml` in this directory. "
+            f"{converged.size - int(converged.sum())} of {converged.size} patch results did not converge (also "
+            "from the solver's own start) and are left out of the means. " + _unstable_sentence(result)
+            + (f" Run time {seconds:.0f} s ({result.computed} points computed with {result.solves} solves, "
+               f"{result.array('seconds').size - result.computed} read back)." if seconds is not None else ""), "",
+            describe(preset, scene.study.preset), "",
+            "Figures: `equivalent_gap.png`, `voltage_dependence.png`, `friction.png`. Tables: `points.csv`, "
+            "`realisations.csv`, `ridge_area_sensitivity.csv`, `friction.csv`"
+            + (", all of it in `results.nc`." if nc_written else
+               "; `results.nc` was not written (xarray/h5netcdf missing: `pip install 'roughcontact[io]'`)."), "",
+            "Definitions: d_eq by seed Eq. 25 over the apparent area A0 (contact points included); A_R the real "
+            f"contact closed with a disc of {scene.ridge_area.coarse_graining * MICRO:g} µm diameter; d_eq,R the gap "
+            "with σ_el(d_eq,R) A_R = σ̄_el A0, which the seed's friction law (σ_el acting on A_R) needs. "
+            "Assumptions and their checks: `docs/findings/equivalent_gap.md` of the roughcontact repository.", "",
+            "## Equivalent air gap d_eq [µm] (Eq. 25)", "", *_table(result, d_mean, d_half, MICRO, 2, "µm"), "",
+            "## Ridge contact fraction A_R/A0", "", *_table(result, a_mean[:, :, 0], a_half[:, :, 0], 1.0, 3, "-"),
+            "", "## Real contact fraction", "", *_table(result, c_mean, c_half, 100.0, 2, "%"), "",
+            "## Ridge-area gap d_eq,R [µm] (fed to the friction law)", "",
+            *_table(result, r_mean, r_half, MICRO, 3, "µm"), ""]
+
+    text += ["## Where the equivalent-gap assumption holds and where it fails", ""]
+    low = f"{voltages[0]:g} V"                       # the reference voltage of the comparisons (0 V by default)
+    if len(voltages) > 1:
+        constant = errors["constant_gap"]
+        on = np.arange(len(voltages)) > 0
+        worst = np.nanmax(np.abs(constant))
+        held = [f"{v:g} V" for j, v in enumerate(voltages) if on[j] and np.all(np.abs(constant[:, j]) <= HOLDS_WITHIN)]
+        change = (d_mean[:, 0] - d_mean[:, -1]) / d_mean[:, 0]
+        text += [f"* **Voltage independence** (seed: d_eq depends on F_N only). From {low} to {voltages[-1]:g} V d_eq "
+                 "falls by " + ", ".join(f"{100 * c:.0f} % at {f:g} N" for c, f in zip(change, forces)) + ". "
+                 f"Using the {low} gap at voltage U misjudges the electrostatic force by up to {100 * worst:.0f} % "
+                 f"(table below); it stays within {100 * HOLDS_WITHIN:.0f} % at every load "
+                 + (f"for {', '.join(held)}" if held else "at no voltage") + ".", "",
+                 f"  Force error of the voltage-independent gap, σ_el(d_eq({low}), U)/σ̄_el(U) − 1 [%]:",
+                 "", *_error_table(forces, voltages[on], 100 * constant[:, on]), ""]
+        naive = errors["mean_gap"]
+        text += ["* **Arithmetic mean gap instead of Eq. 25**: the mean gap is "
+                 + ", ".join(f"{m * MICRO:.1f} µm" for m in result.summary("mean_gap")[0][:, 0])
+                 + f" at {low} against d_eq = " + ", ".join(f"{d * MICRO:.2f} µm" for d in d_mean[:, 0])
+                 + f"; σ_el at the mean gap changes the electrostatic force by {100 * np.nanmin(naive):+.0f} % to "
+                 f"{100 * np.nanmax(naive):+.0f} %.", ""]
+    else:
+        text += [f"* One voltage ({low}) in the scene: its dependence on the voltage is not tested.", ""]
+    seed_gap = LinearGap.paper_table1()(forces, 0.0)
+    guo = PowerLawGap.guo2019()(forces, 0.0)
+    inside = [f"{f:g} N" for f, d, h, fit in zip(forces, d_mean[:, 0], d_half[:, 0], seed_gap)
+              if abs(d - fit) <= (h if np.isfinite(h) else 0.0)]
+    text += [f"* **Against the seed's fit (Eq. 46)**: at {low} d_eq = "
+             + ", ".join(f"{d * MICRO:.2f} µm" for d in d_mean[:, 0]) + " against Eq. 46's "
+             + ", ".join(f"{d * MICRO:.2f}" for d in seed_gap) + " µm and Guo et al.'s power law "
+             + ", ".join(f"{d * MICRO:.2f}" for d in guo) + f" µm at F_N = {', '.join(f'{f:g}' for f in forces)} N; "
+             f"Eq. 46 lies inside the confidence interval at {', '.join(inside) if inside else 'no load'}. "
+             f"d_eq falls with load at every voltage: {_yes(np.diff(d_mean, axis=0) < 0)}; A_R grows with load: "
+             f"{_yes(np.diff(a_mean[:, :, 0], axis=0) > 0)}; A_R grows with voltage: "
+             f"{_yes(np.diff(a_mean[:, :, 0], axis=1) > 0)} (realisation means).", "",
+             f"* **Parallel-plate field per pixel**: the (c + g)⁻²-weighted rms gap slope is {np.min(slope):.2f} to "
+             f"{np.max(slope):.2f}; the pixel-wise parallel-plate field (Eq. 21 per pixel) is accurate where this "
+             "is well below 1 and errs by a fraction of the order of its square where it is not.", ""]
+    lengths = result.coarse_graining
+    if len(lengths) > 1:
+        ratio = a_mean[:, :, 1:] / a_mean[:, :, :1]
+        text += ["* **A_R depends on its coarse-graining length**: closing at "
+                 + ", ".join(f"{l * MICRO:g} µm gives {np.min(ratio[:, :, k]):.2f}–{np.max(ratio[:, :, k]):.2f} ×"
+                             for k, l in enumerate(lengths[1:]))
+                 + f" the A_R at {lengths[0] * MICRO:g} µm (`ridge_area_sensitivity.csv`). d_eq does not depend "
+                 "on it; the friction law's F_el = σ_el(d_eq,R) A_R = σ̄_el A0 does not either, only the "
+                 "tangential area reduction (Eq. 44, η = c₂/A_R0) does.", ""]
+    if len(forces) > 1:
+        rows = _friction_rows(result)
+        saturated = sum(row["bottom_up_area_saturated"] for row in rows)
+        text += ["## Friction: bottom-up vs the seed's fitted model (Table 1)", "",
+                 "μ = F_T/F_N: bottom-up / bottom-up with the FE fingertip's area reduction instead of c₂ "
+                 "(`roughcontact.fe.feed`, docs/guide/fe_fingertip.md) / bottom-up without the tangential area "
+                 "reduction (c₂ = 0) / seed. "
+                 "Where the bottom-up A_R0 is below √c₂ μ0 F_N the seed's reduction law (Eq. 43, c₂ fitted to its "
+                 "own, larger ridge area) empties the ridge area and F_T = μ0 F_N (the saturation rule of "
+                 f"`docs/guide/friction_model.md`): {saturated} of {len(rows)} "
+                 "points.", "",
+                 "| F_N [N] | " + " | ".join(f"{v:g} V" for v in voltages) + " |",
+                 "|---" * (len(voltages) + 1) + "|"]
+        for i, force in enumerate(forces):
+            cells = [rows[i * len(voltages) + j] for j in range(len(voltages))]
+            text.append(f"| {force:g} | " + " | ".join(f"{c['bottom_up_friction_coefficient']:.3f} / "
+                                                       f"{c['bottom_up_fe_friction_coefficient']:.3f} / "
+                                                       f"{c['bottom_up_c2_0_friction_coefficient']:.3f} / "
+                                                       f"{c['seed_friction_coefficient']:.3f}" for c in cells) + " |")
+        text += ["", "Ridge area A_R0 [mm²] (bottom-up / seed Eq. 9):", "",
+                 "| F_N [N] | " + " | ".join(f"{v:g} V" for v in voltages) + " |",
+                 "|---" * (len(voltages) + 1) + "|"]
+        for i, force in enumerate(forces):
+            cells = [rows[i * len(voltages) + j] for j in range(len(voltages))]
+            text.append(f"| {force:g} | " + " | ".join(f"{c['bottom_up_ridge_area_mm2']:.1f} / "
+                                                       f"{c['seed_ridge_area_mm2']:.1f}" for c in cells) + " |")
+        text.append("")
+    return "\n".join(text) + "\n"
+
+
+def _yes(condition) -> str:
+    return "n/a" if np.size(condition) == 0 else "yes" if np.all(condition) else "no"
+
+
+def _error_table(forces, voltages, values) -> list:
+    lines = ["  | F_N [N] | " + " | ".join(f"{v:g} V" for v in voltages) + " |",
+             "  " + "|---" * (len(voltages) + 1) + "|"]
+    for i, force in enumerate(forces):
+        lines.append(f"  | {force:g} | " + " | ".join(f"{values[i, j]:+.0f}" for j in range(len(voltages))) + " |")
+    return lines
+
+
+def write_results(result: StudyResult, out, provenance, seconds: float | None = None) -> dict:
+    """Write ``results.nc`` (when xarray and h5netcdf are installed), the CSV tables, the figures and
+    ``report.md`` into the directory ``out``; returns ``{"netcdf": written?, "files": [paths]}``."""
+    files = [write_csv(out / "points.csv", _point_rows(result), provenance),
+             write_csv(out / "realisations.csv", _realisation_rows(result), provenance),
+             write_csv(out / "ridge_area_sensitivity.csv", _sensitivity_rows(result), provenance)]
+    if len(result.normal_forces) > 1:
+        files.append(write_csv(out / "friction.csv", _friction_rows(result), provenance))
+    files += _figures(result, out, provenance)
+    netcdf = all(importlib.util.find_spec(name) is not None for name in NETCDF_MODULES)
+    if netcdf:
+        data = dataset(result)
+        data.attrs["provenance"] = provenance.line
+        data.to_netcdf(out / "results.nc", engine="h5netcdf")
+        files.append(out / "results.nc")
+    report = out / "report.md"
+    report.write_text(report_text(result, netcdf, seconds))
+    return {"netcdf": netcdf, "files": files + [report]}

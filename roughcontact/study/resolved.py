@@ -1,0 +1,45 @@
+"""The resolved chain, one task of the study: the patch with ridges and micro-roughness in one grid, solved with
+the electrostatic attraction at one voltage under every load in order (``docs/findings/equivalent_gap.md``)."""
+from __future__ import annotations
+
+import time
+
+from ..interactions import ElectrostaticInteraction
+from ..solvers import solve_contact
+from .apparent import apparent_scale, ring_count
+from .patch import closing_lengths, patch_body, patch_grid, patch_surface
+from .records import patch_record
+from .scene import Scene
+
+
+def solve_chain(scene: Scene, realisation: int, voltage_index: int, threads: int | None = None,
+                apparent: tuple | None = None) -> tuple:
+    """One task of the study: the patch of ``realisation`` at voltage ``loads.voltages[voltage_index]`` under
+    every load of the scene in order, each ring's solve warm-started from its result at the previous load (cold
+    with the preset's ``warm_start`` false; a warm start that fails is repeated cold). ``threads`` FFT threads
+    (default: ``roughcontact.fft.default_threads``); ``apparent``, the scene's :func:`apparent_scale` (computed
+    when not given). Returns one :class:`PatchRecord` per load; deterministic, so the records do not depend on
+    where the task runs."""
+    stack = scene.screen.stack()
+    voltage = scene.loads.voltages[voltage_index]
+    law = ElectrostaticInteraction(stack, voltage=voltage) if voltage > 0 else None       # 0 V: the hard wall
+    heights, body = patch_surface(scene, realisation), patch_body(scene, threads=threads)
+    lengths, spacing = closing_lengths(scene), patch_grid(scene).spacing
+    warm_start = scene.preset.warm_start
+    latest = [None] * ring_count(scene)                         # each ring's last result: the next load's x0
+    records = []
+    for _, pressures in apparent_scale(scene) if apparent is None else apparent:
+        start, solves = time.perf_counter(), 0
+        for k, pressure in enumerate(pressures):
+            x0 = latest[k] if warm_start else None
+            result = solve_contact(heights, body, mean_pressure=pressure, interaction=law,
+                                   tol=scene.preset.tolerance, x0=x0, warn=False)
+            solves += 1
+            if not result.converged and x0 is not None:          # a failed warm start: the solver's own start
+                result = solve_contact(heights, body, mean_pressure=pressure, interaction=law,
+                                       tol=scene.preset.tolerance, warn=False)
+                solves += 1
+            latest[k] = result
+        records.append(patch_record(stack, voltage, latest, lengths, spacing, solves,
+                                     time.perf_counter() - start))
+    return tuple(records)

@@ -1,0 +1,149 @@
+"""The multiscale fingerpad study: d_eq(F_N, U) and A_R(F_N, U) bottom-up from a scene (``docs/findings/equivalent_gap.md``).
+
+For each normal force F_N and voltage U:
+
+1. **Apparent scale** (:func:`~.apparent.apparent_contact`): the apparent area A0 and the nominal pressures over
+   it — one uniform pressure F_N/A0 for the power law of seed Eq. 27, or the Hertz pressure averaged over
+   ``rings`` rings of equal area for a fingertip cap.
+2. **Ridge and roughness scales** (:func:`~.patch.patch_surface`, :func:`~.patch.patch_body`): a periodic patch of
+   ``periods`` ridge periods with the ridges and the self-affine micro-roughness resolved in one grid, pressed at
+   each nominal pressure with the electrostatic attraction acting (``roughcontact.solve_contact``; 0 V is the
+   hard wall). A scene without roughness is solved for one realisation only (the others would be identical).
+3. **Averages over the apparent area** (rings of equal area weigh equally): d_eq by seed Eq. 25
+   (``DielectricStack.equivalent_gap`` of all gaps), the arithmetic mean gap, the real contact fraction, the
+   ridge contact fraction A_R/A0 (:func:`~.patch.ridge_area_fraction`: the real contact closed morphologically
+   with a disc of diameter ℓ, at ℓ and at the scene's sensitivity factors on it), the mean attraction σ̄_el and
+   the ridge-area equivalent gap d_eq,R with σ_el(d_eq,R) A_R = σ̄_el A0 (the gap that the seed's friction law,
+   which applies σ_el on A_R, needs).
+4. **Realisations**: ``realisations`` rough patches (rng seed + r); every reported number is a mean with a 95 %
+   Student-t confidence interval (:func:`~.records.confidence_interval`) over the realisations whose solves
+   converged (a solve that fails from its warm start is repeated from the solver's own start first).
+
+**Tasks.** The sweep is split into independent, deterministic tasks, one per (realisation r, voltage index j)
+(:func:`~.resolved.solve_chain`): every load in order, each solve warm-started from the previous load's result
+(``x0=``; cold solves with the preset's ``warm_start`` false). A task takes the scene, r, j and its FFT thread
+count and returns one :class:`~.records.PatchRecord` per load; nothing passes between tasks, so a point's numbers
+do not depend on where its tasks ran or in which order they finished. :func:`run_study` runs them in this
+process, in a local process pool or on a dask.distributed cluster through one loop (submit, consume as
+completed, store), and assembles the :class:`~.records.PointResult` of each (F_N, U) from the records of its
+realisations.
+
+Finished tasks are stored as they arrive in a :class:`~.execution.TaskStore` directory, so an interrupted run
+resumes without recomputing finished tasks; a different scene in the same directory is refused
+(:class:`~.execution.SceneMismatch`).
+"""
+from __future__ import annotations
+
+from concurrent.futures.process import BrokenProcessPool
+from dataclasses import dataclass
+
+import numpy as np
+
+from .apparent import apparent_scale
+from .coupled import coupled_chain
+from .execution import InProcess, TaskStore, check_executor, make_executor
+from .patch import closing_lengths, realisation_count, resolved_short_cutoff
+from .records import confidence_interval, point_result
+from .resolved import solve_chain
+from .scene import Scene
+
+
+@dataclass(frozen=True)
+class StudyResult:
+    """All points of a study; ``points[i][j]`` at ``normal_forces[i]``, ``voltages[j]``; ``coarse_graining``
+    the A_R closing diameters [m] (the scene's first); ``computed`` points with a task solved in this run and
+    ``solves`` the contact solves of this run; ``short_cutoff`` the micro-roughness cut-off in use [m]."""
+
+    scene: Scene
+    points: tuple
+    coarse_graining: tuple
+    short_cutoff: float
+    computed: int
+    solves: int
+
+    @property
+    def normal_forces(self) -> np.ndarray:
+        return np.array(self.scene.loads.normal_forces)
+
+    @property
+    def voltages(self) -> np.ndarray:
+        return np.array(self.scene.loads.voltages)
+
+    def array(self, name: str) -> np.ndarray:
+        """Field ``name`` of every point: shape (loads, voltages, realisations), or (…, lengths, realisations)
+        for ``ridge_area_fractions``, or (loads, voltages) for scalars."""
+        return np.array([[getattr(point, name) for point in row] for row in self.points], dtype=float)
+
+    def summary(self, name: str) -> tuple:
+        """``(mean, 95 % half-width)`` of field ``name`` over the realisations whose solves converged."""
+        values, converged = self.array(name), self.array("converged").astype(bool)
+        if converged.ndim < values.ndim:                       # ridge_area_fractions: (…, lengths, realisations)
+            converged = converged[:, :, None, :]
+        return confidence_interval(np.where(converged, values, np.nan))
+
+    @property
+    def ridge_area(self) -> np.ndarray:
+        """A_R/A0 at the scene's coarse-graining length, shape (loads, voltages, realisations)."""
+        return self.array("ridge_area_fractions")[:, :, 0, :]
+
+
+def run_study(scene: Scene, directory=None, progress: bool = False, workers: int | None = None,
+              dask: str | None = None) -> StudyResult:
+    """Run (or resume, with a ``directory``) the study of ``scene``; ``progress`` shows a tqdm bar of points.
+
+    The tasks (:func:`solve_chain`, or :func:`roughcontact.study.coupled.coupled_chain` where the preset's ``scales``
+    is "coupled"; one per realisation and voltage) run in a local pool of ``workers``
+    processes (default: the cores this process may run on, at most one per task), each task with cores //
+    workers FFT threads; ``workers=1`` runs them in this process. ``dask``, the address of a dask.distributed
+    scheduler (``"tcp://host:8786"``), runs them on that cluster instead (one FFT thread per task; needs
+    ``roughcontact[parallel]``). Every executor gives the same records for the same FFT plans. A script that
+    uses the pool needs Python's ``if __name__ == "__main__":`` guard around its work (the workers import it).
+    Interrupted (Ctrl-C), the waiting tasks are cancelled and the pool's workers stopped (a cluster's running
+    tasks finish and are dropped); the finished ones stay in ``directory``.
+    """
+    check_executor(workers, dask)
+    store = None if directory is None else TaskStore(directory, scene)
+    forces, voltages = scene.loads.normal_forces, scene.loads.voltages
+    count = realisation_count(scene)
+    cutoff = resolved_short_cutoff(scene) if scene.roughness.enabled else float("nan")
+    order = [(r, j) for j in range(len(voltages)) for r in range(count)]
+    records = {}
+    if store is not None:
+        records = {key: done for key in order if (done := store.load(*key)) is not None}
+    todo = [key for key in order if key not in records]
+    executor = make_executor(workers, dask, len(todo)) if todo else InProcess()
+    bar = None
+    if progress and todo:
+        from tqdm import tqdm
+        bar = tqdm(total=len(todo) * len(forces) / count, desc="roughcontact run", unit="point",
+                   bar_format="{l_bar}{bar}| {n:.4g}/{total:.4g} [{elapsed}<{remaining}]")
+    task = solve_chain
+    if scene.preset.scales == "coupled":            # the micro-roughness as an interface law (.coupled)
+        task = coupled_chain
+    apparent = apparent_scale(scene)                # once, for every task
+    try:
+        with executor:
+            futures = {executor.submit(task, scene, r, j, executor.threads, apparent): (r, j) for r, j in todo}
+            for future in executor.as_completed(list(futures)):
+                key = futures[future]
+                records[key] = future.result()
+                if store is not None:
+                    store.save(*key, records[key])
+                if bar is not None:
+                    bar.update(len(forces) / count)
+    except BrokenProcessPool as error:
+        raise RuntimeError("a worker of the study's process pool ended abruptly: killed (e.g. out of memory), or, "
+                           "in a script, the pool was started without the 'if __name__ == \"__main__\":' guard "
+                           "around the script's work (the workers import the script); add the guard, or run "
+                           "in this process with workers=1. Finished tasks are kept in the results "
+                           "directory") from error
+    finally:
+        if bar is not None:
+            bar.close()
+        if store is not None:
+            store.release()
+    table = tuple(tuple(point_result(force, voltage, *apparent[i], [records[(r, j)][i] for r in range(count)])
+                        for j, voltage in enumerate(voltages)) for i, force in enumerate(forces))
+    return StudyResult(scene=scene, points=table, coarse_graining=closing_lengths(scene), short_cutoff=cutoff,
+                       computed=len({j for _, j in todo}) * len(forces),
+                       solves=sum(record.solves for key in todo for record in records[key]))

@@ -1,0 +1,550 @@
+"""Scenes of the multiscale fingerpad study: a TOML file validated into frozen dataclasses.
+
+A scene says what to model (``docs/getting-started/tutorial.md``): the fingerpad's apparent contact, the fingerprint ridges,
+the micro-roughness on them, the skin, the screen's dielectric stack, the loads and voltages, the A_R
+coarse-graining length and the accuracy preset. Values are SI (m, Pa, N, V). The defaults live in one place,
+:data:`DEFAULT_SCENE_TOML` (each value with its source in ``docs/references.md``); a user's file overrides any
+subset of them::
+
+    from roughcontact.study.scene import load_scene
+    scene = load_scene("my_scene.toml", preset="draft")     # or load_scene() for the default scene
+    print(scene.to_toml())
+
+An unknown section or key, a value of the wrong kind or out of range raises ``ValueError`` naming the key, its
+line in the file and the valid values. Python 3.11+ reads TOML with the standard ``tomllib``; 3.10 needs
+``tomli`` (a dependency there).
+"""
+from __future__ import annotations
+
+import dataclasses
+import json
+import re
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from surfaces.ridges import ridge_fraction
+from surfaces.validation import check_integer, check_real
+
+from ..electrostatics import DielectricStack
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:                                    # pragma: no cover - exercised on Python 3.10 only
+    import tomli as tomllib
+
+PRESETS = ("draft", "standard", "reference")
+#: The preset name of a setting chosen from the measured table for a target error (``roughcontact.study.presets``);
+#: a scene at it carries the chosen setting as ``[presets.auto]``.
+AUTO = "auto"
+#: Floating-point types of the solves (``Preset.dtype``) and the scale paths (``Preset.scales``).
+DTYPES = ("float64", "float32")
+SCALES = ("resolved", "coupled")
+
+#: The default scene: every value with its source (docs/references.md sections) or marked as an estimate.
+DEFAULT_SCENE_TOML = """\
+# roughcontact scene: the default fingerpad on a capacitive touchscreen (SI units: m, Pa, N, V).
+# Sources: docs/references.md (section numbers given per value); [estimate] marks a modelling choice.
+
+[fingerpad]
+# Apparent contact area A0(F_N): "power_law" A0 = area_prefactor * F_N^area_exponent (seed Eq. 27, Dzidek et
+# al. 2017, references.md §0.5) with uniform nominal pressure F_N/A0, or "fingertip": a Hertzian cap of
+# radius and E_star (seed R* = 1 cm, E* = 47.4 kPa, references.md §1.1), Hertz pressure over the disc.
+# layer = true (fingertip only): the cap is pressed onto the [skin] layer bonded on tissue of E_star, solved on
+# a free grid of layer_grid x layer_grid pixels (roughcontact.study.fingertip; docs/findings/equivalent_gap.md, "The apparent
+# scale on the layered skin": A0 2.5-4.2 % smaller, the outer ring's pressure 10-18 % higher at 0.5-2 N).
+model = "power_law"
+area_prefactor = 9.19e-05      # m^2 N^-area_exponent (91.9 mm^2)
+area_exponent = 0.37
+radius = 0.01                  # m
+E_star = 47400.0               # Pa
+layer = false
+layer_grid = 128
+
+[ridges]
+# Parallel fingerprint ridges (surfaces.parallel_ridges), references.md §1.1.
+enabled = true
+period = 0.00045               # m, adult mean ridge breadth 0.43-0.48 mm (Kralik & Novotny 2003)
+height = 5e-05                 # m, crest to furrow, 50-100 um (OCT, Adams et al. 2013)
+width_ratio = 1.5              # ridge/furrow width at mid-height: 0.27 mm ridges, 0.18 mm furrows
+# Sweat pores on the crests, placed at random per realisation: 300-1000 cm^-2 (seed), openings 88-220 um
+# (Ashbaugh 1999), references.md §1.1. Off by default: a one-period patch (0.2 mm^2) holds one pore at 500 cm^-2,
+# so pores are a scene choice (pore_density = 5e6), not averaged into the default numbers.
+pore_density = 0.0             # 1/m^2
+pore_diameter = 0.00012        # m, opening
+pore_depth = 2e-05             # m, dimple depth seen by a flat counter-face [estimate]
+
+[roughness]
+# Self-affine micro-roughness on the ridges (surfaces.self_affine, spectrum of references.md §3.1).
+# [estimate]: skin spectra (Persson, Kovalev & Gorb 2013, references.md §2) give micrometre rms heights at
+# wavelengths below the ridge width; the values below are chosen in that range.
+enabled = true
+hurst = 0.8
+rms_height = 3e-06             # m
+long_cutoff = 6e-05            # m, below the ridge width (0.27 mm) [estimate]
+short_cutoff = 1e-05           # m, raised to preset pixels_per_cutoff pixels where the grid is coarser
+
+[skin]
+# Stiff stratum corneum layer on soft tissue (references.md §2): hydrated stratum corneum 5-30 MPa (the
+# roughness-scale E* of 10 MPa), viable epidermis/dermis 0.05-2 MPa, Poisson ratio 0.48-0.5.
+# layer_thickness = 0 gives a half-space of E_star. The 30 um layer is an [estimate]: the outer, stiffer
+# part of the 250-300 um stratum corneum that the micro-roughness sees.
+E_star = 100000.0              # Pa, tissue under the layer (or the half-space)
+poisson = 0.5
+layer_E_star = 10000000.0      # Pa
+layer_thickness = 3e-05        # m
+
+[screen]
+# Dielectric stack, seed Table 1 (references.md §0.1).
+d_sc = 0.00025                 # m, stratum corneum thickness
+eps_sc = 3000.0
+d_i = 1e-06                    # m, insulator thickness
+eps_i = 3.9
+eps_a = 1.0
+
+[loads]
+# The seed's range: 0.5-2 N and 0-200 V (seed Table 1, Fig. 9).
+normal_forces = [0.5, 1.0, 1.5, 2.0]            # N
+voltages = [0.0, 50.0, 100.0, 150.0, 200.0]     # V
+
+[ridge_area]
+# A_R: contact at the ridge scale = the real contact closed morphologically with a disc of this diameter
+# (micro-contacts closer than it merge); the sensitivity to it is reported at the factors given.
+# [estimate]: twice the roughness long cutoff and below the furrow width (0.18 mm), so that micro-contacts
+# on one ridge merge and neighbouring ridges never do.
+coarse_graining = 0.00012      # m
+sensitivity = [0.5, 0.75, 1.25]
+
+[study]
+preset = "standard"
+seed = 0                       # realisation r uses rng seed + r
+
+# Accuracy presets, chosen from the measured speed-accuracy front (errors and costs: docs/guide/presets.md): patch
+# side = periods ridge periods on grid x grid pixels; realisations of the roughness; solver tolerance; rings of
+# equal area over the apparent contact (fingertip model only); pixels_per_cutoff: the shortest roughness
+# wavelength in pixels; dtype of the solves ("float64" or "float32"); warm_start: each solve starts from its
+# neighbour along load (true) or cold; scales: "resolved" (ridges and roughness in one grid) or "coupled"
+# (the roughness reduced to an interface law).
+[presets.draft]
+grid = 128
+periods = 1
+realisations = 2
+tolerance = 1e-06
+rings = 2
+pixels_per_cutoff = 2.0
+dtype = "float64"
+warm_start = true
+scales = "resolved"
+
+[presets.standard]
+grid = 256
+periods = 1
+realisations = 5
+tolerance = 1e-05
+rings = 3
+pixels_per_cutoff = 4.0
+dtype = "float64"
+warm_start = true
+scales = "resolved"
+
+[presets.reference]
+grid = 512
+periods = 1
+realisations = 8
+tolerance = 1e-08
+rings = 4
+pixels_per_cutoff = 4.0
+dtype = "float64"
+warm_start = true
+scales = "resolved"
+"""
+
+
+# ---------------------------------------------------------------------------------------------------------
+# Field validators: each returns the checked value or raises ValueError/TypeError; ``valid`` describes them
+# ---------------------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class _Real:
+    low: float | None = None
+    high: float | None = None
+    low_open: bool = False
+
+    @property
+    def valid(self):
+        low = "-inf" if self.low is None else f"{self.low:g}"
+        return (f"a number in {'(' if self.low_open or self.low is None else '['}{low}, "
+                f"{'inf)' if self.high is None else f'{self.high:g}]'}")
+
+    def __call__(self, name, value):
+        return check_real(name, value, low=self.low, high=self.high, low_open=self.low_open)
+
+
+@dataclass(frozen=True)
+class _Integer:
+    low: int
+    high: int
+
+    @property
+    def valid(self):
+        return f"an integer in [{self.low}, {self.high}]"
+
+    def __call__(self, name, value):
+        return check_integer(name, value, low=self.low, high=self.high)
+
+
+@dataclass(frozen=True)
+class _Boolean:
+    valid = "true or false"
+
+    def __call__(self, name, value):
+        if not isinstance(value, bool):
+            raise TypeError(f"{name} must be true or false, got {value!r}")
+        return value
+
+
+@dataclass(frozen=True)
+class _Choice:
+    options: tuple
+
+    @property
+    def valid(self):
+        return "one of " + ", ".join(f'"{option}"' for option in self.options)
+
+    def __call__(self, name, value):
+        if value not in self.options:
+            raise ValueError(f"{name} = {value!r} is not {self.valid}")
+        return value
+
+
+@dataclass(frozen=True)
+class _Increasing:
+    """A non-empty, strictly increasing list of numbers in ``element``'s range."""
+    element: _Real
+
+    @property
+    def valid(self):
+        return f"a non-empty, strictly increasing list of numbers, each {self.element.valid[2:]}"
+
+    def __call__(self, name, value):
+        if not isinstance(value, (list, tuple)) or not value:
+            raise ValueError(f"{name} must be {self.valid}, got {value!r}")
+        values = tuple(self.element(f"{name}[{i}]", v) for i, v in enumerate(value))
+        if any(b <= a for a, b in zip(values, values[1:])):
+            raise ValueError(f"{name} = {list(values)} is not strictly increasing; valid: {self.valid}")
+        return values
+
+
+def _field(check):
+    return field(metadata={"check": check})
+
+
+class _Section:
+    """A scene section: every field is checked by the validator in its metadata (``ValueError`` naming it)."""
+
+    section = ""
+
+    def __post_init__(self):
+        for item in dataclasses.fields(self):
+            value = item.metadata["check"](f"{self.section}.{item.name}", getattr(self, item.name))
+            object.__setattr__(self, item.name, value)
+
+
+# ---------------------------------------------------------------------------------------------------------
+# Sections
+# ---------------------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Fingerpad(_Section):
+    """Apparent contact: ``model`` "power_law" (A0 = area_prefactor F_N^area_exponent [m²], uniform nominal
+    pressure) or "fingertip" (Hertz cap of ``radius`` [m] on tissue of ``E_star`` [Pa]; with ``layer`` the cap
+    pressed onto the skin's layer on that tissue, solved on ``layer_grid`` × ``layer_grid`` pixels)."""
+    section = "fingerpad"
+    model: str = _field(_Choice(("power_law", "fingertip")))
+    area_prefactor: float = _field(_Real(0.0, low_open=True))
+    area_exponent: float = _field(_Real(0.0, 1.0, low_open=True))
+    radius: float = _field(_Real(0.0, low_open=True))
+    E_star: float = _field(_Real(0.0, low_open=True))
+    layer: bool = _field(_Boolean())
+    layer_grid: int = _field(_Integer(16, 2048))
+
+
+@dataclass(frozen=True)
+class Ridges(_Section):
+    """Parallel ridges: ``period`` [m], crest-to-furrow ``height`` [m], ridge/furrow ``width_ratio``; sweat pores
+    of ``pore_density`` [1/m²], ``pore_diameter`` and ``pore_depth`` [m] on the crests."""
+    section = "ridges"
+    enabled: bool = _field(_Boolean())
+    period: float = _field(_Real(0.0, low_open=True))
+    height: float = _field(_Real(0.0))
+    width_ratio: float = _field(_Real(0.43, 2.33))
+    pore_density: float = _field(_Real(0.0))
+    pore_diameter: float = _field(_Real(0.0, low_open=True))
+    pore_depth: float = _field(_Real(0.0))
+
+    def __post_init__(self):
+        super().__post_init__()
+        width = ridge_fraction(self.width_ratio) * self.period
+        if self.pore_diameter > width:
+            raise ValueError(f"ridges.pore_diameter = {self.pore_diameter!r} m is wider than a ridge ({width:g} m at "
+                             f"period {self.period:g} m, width_ratio {self.width_ratio:g}); valid range (0, {width:g}]")
+
+
+@dataclass(frozen=True)
+class Roughness(_Section):
+    """Self-affine micro-roughness: Hurst exponent, ``rms_height`` [m], cut-off wavelengths [m]."""
+    section = "roughness"
+    enabled: bool = _field(_Boolean())
+    hurst: float = _field(_Real(0.0, 1.0, low_open=True))
+    rms_height: float = _field(_Real(0.0, low_open=True))
+    long_cutoff: float = _field(_Real(0.0, low_open=True))
+    short_cutoff: float = _field(_Real(0.0, low_open=True))
+
+    def __post_init__(self):
+        super().__post_init__()
+        if self.short_cutoff >= self.long_cutoff:
+            raise ValueError(f"roughness.short_cutoff = {self.short_cutoff!r} m must be below roughness.long_cutoff "
+                             f"= {self.long_cutoff!r} m")
+
+
+@dataclass(frozen=True)
+class Skin(_Section):
+    """Half-space of ``E_star`` [Pa], or a layer (``layer_E_star`` [Pa], ``layer_thickness`` [m] > 0) bonded on
+    it; one ``poisson`` ratio for both."""
+    section = "skin"
+    E_star: float = _field(_Real(0.0, low_open=True))
+    poisson: float = _field(_Real(-1.0, 0.5, low_open=True))
+    layer_E_star: float = _field(_Real(0.0, low_open=True))
+    layer_thickness: float = _field(_Real(0.0))
+
+
+@dataclass(frozen=True)
+class Screen(_Section):
+    """Dielectric stack (``roughcontact.electrostatics.DielectricStack`` fields)."""
+    section = "screen"
+    d_sc: float = _field(_Real(0.0, low_open=True))
+    eps_sc: float = _field(_Real(0.0, low_open=True))
+    d_i: float = _field(_Real(0.0, low_open=True))
+    eps_i: float = _field(_Real(0.0, low_open=True))
+    eps_a: float = _field(_Real(0.0, low_open=True))
+
+    def stack(self):
+        return DielectricStack(**dataclasses.asdict(self))
+
+
+@dataclass(frozen=True)
+class Loads(_Section):
+    """``normal_forces`` F_N [N] (> 0) and ``voltages`` U [V] (>= 0), each strictly increasing."""
+    section = "loads"
+    normal_forces: tuple = _field(_Increasing(_Real(0.0, low_open=True)))
+    voltages: tuple = _field(_Increasing(_Real(0.0, 1e5)))
+
+
+@dataclass(frozen=True)
+class RidgeArea(_Section):
+    """A_R definition: the closing diameter ``coarse_graining`` [m] and the ``sensitivity`` factors on it."""
+    section = "ridge_area"
+    coarse_graining: float = _field(_Real(0.0))
+    sensitivity: tuple = _field(_Increasing(_Real(0.0, low_open=True)))
+
+
+@dataclass(frozen=True)
+class Study(_Section):
+    """The preset in use (a named one, or "auto": the ``[presets.auto]`` setting chosen for a target error)
+    and the base rng ``seed`` (realisation r uses seed + r)."""
+    section = "study"
+    preset: str = _field(_Choice((*PRESETS, AUTO)))
+    seed: int = _field(_Integer(0, 2 ** 31 - 1))
+
+
+@dataclass(frozen=True)
+class Preset(_Section):
+    """Accuracy against cost (``docs/guide/presets.md``): ``grid`` pixels per side of a patch of ``periods`` ridge
+    periods, ``realisations``, solver ``tolerance``, ``rings`` over the apparent area (fingertip),
+    ``pixels_per_cutoff`` at the short cut-off, ``dtype`` of the solves, ``warm_start`` (continuation along
+    load, else cold solves) and ``scales`` ("resolved" in one grid or "coupled" through an interface law)."""
+    section = "presets.*"
+    grid: int = _field(_Integer(8, 4096))
+    periods: int = _field(_Integer(1, 64))
+    realisations: int = _field(_Integer(1, 1000))
+    tolerance: float = _field(_Real(1e-14, 0.1))
+    rings: int = _field(_Integer(1, 64))
+    pixels_per_cutoff: float = _field(_Real(2.0, 64.0))
+    dtype: str = _field(_Choice(DTYPES))
+    warm_start: bool = _field(_Boolean())
+    scales: str = _field(_Choice(SCALES))
+
+
+SECTIONS = {"fingerpad": Fingerpad, "ridges": Ridges, "roughness": Roughness, "skin": Skin, "screen": Screen,
+            "loads": Loads, "ridge_area": RidgeArea, "study": Study}
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A validated scene; ``presets`` maps each preset name to its :class:`Preset`."""
+    fingerpad: Fingerpad
+    ridges: Ridges
+    roughness: Roughness
+    skin: Skin
+    screen: Screen
+    loads: Loads
+    ridge_area: RidgeArea
+    study: Study
+    presets: dict
+
+    @property
+    def preset(self) -> Preset:
+        """The preset named by ``study.preset``."""
+        return self.presets[self.study.preset]
+
+    def with_preset(self, name: str) -> Scene:
+        """The same scene at preset ``name`` (one of its ``presets``)."""
+        if name not in self.presets:
+            raise ValueError(f"preset = {name!r} is not one of the scene's presets: {', '.join(self.presets)}"
+                             + (" (choose the auto setting with roughcontact.study.presets.auto_scene)"
+                                if name == AUTO else ""))
+        return dataclasses.replace(self, study=dataclasses.replace(self.study, preset=name))
+
+    def with_setting(self, preset: Preset) -> Scene:
+        """The same scene at the setting ``preset``, held as ``presets.auto`` (so that ``scene.toml`` and the
+        results' attributes record it) and selected."""
+        return dataclasses.replace(self, presets={**self.presets, AUTO: preset},
+                                   study=dataclasses.replace(self.study, preset=AUTO))
+
+    def to_dict(self) -> dict:
+        """Plain nested dict of the scene (tuples as lists), as in the TOML file."""
+        data = {name: {key: list(value) if isinstance(value, tuple) else value
+                       for key, value in dataclasses.asdict(getattr(self, name)).items()} for name in SECTIONS}
+        data["presets"] = {name: dataclasses.asdict(preset) for name, preset in self.presets.items()}
+        return data
+
+    def to_toml(self) -> str:
+        """The scene as TOML text (every value, exact floats); ``load_scene(text=...)`` reads it back equal."""
+        lines = []
+        for name, table in self.to_dict().items():
+            tables = table.items() if name == "presets" else [(None, table)]
+            for sub, values in tables:
+                lines.append(f"[{name}]" if sub is None else f"[{name}.{sub}]")
+                lines += [f"{key} = {_toml_value(value)}" for key, value in values.items()]
+                lines.append("")
+        return "\n".join(lines)
+
+    def flat(self) -> dict:
+        """``{"section.key": value}`` of every parameter (lists kept), for result attributes."""
+        flat = {}
+        for name, table in self.to_dict().items():
+            for key, value in table.items():
+                if isinstance(value, dict):
+                    flat.update({f"{name}.{key}.{k}": v for k, v in value.items()})
+                else:
+                    flat[f"{name}.{key}"] = value
+        return flat
+
+
+def _toml_value(value) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, float)):
+        return repr(value)
+    if isinstance(value, str):
+        return json.dumps(value)
+    return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+
+
+# ---------------------------------------------------------------------------------------------------------
+# Reading
+# ---------------------------------------------------------------------------------------------------------
+_HEADER = re.compile(r"^\s*\[\s*([A-Za-z0-9_.\-\s\"]+?)\s*\]\s*(#.*)?$")
+_KEY = re.compile(r"^\s*([A-Za-z0-9_\-]+)\s*=")
+
+
+def _line_of(text: str, table: tuple, key: str | None) -> int | None:
+    """1-based line of ``key`` in ``[table]`` (of the header itself when ``key`` is None) in TOML ``text``."""
+    current = ()
+    for number, line in enumerate(text.splitlines(), start=1):
+        header = _HEADER.match(line)
+        if header:
+            current = tuple(part.strip().strip('"') for part in header.group(1).split("."))
+            if key is None and current == table:
+                return number
+            continue
+        match = _KEY.match(line)
+        if match and current == table and match.group(1) == key:
+            return number
+    return None
+
+
+def _error(origin, text, table, key, reason, valid) -> ValueError:
+    line = _line_of(text, table, key)
+    where = f"{origin}, line {line}" if line is not None else f"{origin} (line not found)"
+    name = ".".join(table) + ("" if key is None else f".{key}")
+    hint = "" if valid is None or "valid" in reason else f"; valid: {valid}"
+    return ValueError(f"{where}: scene key {name}: {reason}{hint}")
+
+
+def _build(cls, table, defaults: dict, given: dict, origin, text):
+    """``cls`` from ``defaults`` updated by ``given`` (the user's table), errors located in ``text``."""
+    names = {item.name: item for item in dataclasses.fields(cls)}
+    for key, value in given.items():
+        if key not in names:
+            raise _error(origin, text, table, key, "unknown key", "the keys " + ", ".join(names))
+        try:
+            names[key].metadata["check"](".".join(table + (key,)), value)
+        except (TypeError, ValueError) as error:
+            raise _error(origin, text, table, key, str(error), names[key].metadata["check"].valid) from None
+    try:
+        return cls(**{**defaults, **given})
+    except (TypeError, ValueError) as error:      # a relation between keys (e.g. the two cut-offs)
+        key = next((k for k in given if k in str(error)), None)
+        raise _error(origin, text, table, key, str(error), None) from None
+
+
+def _parse(text: str, origin: str) -> dict:
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise ValueError(f"{origin}: not valid TOML: {error}") from None
+
+
+_DEFAULTS = _parse(DEFAULT_SCENE_TOML, "the default scene")
+
+
+def load_scene(path=None, *, text: str | None = None, preset: str | None = None) -> Scene:
+    """The scene of the TOML file ``path`` (or of the TOML ``text``; neither: the default scene), every value
+    not given taken from :data:`DEFAULT_SCENE_TOML`; ``preset`` overrides ``study.preset``."""
+    if path is not None and text is not None:
+        raise ValueError("give a scene path or its text, not both")
+    origin = "the default scene" if path is None and text is None else str(path) if path is not None else "scene"
+    if path is not None:
+        try:
+            text = Path(path).read_text()
+        except OSError as error:
+            raise ValueError(f"cannot read the scene file {path}: {error.strerror}") from None
+    text = "" if text is None else text
+    given = _parse(text, origin)
+    for name, value in given.items():
+        if name not in SECTIONS and name != "presets":
+            raise _error(origin, text, (name,), None, "unknown section",
+                         "the sections " + ", ".join([*SECTIONS, "presets"]))
+        if not isinstance(value, dict):
+            raise _error(origin, text, (name,), None, "a section must be a table", f"[{name}] with its keys")
+    sections = {name: _build(cls, (name,), _DEFAULTS[name], given.get(name, {}), origin, text)
+                for name, cls in SECTIONS.items()}
+    presets = {}
+    tables = given.get("presets", {})
+    for name, table in tables.items():
+        if name not in (*PRESETS, AUTO) or not isinstance(table, dict):
+            raise _error(origin, text, ("presets", name), None, "unknown preset or not a table",
+                         "[presets.NAME] with NAME " + _Choice((*PRESETS, AUTO)).valid)
+    for name in PRESETS:
+        presets[name] = _build(Preset, ("presets", name), _DEFAULTS["presets"][name], tables.get(name, {}),
+                               origin, text)
+    if AUTO in tables:                              # a chosen setting has no defaults: every key is given
+        missing = [item.name for item in dataclasses.fields(Preset) if item.name not in tables[AUTO]]
+        if missing:
+            raise _error(origin, text, ("presets", AUTO), None, "missing keys " + ", ".join(missing),
+                         "every key of a preset")
+        presets[AUTO] = _build(Preset, ("presets", AUTO), {}, tables[AUTO], origin, text)
+    elif sections["study"].preset == AUTO:
+        raise _error(origin, text, ("study",), "preset", 'study.preset = "auto" without a [presets.auto] table',
+                     "a named preset, or [presets.auto] (roughcontact run --preset auto --target-error chooses it)")
+    scene = Scene(**sections, presets=presets)
+    return scene if preset is None else scene.with_preset(preset)

@@ -1,0 +1,208 @@
+"""Cost of electroadhesive contact against the hard wall, and of a voltage continuation against cold solves.
+
+    python studies/bench_interactions.py                     # 256² and 512², the table of docs/guide/interactions.md
+    python studies/bench_interactions.py --sizes 1024 --output out
+    python studies/bench_interactions.py --fast              # 64², seconds
+
+The scene is the electrostatic bar's rough patch: 1 mm square, 3 µm rms self-affine heights (H = 0.8, short
+cut-off 8 px), contact modulus E* (``--E-star``, default 1 MPa), external load p̄ (``--pressure``, default
+1 kPa), the seed's dielectric stack (Table 1). For each grid: the hard-wall solve (Polonsky–Keer) and the
+electrostatic solves (the per-pixel law, ``field="parallel_plate"``: the peers' law; the layered field's cost
+is ``studies/bench_field.py``) at each voltage, cold, their time and FFT pairs as multiples of the hard wall's; then the
+voltage sweep 0 → max solved cold at every step and as a continuation (each solve starts from the last
+gap). ``--peers``: the same electrostatic problem in Tamaas (gap-primal Polonsky–Keer–Rey with the law as a
+Python functional, at our mean gap) and ContactMechanics + Adhesion (L-BFGS-B at our flat position), timed
+against our solve at the same control, with the relative difference of the conjugate quantity. Writes ``bench_interactions.csv`` with its provenance into ``--output``.
+"""
+from __future__ import annotations
+
+import argparse
+import time
+
+import numpy as np
+
+from surfaces import Grid, self_affine
+from roughcontact import ElasticHalfSpace, ElectrostaticInteraction, solve_contact
+from roughcontact.electrostatics import DielectricStack
+from roughcontact.io import output_directory, parse_arguments, write_csv
+
+COLUMNS = ("section", "n", "voltage_V", "time_s", "time_ratio", "iterations", "fft_pairs", "fft_pair_ratio",
+           "contact_fraction", "equivalent_gap_m", "converged", "relative_difference", "note")
+
+
+def patch(n, E_star):
+    grid = Grid((n, n), (1e-3, 1e-3), periodic=True)
+    surface = self_affine(grid, hurst=0.8, rms_height=3e-6, short_cutoff=8e-3 / n, rng=1)
+    return surface, ElasticHalfSpace(grid, E_star=E_star, planner_effort="FFTW_MEASURE")
+
+
+def timed(solve, repeat=1):
+    """The result of ``solve()`` and its best wall time [s] over ``repeat`` calls (the solves are deterministic)."""
+    best = float("inf")
+    for _ in range(repeat):
+        start = time.perf_counter()
+        result = solve()
+        best = min(best, time.perf_counter() - start)
+    return result, best
+
+
+def rows_for(n, args):
+    surface, half = patch(n, args.E_star)
+    stack = DielectricStack()
+    solve_contact(surface, half, mean_pressure=args.pressure, tol=args.tol)              # JIT and plans warm
+    hard, hard_time = timed(lambda: solve_contact(surface, half, mean_pressure=args.pressure, tol=args.tol),
+                            args.repeat)
+    rows = [dict(section="hard_wall", n=n, voltage_V=0.0, time_s=hard_time, time_ratio=1.0,
+                 iterations=hard.iterations, fft_pairs=hard.params["fft_pairs"], fft_pair_ratio=1.0,
+                 contact_fraction=hard.contact_fraction, equivalent_gap_m=stack.equivalent_gap(hard.gap),
+                 converged=hard.converged)]
+    sweeps = {"cold": 0.0, "continuation": 0.0}
+    previous = None
+    for voltage in args.voltages:
+        law = ElectrostaticInteraction(stack, voltage, field="parallel_plate")
+        for kind in ("cold", "continuation"):
+            x0 = previous if kind == "continuation" and previous is not None and voltage > 0 else None
+            res, seconds = timed(lambda: solve_contact(surface, half, mean_pressure=args.pressure, tol=args.tol,
+                                                       interaction=law, x0=x0, warn=False), args.repeat)
+            sweeps[kind] += seconds
+            rows.append(dict(section=f"electrostatic_{kind}", n=n, voltage_V=voltage, time_s=seconds,
+                             time_ratio=seconds / hard_time, iterations=res.iterations,
+                             fft_pairs=res.params["fft_pairs"], fft_pair_ratio=res.params["fft_pairs"] /
+                             hard.params["fft_pairs"], contact_fraction=res.contact_fraction,
+                             equivalent_gap_m=res.equivalent_gap, converged=res.converged))
+        previous = res
+    rows.append(dict(section="sweep", n=n, voltage_V=max(args.voltages), time_s=sweeps["continuation"],
+                     time_ratio=sweeps["cold"] / sweeps["continuation"]))
+    return rows
+
+
+def tamaas_electrostatic(surface, E_star, law, mean_gap, tol):
+    """Tamaas 2.x at the mean gap [m] (its gap-primal Polonsky–Keer–Rey with the electrostatic energy as a Python
+    ``tamaas.Functional``: Σ V(g) and its gradient, the normalisation of its own adhesion functionals).
+    Returns (time [s], mean pressure [Pa], displacement field [m])."""
+    import tamaas as tm
+
+    class Electrostatic(tm.Functional):
+        def computeF(self, gap, dual):
+            return float(np.sum(law.energy(np.asarray(gap))))
+
+        def computeGradF(self, gap, gradient):
+            gradient_array = np.asarray(gradient)
+            gradient_array -= law.traction(np.asarray(gap))
+
+    n, length = surface.grid.shape[0], surface.grid.lengths[0]
+    model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [length, length], [n, n])
+    model.E, model.nu = E_star, 0.0
+    heights = surface.heights.copy()
+    solver = tm.PolonskyKeerRey(model, heights, tol, tm.PolonskyKeerRey.gap, tm.PolonskyKeerRey.gap)
+    functional = Electrostatic()
+    solver.addFunctionalTerm(functional)
+    start = time.perf_counter()
+    solver.solve(mean_gap)
+    seconds = time.perf_counter() - start
+    return seconds, float(np.mean(model.traction)), np.array(model.displacement).reshape(n, n)
+
+
+def contactmechanics_electrostatic(surface, E_star, law, flat_position, gtol):
+    """ContactMechanics + Adhesion at the flat position s [m] (``BoundedSmoothContactSystem.minimize_proxy`` at
+    offset −s: their gap u − h − offset is ours; L-BFGS-B with the bound g ≥ 0; the q = 0 mode has their
+    default stiffness, so the load follows from the solution). Returns (time [s], mean pressure [Pa],
+    mean gap [m], contact fraction)."""
+    from Adhesion.Interactions import Potential
+    from Adhesion.System import BoundedSmoothContactSystem
+    from ContactMechanics import PeriodicFFTElasticHalfSpace
+    from SurfaceTopography import Topography
+
+    class Electrostatic(Potential):
+        name = "electrostatic"
+
+        def __init__(self):
+            Potential.__init__(self)
+
+        def __repr__(self):
+            return f"Electrostatic({law})"
+
+        r_min = r_infl = property(lambda self: None)
+
+        def evaluate(self, gap, potential=True, gradient=False, curvature=False, mask=None):
+            return law.energy(gap), -law.traction(gap), -law.stiffness(gap)
+
+    n, length = surface.grid.shape[0], surface.grid.lengths[0]
+    substrate = PeriodicFFTElasticHalfSpace((n, n), E_star, physical_sizes=(length, length))
+    system = BoundedSmoothContactSystem(substrate, Electrostatic(),
+                                        Topography(surface.heights, physical_sizes=(length, length), periodic=True))
+    start = time.perf_counter()
+    result = system.minimize_proxy(offset=-flat_position, options=dict(gtol=gtol, ftol=0, maxiter=100000))
+    seconds = time.perf_counter() - start
+    gap = result.x.reshape(n, n) - surface.heights + flat_position
+    return seconds, system.compute_normal_force() / length ** 2, float(gap.mean()), float(np.mean(gap <= 0))
+
+
+def peer_rows(n, args):
+    """The same electrostatic problem solved by Tamaas (at our mean gap) and ContactMechanics + Adhesion (at our
+    flat position), against our solves at the same control."""
+    surface, half = patch(n, args.E_star)
+    rows = []
+    for voltage in args.peer_voltages:
+        law = ElectrostaticInteraction(DielectricStack(), voltage, field="parallel_plate")
+        operating = solve_contact(surface, half, mean_pressure=args.pressure, tol=args.tol, interaction=law)
+        ours, ours_time = timed(lambda: solve_contact(surface, half, penetration=operating.penetration,
+                                                      tol=args.tol, interaction=law))
+        seconds, pressure, _ = tamaas_electrostatic(surface, args.E_star, law, ours.mean_gap, args.tol)
+        rows.append(dict(section="peer_tamaas", n=n, voltage_V=voltage, time_s=seconds, time_ratio=seconds / ours_time,
+                         relative_difference=abs(pressure / ours.mean_pressure - 1), iterations=ours.iterations,
+                         contact_fraction=ours.contact_fraction, converged=ours.converged,
+                         note="at our mean gap; relative difference of the mean pressure"))
+        seconds, pressure, mean_gap, fraction = contactmechanics_electrostatic(
+            surface, args.E_star, law, operating.flat_position, args.gtol)
+        ours, ours_time = timed(lambda: solve_contact(surface, half, mean_pressure=pressure, tol=args.tol,
+                                                      interaction=law))
+        rows.append(dict(section="peer_contactmechanics", n=n, voltage_V=voltage, time_s=seconds,
+                         time_ratio=seconds / ours_time, relative_difference=abs(mean_gap / ours.mean_gap - 1),
+                         iterations=ours.iterations, contact_fraction=fraction, converged=ours.converged,
+                         note="ours at their load; relative difference of the mean gap"))
+    return rows
+
+
+def _at_least_one(text):
+    value = int(text)
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be at least 1, got {value}")
+    return value
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0],
+                                     formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    parser.add_argument("--sizes", type=int, nargs="+", default=[256, 512], help="grid sizes n (n² pixels)")
+    parser.add_argument("--voltages", type=float, nargs="+", default=[1e-6, 3.0, 10.0, 30.0, 50.0, 100.0, 200.0],
+                        help="voltages U [V], solved in this order")
+    parser.add_argument("--E-star", type=float, default=1e6, help="contact modulus E* [Pa]")
+    parser.add_argument("--pressure", type=float, default=1e3, help="external load p̄ [Pa]")
+    parser.add_argument("--tol", type=float, default=1e-8, help="relative tolerance of both solvers")
+    parser.add_argument("--repeat", type=_at_least_one, default=1,
+                        help="solves per timing; the best time is kept (the machine's other load only adds)")
+    parser.add_argument("--peers", action="store_true", help="also Tamaas and ContactMechanics + Adhesion")
+    parser.add_argument("--peer-voltages", type=float, nargs="+", default=[3.0, 10.0],
+                        help="voltages of the peer comparison [V] (low: a unique equilibrium)")
+    parser.add_argument("--gtol", type=float, default=1e-10,
+                        help="ContactMechanics' L-BFGS-B projected-gradient tolerance [N per pixel]")
+    parser.add_argument("--fast", action="store_true", help="64² and two voltages: a test that the script runs")
+    parser.add_argument("--output", default="out", help="directory for bench_interactions.csv")
+    args, provenance = parse_arguments(parser, argv, "studies/bench_interactions.py")
+    if args.fast:
+        args.sizes, args.voltages = [64], [10.0, 30.0]
+    if args.peers:
+        import tamaas as tm
+        tm.initialize(1)                                    # one thread, as ours
+        tm.set_log_level(tm.LogLevel.error)
+    rows = [row for n in args.sizes for row in rows_for(n, args) + (peer_rows(n, args) if args.peers else [])]
+    path = write_csv(output_directory(args.output) / "bench_interactions.csv", rows, provenance, COLUMNS)
+    for row in rows:
+        print("  ".join(f"{key}={value:.4g}" if isinstance(value, float) else f"{key}={value}"
+                        for key, value in row.items()))
+    print(f"wrote {path}")
+
+
+if __name__ == "__main__":
+    main()

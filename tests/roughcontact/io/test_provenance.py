@@ -1,0 +1,56 @@
+"""The one writer of provenance-carrying outputs (roughcontact.io.provenance)."""
+import json
+
+import numpy as np
+import pytest
+from matplotlib.figure import Figure
+from PIL import Image
+
+from roughcontact import __version__
+from roughcontact.io import (OutputPathError, Provenance, output_directory, read_csv, save_figure, write_atomic,
+                             write_columns, write_csv)
+
+PROVENANCE = Provenance.of_command("python studies/study.py", ["--output", "a b"], {"output": "a b", "n": 3})
+
+
+def test_line_names_version_date_command_and_parameters():
+    line = PROVENANCE.line
+    assert line.startswith(f"roughcontact {__version__}, {PROVENANCE.date}, ")
+    assert "command: python studies/study.py --output 'a b', parameters: " in line   # shell-quoted arguments
+    assert json.loads(line.split("parameters: ")[1]) == {"output": "a b", "n": 3}
+
+
+def test_csv_writers_lead_with_the_comment_that_readers_skip(tmp_path):
+    write_csv(tmp_path / "rows.csv", [{"x": 1, "y": 2.5}, {"x": 2}], PROVENANCE)
+    assert (tmp_path / "rows.csv").read_text().splitlines()[0] == f"# {PROVENANCE.line}"
+    assert read_csv(tmp_path / "rows.csv") == [{"x": "1", "y": "2.5"}, {"x": "2", "y": ""}]
+    write_columns(tmp_path / "columns.csv", ["a", "b"], [np.arange(3.0), np.ones(3)], PROVENANCE)
+    np.testing.assert_array_equal(np.loadtxt(tmp_path / "columns.csv", delimiter=",", skiprows=2)[:, 0], [0, 1, 2])
+    write_csv(tmp_path / "plain.csv", [{"x": 1}], None)                  # for readers that cannot skip a comment
+    assert (tmp_path / "plain.csv").read_text().splitlines()[0] == "x"
+
+
+@pytest.mark.parametrize("colors", [None, 16])                           # matplotlib's PNG, and a palette PNG
+def test_png_metadata(tmp_path, colors):
+    figure = Figure(figsize=(1, 1))
+    figure.subplots().plot([0, 1])
+    save_figure(figure, tmp_path / "f.png", PROVENANCE, dpi=50, colors=colors)
+    with Image.open(tmp_path / "f.png") as image:
+        assert image.text["Comment"] == PROVENANCE.line
+        assert image.text["Software"] == f"roughcontact {__version__}"
+
+
+def test_output_directory_creates_only_the_last_level(tmp_path):
+    assert output_directory(tmp_path / "new") == tmp_path / "new" and (tmp_path / "new").is_dir()
+    assert output_directory(tmp_path / "new") == tmp_path / "new"           # an existing directory is fine
+    with pytest.raises(OutputPathError, match="does not exist"):
+        output_directory(tmp_path / "missing" / "new")
+    assert not (tmp_path / "missing").exists()
+
+
+def test_write_atomic_replaces_the_file_whole(tmp_path):
+    path = tmp_path / "record.json"
+    path.write_text("old")
+    assert write_atomic(path, '{"new": 1}') == path
+    assert json.loads(path.read_text()) == {"new": 1}
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["record.json"]      # no .part left behind

@@ -1,0 +1,309 @@
+"""The fingerpad study on tiny patches: the 0 V chain is the hard-wall chain, the trends with load and voltage,
+resume after an interruption, refusal of another scene, and `roughcontact run` end to end."""
+import json
+import os
+
+import numpy as np
+import pytest
+
+import roughcontact.study.apparent as apparent
+import roughcontact.study.resolved as resolved
+from roughcontact.cli import main
+from roughcontact.interactions import ElectrostaticInteraction
+from roughcontact.io import read_csv
+from roughcontact.macro import TabulatedArea
+from roughcontact.solvers import solve_contact
+from roughcontact.study.apparent import apparent_contact, apparent_scale
+from roughcontact.study.execution import DirectoryInUse, SceneMismatch, TaskStore
+from roughcontact.study.friction import bottom_up_friction
+from roughcontact.study.patch import (patch_body, patch_surface, realisation_count, ridge_area_fraction,
+                                      ridge_equivalent_gap, ridge_heights)
+from roughcontact.study.records import confidence_interval
+from roughcontact.study.report import report_text
+from roughcontact.study.resolved import solve_chain
+from roughcontact.study.run import run_study
+from roughcontact.study.scene import Fingerpad, load_scene
+from study_scenes import TINY
+
+
+
+def test_zero_volt_study_is_the_hard_wall_chain():
+    scene = load_scene(text=TINY.replace("voltages = [0.0, 150.0]", "voltages = [0.0]"), preset="draft")
+    result = run_study(scene, workers=1)
+    stack, body = scene.screen.stack(), patch_body(scene)
+    for r in range(2):
+        heights, previous = patch_surface(scene, r), None
+        for i, force in enumerate(scene.loads.normal_forces):
+            area, (pressure,) = apparent_contact(scene.fingerpad, force, 1)
+            previous = solve_contact(heights, body, mean_pressure=pressure, tol=1e-6, x0=previous, warn=False)
+            assert result.points[i][0].equivalent_gap[r] == stack.equivalent_gap(previous.gap)
+            assert result.points[i][0].contact_fraction[r] == previous.contact_fraction
+            assert result.points[i][0].electrostatic_pressure[r] == 0.0
+    assert "One voltage (0 V) in the scene: its dependence on the voltage is not tested" in report_text(result, False)
+    assert "No solve crossed an instability." in report_text(result, False)
+
+
+def test_records_count_the_unstable_steps_of_their_solves(tiny, tiny_result):
+    # the 150 V chain solved again by hand: each record's count is the sum over its solves (measured 4-12 at
+    # 150 V, where the attraction snaps regions in), and the 0 V hard wall has none
+    stack, body = tiny.screen.stack(), patch_body(tiny)
+    law = ElectrostaticInteraction(stack, 150.0)
+    for r in range(2):
+        heights, previous = patch_surface(tiny, r), None
+        for i, force in enumerate(tiny.loads.normal_forces):
+            _, (pressure,) = apparent_contact(tiny.fingerpad, force, 1)
+            previous = solve_contact(heights, body, mean_pressure=pressure, interaction=law, tol=1e-6,
+                                     x0=previous, warn=False)
+            assert tiny_result.points[i][1].unstable_steps[r] == previous.unstable_steps > 0
+            assert tiny_result.points[i][0].unstable_steps[r] == 0
+    assert "4 of 8 patch results came from solves that crossed an instability (concave steps, from 150 V on)" \
+        in report_text(tiny_result, False)
+
+
+def test_trends_with_load_and_voltage(tiny_result):
+    d_eq = tiny_result.summary("equivalent_gap")[0]
+    area = tiny_result.summary("ridge_area_fractions")[0][:, :, 0]
+    assert (np.diff(d_eq, axis=0) < 0).all()            # d_eq falls with load
+    assert (np.diff(area, axis=0) > 0).all()            # A_R grows with load
+    assert (np.diff(area, axis=1) > 0).all()            # and with voltage at a fixed load
+    assert (np.diff(d_eq, axis=1) < 0).all()            # the attraction closes the gap
+    assert tiny_result.array("converged").all()
+    assert tiny_result.solves == 2 * 2 * 2 and tiny_result.computed == 4
+    sigma = tiny_result.summary("electrostatic_pressure")[0]
+    assert (sigma[:, 0] == 0).all() and (sigma[:, 1] > 0).all()
+
+
+def test_identical_sub_problems_are_solved_once():
+    smooth = load_scene(text=TINY.replace("long_cutoff = 1.5e-4", "long_cutoff = 1.5e-4\nenabled = false"),
+                        preset="draft")
+    result = run_study(smooth, workers=1)
+    assert result.solves == 4 and result.array("equivalent_gap").shape == (2, 2, 1)
+
+
+def test_apparent_contact_models():
+    power = Fingerpad(model="power_law", area_prefactor=91.9e-6, area_exponent=0.37, radius=1e-2, E_star=47.4e3,
+                      layer=False, layer_grid=128)
+    area, pressures = apparent_contact(power, 1.0, 3)
+    assert area == pytest.approx(91.9e-6) and pressures == (pytest.approx(1.0 / 91.9e-6),)
+    tip = Fingerpad(model="fingertip", area_prefactor=91.9e-6, area_exponent=0.37, radius=1e-2, E_star=47.4e3,
+                    layer=False, layer_grid=128)
+    area, pressures = apparent_contact(tip, 1.0, 4)
+    radius = (3 * 1e-2 / (4 * 47.4e3)) ** (1 / 3)
+    assert area == pytest.approx(np.pi * radius ** 2)
+    assert np.mean(pressures) * area == pytest.approx(1.0)          # equal-area rings carry the load
+    assert list(pressures) == sorted(pressures, reverse=True)
+
+
+def test_layered_fingertip_is_solved_once_for_all_tasks(monkeypatch):
+    # fingerpad.layer: the apparent scale is the cap solved on the layered skin (fingertip_contact), computed once
+    # per load by run_study, not per (realisation, voltage) task, and every task is solved at its ring pressures
+    scene = load_scene(text=TINY + '[fingerpad]\nmodel = "fingertip"\nlayer = true\nlayer_grid = 32\n',
+                       preset="draft")
+    original, loads = apparent.fingertip_contact, []
+    monkeypatch.setattr(apparent, "fingertip_contact",
+                        lambda *arguments, **keywords: loads.append(arguments[2]) or original(*arguments, **keywords))
+    result = run_study(scene, workers=1)
+    assert loads == [0.5, 2.0]
+    layered = original(scene.fingerpad, scene.skin, 2.0, 2, grid_points=32)
+    point = result.points[1][1]
+    assert point.apparent_area == layered.area and point.nominal_pressures == layered.pressures
+    records = solve_chain(scene, 1, 1, 1, apparent_scale(scene))
+    assert point.equivalent_gap[1] == records[1].equivalent_gap
+    hertz = solve_chain(scene, 1, 1, 1, [apparent_contact(scene.fingerpad, force, 2) for force in (0.5, 2.0)])
+    assert hertz[1].equivalent_gap != records[1].equivalent_gap            # the tasks used the layered pressures
+
+
+def test_pores_make_each_realisation_a_patch_of_its_own():
+    # ridges with two 60 µm sweat pores per patch and no roughness: the pores sit at random per realisation, so
+    # each realisation is a patch of its own (without pores the scene is solved once), the plain ridges less the
+    # dimples; the coupled path, which has no pores, refuses them
+    pores = "[ridges]\npore_density = 1e7\npore_diameter = 6e-5\n"
+    smooth = TINY.replace("long_cutoff = 1.5e-4", "long_cutoff = 1.5e-4\nenabled = false")
+    scene = load_scene(text=smooth + pores, preset="draft")
+    plain = ridge_heights(load_scene(text=smooth, preset="draft"))
+    assert realisation_count(scene) == 2
+    patches = [patch_surface(scene, r) for r in range(2)]
+    assert not np.array_equal(*patches)
+    for patch in patches:
+        drop = plain - patch
+        drop -= np.median(drop)                    # undo the mean shift by the dimples' volume
+        assert drop.max() == pytest.approx(2e-5, rel=1e-9) and np.count_nonzero(drop > 1e-12) < 0.05 * drop.size
+    result = run_study(scene, workers=1)
+    assert result.array("equivalent_gap").shape == (2, 2, 2)
+    with pytest.raises(ValueError, match="pore_density"):
+        run_study(load_scene(text=TINY + 'scales = "coupled"\n' + pores, preset="draft"), workers=1)
+
+
+def test_ridge_equivalent_gap_carries_the_same_attraction_over_the_ridge_area():
+    # σ_el(d_eq,R) A_R = σ_el(d_eq) A0 (round-off: 1e-12), d_eq,R = d_eq over the whole area, and 0 where A_R/A0
+    # is too small for a positive gap
+    stack = load_scene().screen.stack()
+    for fraction in (0.3, 0.7, 1.0):
+        gap = ridge_equivalent_gap(stack, 2e-6, fraction)
+        assert stack.pressure(gap, 200.0) * fraction == pytest.approx(stack.pressure(2e-6, 200.0), rel=1e-12)
+    assert ridge_equivalent_gap(stack, 2e-6, 1.0) == pytest.approx(2e-6, rel=1e-12)
+    assert ridge_equivalent_gap(stack, 1e-9, 1e-6) == 0.0
+
+
+def test_ridge_area_fraction_closes_gaps_shorter_than_the_length():
+    mask = np.zeros((40, 40), bool)
+    mask[:, 2:20] = mask[:, 22:38] = True                            # gaps of 2 px, one across the periodic edge
+    assert ridge_area_fraction(mask, 1.0, 0.5) == 34 / 40            # a disc under one pixel: the mask itself
+    assert ridge_area_fraction(mask, 1.0, 6.0) == 1.0                # both gaps closed, through the edge too
+    mask[:, 22:38] = False
+    assert ridge_area_fraction(mask, 1.0, 6.0) == 18 / 40            # a 20 px gap stays open
+
+
+def test_confidence_interval_leaves_out_nan():
+    mean, half = confidence_interval([[1.0, 2.0, 3.0], [1.0, np.nan, 3.0], [np.nan, np.nan, 2.0]])
+    assert mean.tolist() == [2.0, 2.0, 2.0]
+    assert half[0] == pytest.approx(4.302653 / np.sqrt(3), rel=1e-6)
+    assert half[1] == pytest.approx(12.706205, rel=1e-6) and np.isnan(half[2])     # t(1) sqrt(2)/sqrt(2)
+
+
+def test_failed_warm_start_is_retried_cold_and_failures_leave_the_means(tiny, monkeypatch):
+    import dataclasses
+    solve = resolved.solve_contact
+
+    def warm_fails(*args, x0=None, **kwargs):
+        result = solve(*args, x0=x0, **kwargs)
+        return dataclasses.replace(result, converged=False) if x0 is not None else result
+
+    monkeypatch.setattr(resolved, "solve_contact", warm_fails)
+    retried = run_study(tiny, workers=1)
+    monkeypatch.setattr(resolved, "solve_contact", lambda *args, **kwargs: dataclasses.replace(
+        solve(*args, **kwargs), converged=kwargs.get("interaction") is None))
+    failing = run_study(tiny, workers=1)
+    monkeypatch.undo()
+    cold = [[solve(patch_surface(tiny, r), patch_body(tiny), tol=1e-6, warn=False, interaction=None,
+                   mean_pressure=apparent_contact(tiny.fingerpad, force, 1)[1][0]).contact_fraction
+             for r in range(2)] for force in tiny.loads.normal_forces]
+    assert retried.solves == 8 + 4 and retried.array("converged").all()        # 4 warm starts retried
+    assert retried.array("contact_fraction")[:, 0, :].tolist() == cold       # the 0 V points: cold solves
+    assert np.isnan(failing.summary("equivalent_gap")[0][:, 1]).all()        # every 150 V solve failed
+    assert np.isfinite(failing.summary("equivalent_gap")[0][:, 0]).all()
+
+
+def test_tabulated_area_and_bottom_up_friction(tiny_result):
+    table = TabulatedArea(np.array([1.0, 2.0]), np.array([[0.0, 1.0], [0.0, 2.0]]), np.array([[1.0, 3.0], [2.0, 4.0]]))
+    assert table.area(1.0, 0.5) == pytest.approx(2.0) and table.area(1.5, 0.0) == pytest.approx(1.5)
+    with pytest.raises(ValueError, match="valid range"):
+        table.area(3.0, 0.0)
+    model = bottom_up_friction(tiny_result)
+    stack = tiny_result.scene.screen.stack()
+    state = model.state(2.0, 150.0)
+    point = tiny_result.points[1][1]
+    # F_el = sigma_el(d_eq,R) A_R0 equals the solved mean attraction over A0
+    assert float(stack.pressure(state.gap, 150.0) * state.initial_area) == pytest.approx(
+        np.mean(point.electrostatic_pressure) * point.apparent_area, rel=0.05)
+    assert model.state(2.0, 0.0).friction_coefficient == pytest.approx(0.26)
+
+
+def test_resume_after_interruption_recomputes_nothing_done(tiny, tmp_path, monkeypatch):
+    solve = resolved.solve_contact
+    calls = []
+
+    def interrupted(*args, **kwargs):
+        if len(calls) == 5:
+            raise KeyboardInterrupt
+        calls.append(1)
+        return solve(*args, **kwargs)
+
+    monkeypatch.setattr(resolved, "solve_contact", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        run_study(tiny, tmp_path / "run", workers=1)
+    done = sorted(path.name for path in (tmp_path / "run" / "tasks").glob("*.json"))
+    assert done == ["R000_U000.json", "R001_U000.json"]               # 2 tasks of 2 loads = 4 solves
+    monkeypatch.setattr(resolved, "solve_contact", solve)
+    resumed = run_study(tiny, tmp_path / "run", workers=1)
+    assert resumed.computed == 2 and resumed.solves == 4
+    again = run_study(tiny, tmp_path / "run", workers=1)
+    assert again.computed == 0 and again.solves == 0 and again.points == resumed.points
+    # a task file written with other record fields (another version's) is solved again, not misread
+    stale = tmp_path / "run" / "tasks" / "R000_U001.json"
+    records = json.loads(stale.read_text())
+    stale.write_text(json.dumps([{key: value for key, value in record.items() if key != "unstable_steps"}
+                                 for record in records]))
+    refreshed = run_study(tiny, tmp_path / "run", workers=1)
+    assert refreshed.computed == 2 and refreshed.solves == 2            # its two loads' points, one solve each
+    for row, resumed_row in zip(refreshed.points, resumed.points):
+        assert [point.equivalent_gap for point in row] == [point.equivalent_gap for point in resumed_row]
+        assert [point.unstable_steps for point in row] == [point.unstable_steps for point in resumed_row]
+
+
+def test_another_scene_and_a_running_study_are_refused(tiny, tmp_path):
+    TaskStore(tmp_path, tiny).release()
+    other = load_scene(text=TINY.replace("grid = 32", "grid = 64"), preset="draft")
+    with pytest.raises(SceneMismatch, match=r"presets.draft.grid = 32 -> 64"):
+        TaskStore(tmp_path, other)
+    (tmp_path / "run.lock").write_text(str(os.getppid()))             # a running process holds the directory
+    with pytest.raises(DirectoryInUse, match=f"another roughcontact run \\(process {os.getppid()}\\)"):
+        TaskStore(tmp_path, tiny)
+    (tmp_path / "run.lock").write_text("999999999")                  # a killed run's lock is taken over
+    store = TaskStore(tmp_path, tiny)                                # the same scene resumes
+    assert (tmp_path / "run.lock").read_text() == str(os.getpid())
+    store.release()
+    assert not (tmp_path / "run.lock").exists()
+
+
+def test_run_command_end_to_end(tmp_path, capsys):
+    scene = tmp_path / "tiny.toml"
+    scene.write_text(TINY)
+    out = tmp_path / "results"
+    assert main(["run", str(scene), "--preset", "draft", "--out", str(out), "--workers", "1"]) == 0
+    assert "4 points computed" in capsys.readouterr().out
+    for name in ("report.md", "points.csv", "realisations.csv", "ridge_area_sensitivity.csv", "friction.csv",
+                 "equivalent_gap.png", "voltage_dependence.png", "friction.png", "scene.toml"):
+        assert (out / name).is_file(), name
+    rows = read_csv(out / "points.csv")
+    assert len(rows) == 4 and float(rows[0]["equivalent_gap_um"]) > 0
+    report = (out / "report.md").read_text()
+    assert "Where the equivalent-gap assumption holds and where it fails" in report
+    xarray = pytest.importorskip("xarray")
+    pytest.importorskip("h5netcdf")
+    with xarray.open_dataset(out / "results.nc", engine="h5netcdf") as data:
+        assert data["equivalent_gap"].attrs["units"] == "m" and data.attrs["preset"] == "draft"
+        assert data.attrs["scene.presets.draft.grid"] == 32 and "roughcontact_version" in data.attrs
+        assert data["equivalent_gap"].shape == (2, 2, 2)
+    assert main(["run", str(scene), "--preset", "draft", "--out", str(out)]) == 0
+    assert "0 points computed" in capsys.readouterr().out
+    assert main(["run", str(scene), "--preset", "standard", "--out", str(out)]) == 2
+    assert "holds the results of another scene" in capsys.readouterr().err
+    scene.write_text("[ridges]\nperod = 1\n")
+    assert main(["run", str(scene), "--out", str(tmp_path / "other")]) == 2
+    assert "line 2: scene key ridges.perod" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("change", [
+    ("voltages = [0.0, 150.0]", "voltages = [0.0, 2000.0]"),         # far beyond the seed's range: full contact
+    ("voltages = [0.0, 150.0]", "voltages = [0.0]"),                 # no electrostatics at all
+    ("[roughness]", "[roughness]\nrms_height = 3e-5"),                # very rough skin
+    ("[roughness]", "[roughness]\nrms_height = 1e-9"),                # very smooth skin
+])
+def test_extreme_scenes_run_to_finite_results(change):
+    scene = load_scene(text=TINY.replace(*change), preset="draft")
+    result = run_study(scene, workers=1)
+    for name in ("equivalent_gap", "contact_fraction"):
+        values = result.array(name)
+        assert np.isfinite(values).all() and (values >= 0).all()
+    fraction = result.array("contact_fraction")
+    assert (fraction <= 1).all()
+    if "2000.0" in change[1]:
+        assert np.all(fraction[:, -1] == 1.0)                     # 2 kV pulls the patches into full contact
+
+
+def test_zero_load_scene_is_refused_naming_the_key():
+    with pytest.raises(ValueError, match="loads.normal_forces"):
+        load_scene(text=TINY.replace("normal_forces = [0.5, 2.0]", "normal_forces = [0.0, 2.0]"), preset="draft")
+
+
+def test_the_preset_chooses_cold_starts_and_the_dtype():
+    cold = load_scene(text=TINY + "warm_start = false\ndtype = \"float32\"\n", preset="draft")   # [presets.draft]
+    assert patch_body(cold).dtype == np.float32
+    records = solve_chain(cold, 0, 0, 1)
+    body = patch_body(cold)
+    for record, force in zip(records, cold.loads.normal_forces):       # each load solved from the solver's start
+        result = solve_contact(patch_surface(cold, 0), body, tol=1e-6, warn=False,
+                               mean_pressure=apparent_contact(cold.fingerpad, force, 1)[1][0])
+        assert record.solves == 1 and record.iterations == result.iterations
+        assert record.contact_fraction == result.contact_fraction
