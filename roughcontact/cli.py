@@ -14,6 +14,7 @@ import time
 
 from . import study
 from ._version import __version__
+from .fe import command as fingertip_fe        # FElupe itself is imported only when the command runs
 from .io.provenance import OutputPathError, output_directory, parse_arguments
 from .paper import reproduce
 
@@ -152,7 +153,6 @@ def build_parser() -> argparse.ArgumentParser:
                        help="scene TOML file (default: the embedded scene)")
     scene.add_argument("--show", action="store_true", help="print the scene as TOML")
     scene.set_defaults(run=_cmd_scene)
-    from .fe import command as fingertip_fe      # argparse only; FElupe is imported when the command runs
     fingertip_fe.add_arguments(commands.add_parser(
         "fingertip-fe", help="the seed's FE fingertip: L(f_T), Eq. 34, Figs. 6-7 (needs roughcontact[fe])",
         description="Press a plane-strain hyperelastic finger section onto a plate and slide it to full slip at "

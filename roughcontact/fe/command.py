@@ -3,6 +3,11 @@ from __future__ import annotations
 
 import sys
 
+from ..io.provenance import output_directory
+from .geometry import MeshResolution
+from .model import FingertipModel
+from .study import DEFAULT_NORMAL_FORCES, run_fingertip_study, write_fingertip_outputs
+
 #: Default output directory of the command.
 DEFAULT_OUTPUT = "roughcontact-fingertip-fe"
 MESHES = ("coarse", "default", "fine")
@@ -10,8 +15,6 @@ MESHES = ("coarse", "default", "fine")
 
 def add_arguments(parser) -> None:
     """The command's options (the parser is made in ``roughcontact.cli``)."""
-    from .study import DEFAULT_NORMAL_FORCES
-
     parser.add_argument("--out", default=DEFAULT_OUTPUT,
                         help="output directory; created if missing, but its parent must exist")
     parser.add_argument("--mesh", choices=MESHES, default="default",
@@ -28,11 +31,6 @@ def run(args, provenance) -> int:
     except ImportError:
         print('roughcontact fingertip-fe: error: needs FElupe: pip install "roughcontact[fe]"', file=sys.stderr)
         return 2
-    from ..io.provenance import output_directory
-    from .geometry import MeshResolution
-    from .model import FingertipModel
-    from .study import run_fingertip_study, write_fingertip_outputs
-
     resolution = {"coarse": MeshResolution.coarse(), "default": MeshResolution(),
                   "fine": MeshResolution().refined(1.5)}[args.mesh]
     output = output_directory(args.out)

@@ -1,4 +1,4 @@
-"""The seed's finite-element fingertip (Sect. 4.3, Figs. 6–7): a plane-strain hyperelastic finger section pressed
+"""The seed's finite-element fingertip (Figs. 6–7, Eq. 34): a plane-strain hyperelastic finger section pressed
 onto a rigid smooth plate and slid along it with local Coulomb friction, solved with FElupe.
 
 FElupe (GPL-3.0-or-later) is imported inside :meth:`FingertipModel._build` only; see ``roughcontact/fe/__init__``.
@@ -12,8 +12,9 @@ contact is node-to-plane with a penalty λ_n = ``penalty`` × μ_skin and Coulom
 
 Protocol (seed: "pressed ... by a normal force per unit width applied to the inner bone layer ... then moved
 tangentially while keeping the normal force constant until the whole contact length is slipping"):
-1. approach: the bone moves down by a small prescribed distance until the bottom node touches;
-2. press: a point load on the bone ramps to f_N (bone x held);
+
+1. approach: the bone moves down in steps of ``approach_step`` × the half-height until the plate carries f_N;
+2. press: a point load on the bone brings the normal force to f_N exactly (bone x held);
 3. slide: the bone's x is displacement-controlled (so the path can pass a maximum of f_T) while the point load
    keeps f_N; stopped at the first increment in which every node in contact slips (the onset of full slip).
 
