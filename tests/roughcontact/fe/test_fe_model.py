@@ -1,7 +1,7 @@
 """The FE fingertip (FElupe) against 2-D Hertz, the Coulomb limit at full slip and the seed's trends.
 
-Skipped without FElupe. The runs use small meshes: the Hertz press 11 s, the two coarse press-and-slide runs
-shared by three tests 48 s on a 2-core machine shared with other jobs; marked slow.
+Skipped without FElupe. The runs use small meshes: the Hertz press 3 s, the two coarse press-and-slide runs
+shared by three tests 15 s on the 2-core machine (11 s and 48 s while other jobs loaded it); marked slow.
 """
 import numpy as np
 import pytest
