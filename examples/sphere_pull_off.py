@@ -22,7 +22,7 @@ stress = maugis_cohesive_stress(maugis_lambda, work, radius, E_star)          # 
 problem = ContactProblem(sphere, ElasticHalfSpace(grid, E_star=E_star), MaugisDugdale(work, work / stress))
 
 start = problem.solve(mean_pressure=0.0)                                     # the zero-load equilibrium
-found = pull_off(problem, start, step=0.1 * np.pi * work * radius / cell ** 2, rtol=1e-2)
+found = pull_off(problem, start, step=0.1 * np.pi * work * radius / cell ** 2, tol=1e-2)
 print(f"λ = {maugis_lambda}: contact radius at zero load {np.sqrt(start.contact_fraction / np.pi) * cell:.4f} m")
 solved, maugis = found.force / (np.pi * work * radius), maugis_dugdale_pull_off(maugis_lambda)
 print(f"pull-off F/(π w R) = {solved:.4f} on {n}², Maugis {maugis:.4f} ({solved / maugis - 1:+.2%}), "

@@ -14,8 +14,12 @@ multiplier that the Polonsky–Keer solver computes. The smooth laws (:class:`El
 traction p_int(g) everywhere, the wall's contact pressure where g = 0.
 
 A user's own law subclasses :class:`Interaction`, is a frozen dataclass (so that results can be saved and
-pickled with it) and implements the three methods on float arrays, plus ``length``, the gap scale [m] over
-which it varies (the solver's scale for "far away"). ``docs/guide/interactions.md`` has an example.
+pickled with it) and implements the three methods on float arrays of gaps g ≥ 0 (finite values at every such
+gap; the energy +inf where g < 0), plus ``length``, the gap scale [m] over which it varies (the solver's scale
+for "far away"; required, > 0), and optionally ``strength``, its largest attraction max_g −p_int(g) [Pa] (with
+it a tensile load beyond the strength is reported as detached without iterating). ``docs/guide/interactions.md``
+has an example. The built-in laws refuse a non-finite gap, and a negative one in traction and stiffness
+(``ValueError`` naming ``gap``); their energy is +inf where the wall is penetrated.
 """
 from __future__ import annotations
 
@@ -32,6 +36,18 @@ from .io.results import savable_field
 FIELDS = ("parallel_plate", "layered")
 
 
+def _gaps(gap) -> np.ndarray:
+    """The gaps g [m] a traction or stiffness is evaluated at, checked: finite and ≥ 0 (the wall forbids g < 0)."""
+    return check_finite_array("gap", gap, nonnegative=True)
+
+
+def _with_wall(law_energy, gap) -> np.ndarray:
+    """V(g) [J/m²] of a law acting with the wall: ``law_energy`` at g ≥ 0, +inf where the wall is penetrated
+    (g < 0); ``gap`` checked finite."""
+    gap = check_finite_array("gap", gap)
+    return np.where(gap >= 0, law_energy(np.maximum(gap, 0.0)), np.inf)
+
+
 class Interaction:
     """Base class: a gap-dependent interaction law (energy, traction, stiffness; see the module docstring)."""
 
@@ -42,6 +58,8 @@ class Interaction:
     #: True where the law exerts no traction at any gap (the hard wall alone solves it).
     vanishes: bool = False
     #: A law also has ``length``: the gap scale [m] over which it varies (a field or a property).
+    #: The largest attraction max_g −p_int(g) [Pa] over g ≥ 0, where known (None: not known).
+    strength: float | None = None
 
     def energy(self, gap) -> np.ndarray:
         raise NotImplementedError
@@ -66,16 +84,15 @@ class HardWall(Interaction):
 
     def energy(self, gap) -> np.ndarray:
         """V(g) [J/m²]: 0 where g ≥ 0, +inf where the wall is penetrated."""
-        gap = check_finite_array("gap", gap)
-        return np.where(gap >= 0, 0.0, np.inf)
+        return _with_wall(np.zeros_like, gap)
 
     def traction(self, gap) -> np.ndarray:
-        """p_int(g) = −dV/dg [Pa] for g > 0: zero (the contact pressure is the solver's multiplier)."""
-        return np.zeros_like(check_finite_array("gap", gap, nonnegative=True))
+        """p_int(g) = −dV/dg [Pa] for g ≥ 0: zero (the contact pressure is the solver's multiplier)."""
+        return np.zeros_like(_gaps(gap))
 
     def stiffness(self, gap) -> np.ndarray:
-        """k(g) = dp_int/dg [Pa/m] for g > 0: zero."""
-        return np.zeros_like(check_finite_array("gap", gap, nonnegative=True))
+        """k(g) = dp_int/dg [Pa/m] for g ≥ 0: zero."""
+        return np.zeros_like(_gaps(gap))
 
 
 @dataclass(frozen=True)
@@ -119,8 +136,13 @@ class ElectrostaticInteraction(Interaction):
         """ε_a c [m]: the gap at which σ_el has fallen to a quarter of its contact value."""
         return self.stack.eps_a * self.stack.dielectric_offset
 
+    @property
+    def strength(self) -> float | None:
+        """σ_el(0) [Pa], the largest attraction of the per-pixel law (at contact); None for the layered field."""
+        return float(self.stack.pressure(0.0, self.voltage)) if self.local else None
+
     def energy(self, gap) -> np.ndarray:
-        return self.stack.energy(gap, self.voltage)
+        return _with_wall(lambda g: self.stack.energy(g, self.voltage), gap)
 
     def traction(self, gap) -> np.ndarray:
         return -self.stack.pressure(gap, self.voltage)
@@ -143,14 +165,22 @@ class ExponentialAdhesion(Interaction):
         object.__setattr__(self, "work_of_adhesion", check_positive("work_of_adhesion", self.work_of_adhesion))
         object.__setattr__(self, "length", check_positive("length", self.length))
 
+    @property
+    def strength(self) -> float:
+        """w/ρ [Pa], the attraction at contact (the largest)."""
+        return self.work_of_adhesion / self.length
+
     def energy(self, gap) -> np.ndarray:
-        return -self.work_of_adhesion * np.exp(-np.asarray(gap, dtype=float) / self.length)
+        return _with_wall(self._energy, gap)
 
     def traction(self, gap) -> np.ndarray:
-        return self.energy(gap) / self.length
+        return self._energy(_gaps(gap)) / self.length
 
     def stiffness(self, gap) -> np.ndarray:
-        return -self.energy(gap) / self.length ** 2
+        return -self._energy(_gaps(gap)) / self.length ** 2
+
+    def _energy(self, gap):
+        return -self.work_of_adhesion * np.exp(-gap / self.length)
 
 
 @dataclass(frozen=True)
@@ -173,14 +203,19 @@ class MaugisDugdale(Interaction):
         """σ0 = w/δ_c [Pa]."""
         return self.work_of_adhesion / self.length
 
+    @property
+    def strength(self) -> float:
+        """σ0 [Pa], the attraction at every gap below δ_c."""
+        return self.cohesive_stress
+
     def energy(self, gap) -> np.ndarray:
-        return -self.cohesive_stress * np.maximum(self.length - np.asarray(gap, dtype=float), 0.0)
+        return _with_wall(lambda g: -self.cohesive_stress * np.maximum(self.length - g, 0.0), gap)
 
     def traction(self, gap) -> np.ndarray:
-        return np.where(np.asarray(gap, dtype=float) < self.length, -self.cohesive_stress, 0.0)
+        return np.where(_gaps(gap) < self.length, -self.cohesive_stress, 0.0)
 
     def stiffness(self, gap) -> np.ndarray:
-        return np.zeros_like(np.asarray(gap, dtype=float))
+        return np.zeros_like(_gaps(gap))
 
 
 #: The laws that results can be saved and loaded with (by class name).

@@ -42,7 +42,7 @@ def normalised_pull_off(n, cell, maugis_lambda):
     """(P̄ = F/(π w R) at pull-off, contact radius there [m], solves) of the BEM."""
     problem = sphere_problem(n, cell, maugis_lambda)
     start = problem.solve(mean_pressure=0.0)
-    found = pull_off(problem, start, step=0.1 * np.pi * WORK * RADIUS / cell ** 2, rtol=1e-2)
+    found = pull_off(problem, start, step=0.1 * np.pi * WORK * RADIUS / cell ** 2, tol=1e-2)
     radius = np.sqrt(found.last_attached.contact_fraction * cell ** 2 / np.pi)
     return found.force / (np.pi * WORK * RADIUS), radius, found.solves
 

@@ -258,10 +258,10 @@ def run(sizes, pressure, threads, tol, planner, sweep_size, sweep_tols, repeat, 
                                                    planner_effort=planner)
             result, per_iteration = timed_solve(surface, halves[backend], pressure, tol, solve_repeat, **options)
             floors[backend] = floor = min(floors[backend], fft_floor(n, threads, planner, repeat, backend)[backend])
-            pairs = result.params["fft_pairs"] / max(result.iterations, 1)
+            pairs = result.solver.fft_pairs / max(result.iterations, 1)
             uncached = (f"; {per_iteration / (pairs * floors['pyfftw-rotating']):.3g} against the rotating pair"
                         if backend == "pyfftw" else "")
-            coarse = result.params["nested_iterations"]
+            coarse = result.solver.details["nested_iterations"]
             nested = f"; nested start: {'+'.join(map(str, coarse))} coarse iterations" if coarse else ""
             write(row(section="solve", solver=f"roughcontact[{label}]", n=n,
                       time_s=result.wall_time, iterations=result.iterations,
@@ -273,7 +273,7 @@ def run(sizes, pressure, threads, tol, planner, sweep_size, sweep_tols, repeat, 
             ours = ours or result
         if "pyfftw" in halves:
             decomposition, result = time_decomposition(surface, halves["pyfftw"], pressure, tol)
-            pairs = result.params["fft_pairs"] / max(result.iterations, 1)
+            pairs = result.solver.fft_pairs / max(result.iterations, 1)
             for group, per_iteration in decomposition.items():
                 write(row(section="profile", solver=group, n=n, time_s=result.wall_time, iterations=result.iterations,
                           fft_pairs_per_iteration=pairs, time_per_iteration_s=per_iteration,
@@ -308,7 +308,7 @@ def run(sizes, pressure, threads, tol, planner, sweep_size, sweep_tols, repeat, 
             sweeps[label] = (time.perf_counter() - start, results)
         cold_time, cold = sweeps["cold start"]
         for label, (seconds, results) in sweeps.items():
-            coarse = sum(sum(r.params["nested_iterations"]) for r in results)
+            coarse = sum(sum(r.solver.details["nested_iterations"]) for r in results)
             write(row(section="sweep", solver=label, n=sweep_size,
                       time_s=seconds, iterations=sum(r.iterations for r in results),
                       ratio=cold_time / seconds, contact_fraction=results[-1].contact_fraction,

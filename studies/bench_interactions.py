@@ -53,7 +53,7 @@ def rows_for(n, args):
     hard, hard_time = timed(lambda: solve_contact(surface, half, mean_pressure=args.pressure, tol=args.tol),
                             args.repeat)
     rows = [dict(section="hard_wall", n=n, voltage_V=0.0, time_s=hard_time, time_ratio=1.0,
-                 iterations=hard.iterations, fft_pairs=hard.params["fft_pairs"], fft_pair_ratio=1.0,
+                 iterations=hard.iterations, fft_pairs=hard.solver.fft_pairs, fft_pair_ratio=1.0,
                  contact_fraction=hard.contact_fraction, equivalent_gap_m=stack.equivalent_gap(hard.gap),
                  converged=hard.converged)]
     sweeps = {"cold": 0.0, "continuation": 0.0}
@@ -67,8 +67,8 @@ def rows_for(n, args):
             sweeps[kind] += seconds
             rows.append(dict(section=f"electrostatic_{kind}", n=n, voltage_V=voltage, time_s=seconds,
                              time_ratio=seconds / hard_time, iterations=res.iterations,
-                             fft_pairs=res.params["fft_pairs"], fft_pair_ratio=res.params["fft_pairs"] /
-                             hard.params["fft_pairs"], contact_fraction=res.contact_fraction,
+                             fft_pairs=res.solver.fft_pairs, fft_pair_ratio=res.solver.fft_pairs /
+                             hard.solver.fft_pairs, contact_fraction=res.contact_fraction,
                              equivalent_gap_m=res.equivalent_gap, converged=res.converged))
         previous = res
     rows.append(dict(section="sweep", n=n, voltage_V=max(args.voltages), time_s=sweeps["continuation"],

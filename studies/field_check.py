@@ -87,9 +87,9 @@ def _pressed(heights, body, pressure, voltage, stack) -> tuple:
     at ``voltage``). The solver's nested cold start stalls on some of these 1-D profiles (the default scene's
     ridge at 2 N, 0 V, 0.25 µm pixels: a 37 % contact state); then Polonsky and Keer's uniform start is used."""
     interaction = ElectrostaticInteraction(stack, voltage=voltage, field="parallel_plate") if voltage else None
-    for cold_start in ("nested", "pk"):
-        result = solve_contact(heights, body, mean_pressure=pressure, interaction=interaction,
-                               cold_start=cold_start, warn=False)
+    for cold_start in ("nested", "pk"):        # an option of the hard wall's method (a smooth law's start is nested)
+        options = {} if interaction is not None else {"cold_start": cold_start}
+        result = solve_contact(heights, body, mean_pressure=pressure, interaction=interaction, warn=False, **options)
         if result.converged:
             return np.asarray(result.gap)[:, 0], cold_start
     raise RuntimeError(f"the contact solve did not converge at {pressure:g} Pa, {voltage:g} V")

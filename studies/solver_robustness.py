@@ -65,7 +65,7 @@ def rows(sizes, seeds, pressures, tol, maxiter):
         for load, result, ref in zip(pressures, results, reference):
             row = {"n": n, "seed": seed, "variant": variant, "load_E_star": load / E_STAR,
                    "iterations": result.iterations, "converged": result.converged,
-                   "restart_every_entry_from": result.params["restart_every_entry_from"],
+                   "restart_every_entry_from": result.solver.details["restart_every_entry_from"],
                    "contact_fraction": result.contact_fraction, "mean_gap": result.mean_gap,
                    "mean_pressure": result.mean_pressure, "time_s": result.wall_time}
             for quantity, column in COMPARED.items():

@@ -11,9 +11,9 @@ from .continuation import JUMP_AREA, LoadPath, PullOff, load_cycle, pull_off
 from .dispatch import solve_contact
 from .inputs import default_tolerance
 from .problem import ContactProblem
-from .result import PERIMETER_CORRECTION, ContactResult, SolverState, boundary_edges
+from .result import PERIMETER_CORRECTION, ContactResult, SolverReport, SolverState, boundary_edges
 from .sweep import PREDICTORS, load_path
 
 __all__ = ["ContactProblem", "ContactResult", "JUMP_AREA", "LoadPath", "PERIMETER_CORRECTION", "PREDICTORS",
-           "PullOff", "SolverState", "boundary_edges", "default_tolerance", "load_cycle", "load_path", "pull_off",
+           "PullOff", "SolverReport", "SolverState", "boundary_edges", "default_tolerance", "load_cycle", "load_path", "pull_off",
            "solve_contact"]

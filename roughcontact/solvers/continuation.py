@@ -10,11 +10,12 @@ found by :func:`pull_off` (bracketed along the path, then bisected).
 """
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from surfaces.validation import check_positive, check_real
+from surfaces.validation import check_integer, check_positive, check_real
 
 from ..io.results import SavableResult
 from .problem import ContactProblem
@@ -50,7 +51,7 @@ class LoadPath(SavableResult):
 
 def _jump(previous: ContactResult, current: ContactResult, jump_area: float):
     """The kind of jump between two consecutive equilibria, or None."""
-    if current.params.get("detached"):
+    if current.detached:
         return "detachment"
     change = current.contact_fraction - previous.contact_fraction
     if current.contact_fraction == 1.0 and previous.contact_fraction < 1.0 and change > jump_area:
@@ -81,14 +82,14 @@ def load_cycle(problem: ContactProblem, loads, x0: ContactResult | None = None, 
         if previous is not None and (kind := _jump(previous, result, jump_area)) is not None:
             jumps.append((index, kind))
         results.append(result)
-        if result.params.get("detached"):
+        if result.detached:
             break
         previous = result
     return LoadPath(
         loads=loads[:len(results)], contact_fraction=np.array([r.contact_fraction for r in results]),
         mean_gap=np.array([r.mean_gap for r in results]), flat_position=np.array([r.flat_position for r in results]),
         converged=np.array([r.converged for r in results]),
-        detached=np.array([bool(r.params.get("detached")) for r in results]),
+        detached=np.array([r.detached for r in results]),
         unstable_steps=np.array([r.unstable_steps for r in results]), jumps=tuple(jumps),
         jump_area=jump_area, results=tuple(results) if keep_results else ())
 
@@ -106,22 +107,34 @@ class PullOff(SavableResult):
     solves: int
 
 
-def pull_off(problem: ContactProblem, start: ContactResult, step, rtol=1e-3, max_steps=200,
+def pull_off(problem: ContactProblem, start: ContactResult, step, tol=1e-3, max_steps=200, *, rtol=None,
              **solver_options) -> PullOff:
     """Retract from the equilibrium ``start`` by decreasing the external load in steps of ``step`` [Pa] (each
-    solve from the last attached equilibrium) until the contact detaches, then bisect between the last attached
-    and the first detached load to ``rtol`` of the step."""
+    solve from the last attached equilibrium, at most ``max_steps`` of them) until the contact detaches, then
+    bisect between the last attached and the first detached load to ``tol`` of the step (``rtol``, its former
+    name, is accepted for one release). ``problem`` needs a law that attracts (the hard wall and a 0 V law
+    separate at zero load: no pull-off to find)."""
+    if not isinstance(problem, ContactProblem):
+        raise TypeError(f"problem must be a ContactProblem, got {type(problem).__name__}")
+    if not problem.interaction.smooth or problem.interaction.vanishes:
+        raise ValueError(f"pull_off needs an attractive interaction law; {problem.interaction!r} exerts no "
+                         "attraction, so the contact separates at zero load (pull-off force 0)")
     if not isinstance(start, ContactResult) or not start.converged:
         raise ValueError("start must be a converged ContactResult on the branch to retract along")
     step = check_positive("step", step)
-    rtol = check_real("rtol", rtol, low=0.0, high=1.0, low_open=True, high_open=True)
+    if rtol is not None:
+        warnings.warn("pull_off(rtol=) is now spelled tol=, as in every solver; rtol is accepted for one release",
+                      DeprecationWarning, stacklevel=2)
+        tol = rtol
+    tol = check_real("tol", tol, low=0.0, high=1.0, low_open=True, high_open=True)
+    max_steps = check_integer("max_steps", max_steps, low=1)
     attached, solves = start, 0
     detached_load = None
     for _ in range(max_steps):
         load = attached.mean_pressure - step
         result = problem.solve(mean_pressure=load, x0=attached, warn=False, **solver_options)
         solves += 1
-        if result.params.get("detached"):
+        if result.detached:
             detached_load = load
             break
         if not result.converged:
@@ -129,11 +142,11 @@ def pull_off(problem: ContactProblem, start: ContactResult, step, rtol=1e-3, max
         attached = result
     if detached_load is None:
         raise RuntimeError(f"no detachment within {max_steps} steps of {step:g} Pa below {start.mean_pressure:g} Pa")
-    while attached.mean_pressure - detached_load > rtol * step:
+    while attached.mean_pressure - detached_load > tol * step:
         load = 0.5 * (attached.mean_pressure + detached_load)
         result = problem.solve(mean_pressure=load, x0=attached, warn=False, **solver_options)
         solves += 1
-        if result.params.get("detached") or not result.converged:
+        if result.detached or not result.converged:
             detached_load = load
         else:
             attached = result

@@ -34,6 +34,7 @@ iterated.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 import warnings
@@ -51,7 +52,7 @@ from ..interactions import ElectrostaticInteraction, ExponentialAdhesion, Maugis
 from ..io.results import ConvergenceWarning
 from .inputs import _heights
 from .polonsky_keer import solve_hard_wall
-from .result import ContactResult, SolverState
+from .result import ContactResult, SolverReport, SolverState
 
 METHOD = "projected-cg-gap"
 ARMIJO = 1e-4             # sufficient-decrease constant of the projected line search
@@ -63,6 +64,7 @@ FIELD_TOL_FACTOR = 0.1   # the layered field's solves to this times the solve's 
 FIELD_TOL_FLOOR = 1e-12  # but no tighter than this
 FIELD_TOL_CEILING = 1e-4 # and no looser
 _REFRESH = 50             # exact recomputation of p_el at least every _REFRESH incremental steps
+RETRACT_HALVINGS = 10     # halvings of a cold tensile solve's retract step before its branch is said to end
 
 # built-in laws evaluated inside the kernels: (kind, a, b, c)
 _ELECTROSTATIC, _EXPONENTIAL, _DUGDALE, _USER = 0, 1, 2, -1
@@ -122,7 +124,12 @@ def _evaluate(law, code, g, window, h_f, pel, traction, stiffness) -> tuple:
     traction[:], stiffness[:] = 0.0, 0.0
     inside = g[window]
     traction[window], stiffness[window] = law.traction(inside), law.stiffness(inside)
-    return _work_terms(g, h_f, pel) + (float(np.sum(law.energy(inside), dtype=np.float64)),)
+    energy_sum = float(np.sum(law.energy(inside), dtype=np.float64))
+    if not (math.isfinite(energy_sum) and np.isfinite(traction).all() and np.isfinite(stiffness).all()):
+        raise ValueError(f"the interaction {type(law).__name__} returned a non-finite energy, traction or stiffness "
+                         f"at gaps in [{float(inside.min())!r}, {float(inside.max())!r}] m; a law must be finite at "
+                         "every gap g >= 0")
+    return _work_terms(g, h_f, pel) + (energy_sum,)
 
 
 @njit(cache=True)
@@ -405,7 +412,7 @@ def _start(heights, half, load, flat_position, x0, tol, maxiter):
                                 maxiter=maxiter, warn=False)
     else:
         return None, "rigid", 0.0
-    return start, "hard wall", start.params["fft_pairs"]
+    return start, "hard wall", start.solver.fft_pairs
 
 
 def solve_smooth(height_field, half, law, *, mean_pressure=None, total_force=None, penetration=None, tol,
@@ -430,6 +437,9 @@ def solve_smooth(height_field, half, law, *, mean_pressure=None, total_force=Non
         raise TypeError(f"callback must be callable, got {type(callback).__name__}")
     heights = _heights(height_field, half)
     load = requested / grid.area if control == "total_force" else requested if control == "mean_pressure" else None
+    if x0 is None and load is not None and load < 0 and not (law.strength is not None and -load > law.strength):
+        return _retract_to(height_field, half, law, load, control, requested, start,
+                           dict(tol=tol, maxiter=maxiter, callback=callback, warn=warn))
     flat_position = None if load is not None else float(heights.max()) - requested
     begin, start_kind, start_pairs = _start(heights, half, load, flat_position, x0, tol, maxiter)
     nx, ny = grid.shape
@@ -459,6 +469,42 @@ def solve_smooth(height_field, half, law, *, mean_pressure=None, total_force=Non
     gap_scale = float(np.sqrt(np.mean(deviation * deviation, dtype=np.float64))) or law.length or 1.0
     state = _Solver(g, energy, law, gap_scale, start_pairs, window, largest_compliance, scale_to_body, grid)
     return state.run(tol, maxiter, callback, warn, half, heights, control, requested, start_kind, start)
+
+
+def _retract_to(height_field, half, law, load, control, requested, start, options) -> ContactResult:
+    """A cold solve under the tensile load ``load`` [Pa] (< 0, within the law's strength): the equilibrium at zero
+    load, then a quasi-static retract along its branch to ``load``, each solve from the last equilibrium, the step
+    halved where a solve finds none (at most ``RETRACT_HALVINGS`` times). A cold descent from the undeformed
+    surface would not follow the branch: it separates where a retract stays attached. Returns the equilibrium at
+    ``load`` (start "retract from 0 Pa"; ``details["retract_loads"]`` the loads solved), or, where the branch
+    ends first, the detached result, its message bracketing the branch's pull-off."""
+    warn = options.pop("warn")
+    attached = solve_smooth(height_field, half, law, mean_pressure=0.0, warn=False, **options)
+    solved, pairs, trial = [0.0], attached.solver.fft_pairs, attached
+    attached_load, step = 0.0, -load
+    while attached.converged and attached_load > load:
+        trial = solve_smooth(height_field, half, law, mean_pressure=max(load, attached_load - step), x0=attached,
+                             warn=False, **options)
+        solved.append(trial.requested)
+        pairs += trial.solver.fft_pairs
+        if trial.converged:
+            attached, attached_load = trial, trial.requested
+        elif step <= -load * 0.5 ** RETRACT_HALVINGS:
+            break
+        else:
+            step *= 0.5
+    message = trial.message
+    if trial.detached:
+        message = (f"detached: the branch retracted from zero load has no equilibrium beyond {attached_load:.6g} Pa "
+                   f"(it separates at {trial.requested:.6g} Pa), so {load:.6g} Pa lies beyond its pull-off")
+    elif not attached.converged:
+        message = f"the zero-load start of the retract did not converge: {attached.message}"
+    report = dataclasses.replace(trial.solver, message=message, start="retract from 0 Pa", fft_pairs=pairs,
+                                 wall_time=time.perf_counter() - start,
+                                 details={**trial.solver.details, "retract_loads": solved})
+    if not report.converged and warn:
+        warnings.warn(message, ConvergenceWarning, stacklevel=4)
+    return dataclasses.replace(trial, solver=report, control=control, requested=float(requested))
 
 
 def _start_gap(begin, h, body, window, heights, flat_position, start_pairs):
@@ -568,12 +614,9 @@ class _Solver:
                     continue
                 converged, message = True, f"converged: relative residual {residual:.3g} <= tol {tol:g}"
                 break
-            if energy.load is not None and energy.load < 0 and at_wall == 0 \
-                    and largest_pull < -energy.load * self.scale_to_body:
+            message = self.detachment(at_wall, largest_pull, start_kind)
+            if message:
                 detached = True
-                message = (f"no equilibrium: the tensile load {energy.load * self.scale_to_body:.6g} Pa exceeds the "
-                           f"attraction at every point (largest {largest_pull:.6g} Pa) with no contact left; the "
-                           "body separates (beyond pull-off)")
                 break
             if iterations >= maxiter:
                 message = f"not converged after {iterations} iterations: relative residual {residual:.3g} (tol {tol:g})"
@@ -611,6 +654,24 @@ class _Solver:
             warnings.warn(message, ConvergenceWarning, stacklevel=4)
         return self.result(pel, interaction, half, heights, control, requested, iterations, residuals, converged,
                            message, start, start_kind, tol, maxiter, detached, history)
+
+    def detachment(self, at_wall, largest_pull, start_kind) -> str:
+        """Why a tensile load P̄ < 0 has no equilibrium here ("" while it may have one): P̄ beyond the law's
+        ``strength`` σ_max (the mean traction ⟨p_int⟩ + ⟨contact pressure⟩ ≥ −σ_max can never balance it: none at
+        any gap), or, with no contact left, every point pulled off harder than the law attracts it (the energy
+        falls without bound as the body recedes: it separates along the path from this start)."""
+        load = self.energy.load
+        if load is None or load >= 0:
+            return ""
+        tension, strength = -load * self.scale_to_body, self.law.strength
+        if strength is not None and tension > strength:
+            return (f"detached: no equilibrium at any gap, since the tensile load {-tension:.6g} Pa exceeds the "
+                    f"strongest attraction of the law, {strength:.6g} Pa (the mean traction can never balance it)")
+        if at_wall == 0 and largest_pull < tension:
+            return (f"detached: no contact left and the tensile load {-tension:.6g} Pa exceeds the attraction at every "
+                    f"point (largest {largest_pull:.6g} Pa), so the body separates along the path from its start "
+                    f"({start_kind}): beyond the pull-off of the branch followed")
+        return ""
 
     def line_search(self, slope, sum_d, pel, value, magnitude, tau, since_exact):
         """Projected Armijo search along d. Where the last step was concave (the solve is crossing an instability)
@@ -702,20 +763,19 @@ class _Solver:
         contact_pressure = np.where(contact, pressure - traction, 0.0).astype(half.dtype)
         for array in (pressure, displacement, gap, contact, contact_pressure, traction):
             array.flags.writeable = False
-        params = {"E_star": half.E_star, "grid": grid, "tol": tol, "maxiter": int(maxiter), "method": METHOD,
-                  "start": start_kind, "interaction": type(law).__name__, "kernel": half.description,
-                  "version": __version__, "control": control, "requested": requested,
-                  "fft_pairs": self.transforms / 2 + (self.field.fft_pairs if self.field else 0),
-                  "detached": detached,
-                  "energy_history": [float(v) * grid.area * self.scale_to_body for v in history]}
+        report = SolverReport(
+            method=METHOD, converged=bool(converged), message=message, iterations=int(iterations),
+            residuals=np.asarray(residuals, dtype=np.float64), tol=tol, maxiter=int(maxiter), start=start_kind,
+            fft_pairs=self.transforms / 2 + (self.field.fft_pairs if self.field else 0),
+            wall_time=time.perf_counter() - start, unstable_steps=self.unstable_steps, detached=detached,
+            kernel=half.description, version=__version__,
+            details={"energy_history": [float(v) * grid.area * self.scale_to_body for v in history]})
         return ContactResult(
             pressure=pressure, displacement=displacement, gap=gap, contact=contact,
             contact_fraction=float(np.count_nonzero(contact)) / contact.size,
             mean_pressure=float(load) * self.scale_to_body, mean_gap=float(gap.mean(dtype=np.float64)),
             penetration=float(heights.max()) - flat_position,
-            elastic_energy=half.elastic_energy(pressure, displacement), iterations=int(iterations),
-            residuals=np.asarray(residuals, dtype=np.float64), converged=bool(converged), message=message,
-            wall_time=time.perf_counter() - start, params=params, contact_pressure=contact_pressure,
-            interaction_traction=traction, flat_position=float(flat_position),
-            interaction_energy=interaction * grid.pixel_area,
-            interaction=law, control=control, requested=float(requested), unstable_steps=self.unstable_steps)
+            elastic_energy=half.elastic_energy(pressure, displacement), grid=grid, solver=report,
+            contact_pressure=contact_pressure, interaction_traction=traction, flat_position=float(flat_position),
+            interaction_energy=interaction * grid.pixel_area, interaction=law, control=control,
+            requested=float(requested))

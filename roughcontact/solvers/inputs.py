@@ -2,6 +2,8 @@
 the default tolerance."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from surfaces import HeightField
@@ -11,22 +13,22 @@ from ..body import ElasticHalfSpace
 from ..interactions import HardWall, Interaction
 
 
-def _check_body(half) -> None:
-    if not isinstance(half, ElasticHalfSpace):
-        raise TypeError(f"half must be an ElasticHalfSpace, got {type(half).__name__}")
+def _check_body(body) -> None:
+    if not isinstance(body, ElasticHalfSpace):
+        raise TypeError(f"body must be an ElasticHalfSpace, got {type(body).__name__}")
 
 
-def _heights(height_field, half) -> np.ndarray:
+def _heights(height_field, body) -> np.ndarray:
     if isinstance(height_field, HeightField):
-        if height_field.grid != half.grid:
-            raise ValueError(f"height_field.grid {height_field.grid} differs from the half-space grid {half.grid}")
+        if height_field.grid != body.grid:
+            raise ValueError(f"height_field.grid {height_field.grid} differs from the body's grid {body.grid}")
         heights = height_field.heights
     else:
         heights = check_finite_array("height_field", height_field)
-        if heights.shape != half.grid.shape:
-            raise ValueError(f"height_field has shape {heights.shape}, but the half-space grid has shape "
-                             f"{half.grid.shape}")
-    return np.ascontiguousarray(heights, dtype=half.dtype)
+        if heights.shape != body.grid.shape:
+            raise ValueError(f"height_field has shape {heights.shape}, but the body's grid has shape "
+                             f"{body.grid.shape}")
+    return np.ascontiguousarray(heights, dtype=body.dtype)
 
 
 def default_tolerance(dtype, interaction=None) -> float:
@@ -49,4 +51,14 @@ def _checked_interaction(interaction) -> Interaction:
         raise ValueError("interaction = Interaction() is the abstract base class; pass a law such as HardWall(), "
                          "ElectrostaticInteraction(stack, voltage) or a subclass that implements energy, traction "
                          "and stiffness")
+    if interaction.smooth:
+        length = getattr(interaction, "length", None)
+        if isinstance(length, bool) or not isinstance(length, (int, float, np.floating, np.integer)) \
+                or not math.isfinite(length) or length <= 0:
+            raise ValueError(f"interaction {type(interaction).__name__} needs length, the gap scale [m] over which "
+                             f"it varies, a finite float > 0 (valid range (0, inf)); got {length!r}")
+        strength = interaction.strength
+        if strength is not None and not (isinstance(strength, (int, float, np.floating)) and strength >= 0):
+            raise ValueError(f"interaction {type(interaction).__name__}.strength, its largest attraction [Pa], must "
+                             f"be None or a float >= 0 (valid range [0, inf)); got {strength!r}")
     return interaction

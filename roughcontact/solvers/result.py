@@ -4,9 +4,11 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass, field
+from dataclasses import MISSING, dataclass, field, fields, replace
 
 import numpy as np
+
+from surfaces import Grid
 
 from ..interactions import ElectrostaticInteraction, HardWall, Interaction
 from ..io.results import SavableResult
@@ -29,7 +31,71 @@ def boundary_edges(contact: np.ndarray, periodic=(True, True)) -> int:
     return edges
 
 
+def _read_only_state(result, state: dict) -> None:
+    """Unpickling: the fields back, arrays read-only as when the result was made (results are immutable)."""
+    for name, value in state.items():
+        if isinstance(value, np.ndarray):
+            value.flags.writeable = False
+        object.__setattr__(result, name, value)
+
+
 @dataclass(frozen=True, eq=False)
+class SolverReport(SavableResult):
+    """What the solver did, typed: ``method`` (a name of :data:`~roughcontact.solvers.dispatch.METHODS`),
+    ``converged``, ``message``, ``iterations``, ``residuals`` (history of the method's relative error), ``tol``
+    and ``maxiter`` it ran with, ``start`` (what it started from: "nested", "pk", "x0", "hard wall", "rigid",
+    "retract from 0 Pa"), ``fft_pairs`` (forward and backward transforms / 2, the start's included),
+    ``wall_time`` [s], ``unstable_steps`` (steps of a smooth law's solve along which the energy was concave: it
+    crossed an instability, so the equilibrium reached may depend on the path; 0 for the hard wall),
+    ``detached`` (under a tensile load no equilibrium was found: the message says why), ``kernel`` (the body's
+    description), ``version`` (of roughcontact) and ``details``, the method's own record
+    (``docs/guide/solver.md``: Polonsky–Keer's "preconditioned", "nested_iterations", "restart_every_entry_from",
+    "full_contact", "warm_start_stalled_at"; the smooth method's "energy_history" [J])."""
+
+    method: str
+    converged: bool
+    message: str
+    iterations: int
+    residuals: np.ndarray
+    tol: float
+    maxiter: int
+    start: str
+    fft_pairs: float
+    wall_time: float
+    unstable_steps: int = 0
+    detached: bool = False
+    kernel: dict = field(default_factory=dict)
+    version: str = ""
+    details: dict = field(default_factory=dict)
+
+    __setstate__ = _read_only_state
+
+
+#: The fields that ContactResult held before its SolverReport (files saved then still load).
+_LEGACY_FIELDS = ("iterations", "residuals", "converged", "message", "wall_time", "params", "unstable_steps")
+#: The keys of the former ``params`` dict that are now typed on the report (or the result).
+_TYPED_PARAMS = ("E_star", "grid", "tol", "maxiter", "method", "start", "fft_pairs", "detached", "control",
+                 "requested", "interaction", "kernel", "version")
+
+
+def _report_from_legacy(legacy: dict) -> SolverReport:
+    """The SolverReport of a result saved before it had one: its former fields and ``params`` dict."""
+    params = legacy.get("params", {})
+    return SolverReport(
+        method=params.get("method", ""), converged=bool(legacy["converged"]), message=legacy["message"],
+        iterations=int(legacy["iterations"]), residuals=legacy["residuals"], tol=params.get("tol", math.nan),
+        maxiter=params.get("maxiter", 0), start=params.get("start", ""), fft_pairs=params.get("fft_pairs", math.nan),
+        wall_time=legacy.get("wall_time", math.nan), unstable_steps=int(legacy.get("unstable_steps", 0)),
+        detached=bool(params.get("detached", False)), kernel=params.get("kernel", {}),
+        version=params.get("version", ""), details={k: v for k, v in params.items() if k not in _TYPED_PARAMS})
+
+
+def _from_report(name: str, doc: str) -> property:
+    """A read-only attribute of the result that is the entry ``name`` of its SolverReport."""
+    return property(lambda result: getattr(result.solver, name), doc=f"{doc} (``solver.{name}``)")
+
+
+@dataclass(frozen=True, eq=False, init=False)
 class ContactResult(SavableResult):
     """Solution of one contact problem. Fields in SI units; see ``docs/reference/conventions.md`` for signs.
 
@@ -39,13 +105,12 @@ class ContactResult(SavableResult):
     for the hard wall). ``mean_pressure`` <p> [Pa] is the external load (any sign; ``total_force`` [N]).
     Geometry [m]: ``displacement`` u, ``gap`` g (≥ 0, 0 on the contact set), ``flat_position`` s, with
     g = s − h + u, ``penetration`` δ = max(h) − s, ``mean_gap``; ``contact`` (bool mask), ``contact_fraction``
-    A/A0. Energies [J]: ``elastic_energy`` ½∫p u dA, ``interaction_energy`` ∫V(g) dA. Convergence:
-    ``iterations``, ``residuals`` (history of the relative error), ``converged``, ``message``, ``wall_time``
-    [s]. ``control`` ("mean_pressure", "total_force" or "penetration") and ``requested`` say what was fixed;
-    ``params`` the solver's settings and diagnostics. ``unstable_steps``: steps of a smooth law's solve along
-    which the energy was concave (the attraction out-softened the elastic stiffness): the solve crossed an
-    instability (a snap-in), so the equilibrium it reached may depend on the path to it (0 for the hard wall;
-    ``docs/guide/interactions.md``, "Several equilibria").
+    A/A0; ``grid`` the grid it was solved on. Energies [J]: ``elastic_energy`` ½∫p u dA, ``interaction_energy``
+    ∫V(g) dA. ``control`` ("mean_pressure", "total_force" or "penetration") and ``requested`` say what was
+    fixed. ``solver``: the :class:`SolverReport` (method, convergence, cost, start, detachment); its most read
+    entries are also attributes of the result: ``converged``, ``message``, ``iterations``, ``residuals``,
+    ``wall_time`` [s], ``unstable_steps``, ``detached``. ``params``, the former dict of the solver's settings,
+    is rebuilt from the report for one release.
     """
 
     pressure: np.ndarray
@@ -57,12 +122,8 @@ class ContactResult(SavableResult):
     mean_gap: float
     penetration: float
     elastic_energy: float
-    iterations: int
-    residuals: np.ndarray
-    converged: bool
-    message: str
-    wall_time: float
-    params: dict = field(default_factory=dict)
+    grid: Grid
+    solver: SolverReport
     contact_pressure: np.ndarray | None = None
     interaction_traction: np.ndarray | None = None
     flat_position: float = math.nan
@@ -70,13 +131,63 @@ class ContactResult(SavableResult):
     interaction: Interaction = HardWall()
     control: str = ""
     requested: float = math.nan
-    unstable_steps: int = 0
+
+    def __init__(self, **values):
+        """Keyword fields as declared; a file saved before the :class:`SolverReport` gives the former fields
+        ``iterations``, ``residuals``, ``converged``, ``message``, ``wall_time``, ``params`` and
+        ``unstable_steps`` instead of ``grid`` and ``solver``; beside ``solver`` (``dataclasses.replace``) all
+        but ``params`` replace the report's entries (for one release)."""
+        legacy = {name: values.pop(name) for name in _LEGACY_FIELDS if name in values}
+        if legacy and "solver" in values:                   # dataclasses.replace(result, converged=False)
+            if "params" in legacy:
+                raise TypeError("params is rebuilt from the SolverReport: give solver= (with its details) instead")
+            values["solver"] = replace(values["solver"], **legacy)
+        elif legacy:
+            values["solver"] = _report_from_legacy(legacy)
+            values.setdefault("grid", legacy.get("params", {}).get("grid"))
+        for declared in fields(ContactResult):
+            if declared.name in values:
+                value = values.pop(declared.name)
+            elif declared.default is not MISSING:
+                value = declared.default
+            else:
+                raise TypeError(f"ContactResult() missing the field {declared.name!r}")
+            object.__setattr__(self, declared.name, value)
+        if values:
+            raise TypeError(f"ContactResult() got unexpected fields {sorted(values)}")
+        if not isinstance(self.grid, Grid) or not isinstance(self.solver, SolverReport):
+            raise TypeError(f"ContactResult needs grid (a surfaces.Grid) and solver (a SolverReport), got "
+                            f"{type(self.grid).__name__} and {type(self.solver).__name__}")
+
+    __setstate__ = _read_only_state
+    converged = _from_report("converged", "Whether the solver met its tolerance.")
+    message = _from_report("message", "The solver's closing message.")
+    iterations = _from_report("iterations", "Steps of the method.")
+    residuals = _from_report("residuals", "History of the method's relative error.")
+    wall_time = _from_report("wall_time", "Seconds the solve took.")
+    unstable_steps = _from_report("unstable_steps", "Steps along which the energy was concave "
+                                  "(docs/guide/interactions.md, \"Several equilibria\").")
+    detached = _from_report("detached", "Whether a tensile load found no equilibrium (the message says why).")
+
+    @property
+    def params(self) -> dict:
+        """The solver's settings and diagnostics as the former dict (kept readable for one release: read
+        ``grid`` and the typed ``solver`` report instead)."""
+        report = self.solver
+        params = {"E_star": report.kernel.get("E_star"), "grid": self.grid, "tol": report.tol,
+                  "maxiter": report.maxiter, "method": report.method, "start": report.start,
+                  "control": self.control, "requested": self.requested,
+                  "interaction": type(self.interaction).__name__, "kernel": report.kernel,
+                  "version": report.version, "fft_pairs": report.fft_pairs, **report.details}
+        if report.method != "polonsky-keer":
+            params["detached"] = report.detached
+        return params
 
     @functools.cached_property
     def perimeter_edges(self) -> int:
         """Number M of pixel edges between a contact and a non-contact pixel (:func:`boundary_edges`, across the
         window's border on the grid's periodic axes)."""
-        return boundary_edges(self.contact, self.params["grid"].periodic)
+        return boundary_edges(self.contact, self.grid.periodic)
 
     @property
     def corrected_contact_fraction(self) -> float:
@@ -87,7 +198,7 @@ class ContactResult(SavableResult):
     @property
     def total_force(self) -> float:
         """Total normal force F = <p> Lx Ly [N]: the external load, positive pushing the bodies together."""
-        return self.mean_pressure * self.params["grid"].area
+        return self.mean_pressure * self.grid.area
 
     @property
     def total_energy(self) -> float:
@@ -103,7 +214,7 @@ class ContactResult(SavableResult):
             pressure = stack.pressure(self.gap, voltage)
         else:
             pressure = -np.asarray(self.interaction_traction, dtype=np.float64)
-        return float(np.sum(pressure, dtype=np.float64)) * self.params["grid"].pixel_area
+        return float(np.sum(pressure, dtype=np.float64)) * self.grid.pixel_area
 
     @property
     def equivalent_gap(self) -> float:
@@ -120,7 +231,7 @@ class ContactResult(SavableResult):
         stack, voltage = self._electrostatics()
         if voltage == 0.0:
             return math.nan
-        return stack.gap_for_pressure(self.electrostatic_force / self.params["grid"].area, voltage)
+        return stack.gap_for_pressure(self.electrostatic_force / self.grid.area, voltage)
 
     def _electrostatics(self):
         if not isinstance(self.interaction, ElectrostaticInteraction):

@@ -35,6 +35,7 @@ _LAZY = {
     "coupled_chain": "coupled",
     "interface_law": "coupled",
     "TaskStore": "execution",
+    "StaleTaskWarning": "execution",
     "StudyResult": "run",
     "run_study": "run",
     "bottom_up_friction": "friction",

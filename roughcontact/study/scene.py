@@ -27,6 +27,7 @@ from surfaces.ridges import ridge_fraction
 from surfaces.validation import check_integer, check_real
 
 from ..electrostatics import DielectricStack
+from ..interactions import FIELDS, ElectrostaticInteraction
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -101,6 +102,10 @@ eps_sc = 3000.0
 d_i = 1e-06                    # m, insulator thickness
 eps_i = 3.9
 eps_a = 1.0
+# The field of the stack over the gap field (docs/guide/electrostatics.md): "layered" (the stratum corneum and the
+# insulator couple the columns; validated against a finite-element solve) or "parallel_plate" (seed Eq. 21 pixel
+# by pixel, the seed's assumption). The report compares the two on every solved gap either way.
+field = "layered"
 
 [loads]
 # The seed's range: 0.5-2 N and 0-200 V (seed Table 1, Fig. 9).
@@ -318,16 +323,24 @@ class Skin(_Section):
 
 @dataclass(frozen=True)
 class Screen(_Section):
-    """Dielectric stack (``roughcontact.electrostatics.DielectricStack`` fields)."""
+    """Dielectric stack (``roughcontact.electrostatics.DielectricStack`` fields) and the ``field`` model of its
+    attraction over a gap field ("layered" or "parallel_plate", ``ElectrostaticInteraction.field``)."""
     section = "screen"
     d_sc: float = _field(_Real(0.0, low_open=True))
     eps_sc: float = _field(_Real(0.0, low_open=True))
     d_i: float = _field(_Real(0.0, low_open=True))
     eps_i: float = _field(_Real(0.0, low_open=True))
     eps_a: float = _field(_Real(0.0, low_open=True))
+    field: str = _field(_Choice(FIELDS))
 
     def stack(self):
-        return DielectricStack(**dataclasses.asdict(self))
+        return DielectricStack(**{key: value for key, value in dataclasses.asdict(self).items() if key != "field"})
+
+    def interaction(self, voltage: float):
+        """The attraction at ``voltage`` [V] with the scene's field model; None at 0 V (the hard wall)."""
+        if voltage == 0:
+            return None
+        return ElectrostaticInteraction(self.stack(), voltage=voltage, field=self.field)
 
 
 @dataclass(frozen=True)
@@ -507,6 +520,23 @@ def _parse(text: str, origin: str) -> dict:
 _DEFAULTS = _parse(DEFAULT_SCENE_TOML, "the default scene")
 
 
+def _read_scene_file(path) -> str:
+    """The text of the scene file ``path`` (TOML is UTF-8); a ValueError naming the file if it cannot be read."""
+    try:
+        data = Path(path).read_bytes()
+    except TypeError:
+        raise TypeError(f"scene path must be a str or os.PathLike, got {type(path).__name__}") from None
+    except OSError as error:
+        raise ValueError(f"cannot read the scene file {path}: {error.strerror}") from None
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        line = data.count(b"\n", 0, error.start) + 1
+        column = error.start - data.rfind(b"\n", 0, error.start)
+        raise ValueError(f"the scene file {path} is not UTF-8 text: byte 0x{data[error.start]:02x} at line {line}, "
+                         f"column {column} (TOML files are UTF-8; save it as UTF-8 in the editor)") from None
+
+
 def load_scene(path=None, *, text: str | None = None, preset: str | None = None) -> Scene:
     """The scene of the TOML file ``path`` (or of the TOML ``text``; neither: the default scene), every value
     not given taken from :data:`DEFAULT_SCENE_TOML`; ``preset`` overrides ``study.preset``."""
@@ -514,10 +544,7 @@ def load_scene(path=None, *, text: str | None = None, preset: str | None = None)
         raise ValueError("give a scene path or its text, not both")
     origin = "the default scene" if path is None and text is None else str(path) if path is not None else "scene"
     if path is not None:
-        try:
-            text = Path(path).read_text()
-        except OSError as error:
-            raise ValueError(f"cannot read the scene file {path}: {error.strerror}") from None
+        text = _read_scene_file(path)
     text = "" if text is None else text
     given = _parse(text, origin)
     for name, value in given.items():

@@ -184,7 +184,7 @@ def test_grid_mismatch_and_wrong_half_space():
     other = HeightField(Grid((8, 8), (2e-3, 2e-3)), np.zeros((8, 8)))
     with pytest.raises(ValueError, match="grid"):
         solve_contact(other, ElasticHalfSpace(grid, E_star=E_STAR), mean_pressure=1.0)
-    with pytest.raises(TypeError, match="half"):
+    with pytest.raises(TypeError, match="body must be an ElasticHalfSpace"):
         solve_contact(other, E_STAR, mean_pressure=1.0)
 
 
@@ -258,14 +258,16 @@ def test_far_beyond_full_contact_is_exact_at_once():
 def test_float32_default_tolerance_and_stall():
     surface, half = bench_like(np.float32)
     res = solve_contact(surface, half, mean_pressure=1e3)
-    assert res.converged and res.params["tol"] == 1e-6
-    with pytest.warns(UserWarning, match="stalled"):
+    assert res.converged and res.solver.tol == 1e-6
+    # a tolerance below float32's round-off floor is warned of up front; the residual stops falling and the
+    # solve ends STALL_LIMIT steps after its last minimum, not at maxiter
+    with pytest.warns(UserWarning, match="stalled"), \
+            pytest.warns(ConvergenceWarning, match="tol = 1e-12 is below float32's round-off floor"):
         stalled = solve_contact(surface, half, mean_pressure=1e3, tol=1e-12)
-    # float32 round-off: the residual stops falling; the solve ends STALL_LIMIT steps after its last minimum
     assert not stalled.converged and stalled.iterations < 1000
     assert stalled.params["start"] != "x0" and "warm_start_stalled_at" not in stalled.params
     # a warm-started solve that stalls is solved again from the cold start (which a warm start's cycle can miss)
-    with pytest.warns(UserWarning, match="stalled"):
+    with pytest.warns(UserWarning, match="stalled"), pytest.warns(ConvergenceWarning, match="round-off floor"):
         retried = solve_contact(surface, half, mean_pressure=2e3, tol=1e-12, x0=res)
     assert retried.params["warm_start_stalled_at"] > 0 and retried.params["start"] != "x0"
 
