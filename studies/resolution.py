@@ -1,11 +1,12 @@
 """Resolution near contacts: how the electrostatic attraction F_el and the equivalent gaps converge with the
-pixel size, and the discretisation error at each preset's pixel (``docs/presets.md``, tables "Convergence
-with the pixel", "Discretisation error at the presets' pixels" and "1-D against 2-D"; the columns
-``fel_error``, ``deq_error`` and ``field_deq_error`` of ``roughcontact/study/preset_errors.csv``).
+pixel size, and the discretisation error at each preset's pixel (``docs/presets.md``, the tables of
+"Convergence with the pixel", "Discretisation error at the presets' pixels", "1-D profiles against the 2-D
+patch" and "The remedy: a measured correction of F_el"; the columns ``fel_error``, ``deq_error`` and
+``field_deq_error`` of ``roughcontact/study/preset_errors.csv``).
 
-    python studies/resolution.py --output resolution-out            # the tables of docs/presets.md
-    python studies/resolution.py --output resolution-out --library  # also the columns of preset_errors.csv
-    python studies/resolution.py --fast --output out                # 3 pixel sizes, 1 realisation: seconds
+    python studies/resolution.py --patch-grids 128 256 512 1024 --output out            # docs/presets.md
+    python studies/resolution.py --patch-grids 128 256 512 1024 --library --output out  # + preset_errors.csv
+    python studies/resolution.py --fast --output out                # 3 pixel sizes, 2 realisations: seconds
 
 Profiles: one ridge period of the default scene across the ridges, ridges and micro-roughness
 (``roughcontact.study.patch.profile_surface``: the line spectrum of the patch's 2-D roughness, the same
@@ -16,20 +17,25 @@ law (Eq. 21), each inside its own contact solve. On every solved gap g, at 200 V
 (``solve_field``) and of the per-pixel law, d_eq of Eq. 25 and the field-equivalent gap (the uniform gap with
 the layered field's mean attraction).
 
-Convergence: per point, law and quantity, the realisation mean against the pixel h; where three successive
-halvings give a regular sequence (the observed order p = log2(Δ_coarse/Δ_fine) of the two finest triples
-agree within ``ORDER_SPREAD`` and p > 0), the converged value is Richardson's f_h + (f_h − f_2h)/(2^p − 1) from
-the finest pair; otherwise the finest value stands for it (and the error is a lower bound). The error at a
-preset's pixel is f(h)/f_∞ − 1.
+Convergence: per point, law and quantity, the mean over the realisations (those whose solves converged at
+every pixel) against the pixel h; where the sequence is regular (the observed orders p = log2(Δ_coarse/Δ_fine)
+of the two finest triples agree within ``ORDER_SPREAD`` and p > 0), the converged value is Richardson's
+f_h + (f_h − f_2h)/(2^p − 1) from the finest pair; otherwise the finest value stands for it. The error at a
+preset's pixel is f(h)/f_∞ − 1, with a paired 95 % half-width (1.96 sd/√R of the realisations' differences
+from their finest value, over f_∞). The layered law's F_el is irregular: single realisations jump between
+equilibria (neighbouring asperities pulled into contact or not) from one pixel to the next.
 
-2-D check (not in ``--fast``): the study's own 2-D patch of realisation 0 at the presets' grids (128², 256²,
-512², one ridge period, the scene's 10 µm cut-off in all three) at 2 N, solved with the layered law at 200 V
-and the hard wall: the same quantities, beside the 1-D profile's at the same pixels.
+Measured correction: the factor f_finest/f(h) of the layered F_el at each preset pixel from the even
+realisations, applied to the odd ones, and the error left there.
+
+2-D check (``--patch-grids``, not in ``--fast``): realisation 0's patch (one ridge period, the scene's 10 µm
+cut-off at every grid) at 2 N, hard wall and the layered law at 200 V: the same quantities, to set beside the
+1-D trend at the same pixels.
 
 Writes ``resolution_profiles.csv`` (one row per realisation, load, solve law and pixel),
-``resolution_convergence.csv`` (per point, law and quantity: the means, the orders, the converged value and
-the error at each preset pixel) and ``resolution_patches.csv`` (the 2-D check); every CSV starts with its
-provenance line.
+``resolution_convergence.csv`` (per point, law and quantity: the means, the order, the converged value, the
+error and half-width at each preset pixel), ``resolution_correction.csv`` and ``resolution_patches.csv``;
+every CSV starts with its provenance line.
 """
 from __future__ import annotations
 
@@ -242,6 +248,8 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--fast", action="store_true", help="128-512 px per period, 2 realisations, no 2-D check")
     parser.add_argument("--realisations", type=int, default=24)
+    parser.add_argument("--pixels", type=int, nargs="+", default=list(PIXELS_PER_PERIOD),
+                        help="pixels per ridge period, halving the pixel each step (with 128, 256 and 512)")
     parser.add_argument("--patch-grids", type=int, nargs="*", default=list(PRESET_PIXELS.values()),
                         help="pixels per side of the 2-D check (none: skip it)")
     parser.add_argument("--library", action="store_true",
@@ -250,7 +258,7 @@ def main(argv=None):
     args, provenance = parse_arguments(parser, argv, "python studies/resolution.py")
     output = output_directory(args.output)
     scene = load_scene()
-    pixels = list(FAST_PIXELS if args.fast else PIXELS_PER_PERIOD)
+    pixels = list(FAST_PIXELS if args.fast else args.pixels)
     rows = profile_rows(scene, pixels, 2 if args.fast else args.realisations)
     write_csv(output / "resolution_profiles.csv", rows, provenance)
     convergence = convergence_rows(rows, pixels)
