@@ -131,8 +131,8 @@ def error_floor(table=None) -> tuple:
     references = [entry for entry in table if entry.error == 0]
     measured_floor = max((entry.discretisation_error for entry in references), default=math.nan)
     if not math.isnan(measured_floor):
-        return measured_floor, ("the reference setting's own discretisation error of F_el and d_eq against the "
-                                "converged pixel")
+        return measured_floor, ("the reference setting's own discretisation error of F_el and the equivalent "
+                                "gaps against a converged pixel, measured on 1-D profiles")
     if not references:
         return min(entry.error for entry in table), "the smallest error of any measured setting"
     return (min(entry.error for entry in table if entry.error > 0),
