@@ -15,16 +15,16 @@ def study(load_experiment, tmp_path_factory):
 
 
 @pytest.mark.parametrize("order", [1.0, 1.5, 2.0])
-def test_richardson_recovers_the_limit_and_the_order(study, order):
-    module, *_ = study
+def test_richardson_recovers_the_limit_and_the_order(load_experiment, order):
+    module = load_experiment("resolution")
     pixels = 8.0 / 2 ** np.arange(5)
     converged, observed, regular = module.richardson(3.0 - 0.4 * pixels ** order)
     assert regular and observed == pytest.approx(order, rel=1e-12)
     assert converged == pytest.approx(3.0, rel=1e-12)
 
 
-def test_richardson_declines_an_irregular_sequence(study):
-    module, *_ = study
+def test_richardson_declines_an_irregular_sequence(load_experiment):
+    module = load_experiment("resolution")
     converged, _, regular = module.richardson([1.0, 1.3, 1.1, 1.25, 1.2])     # oscillating: no order
     assert not regular and converged == 1.2                                    # the finest value stands
     converged, _, regular = module.richardson([1.0, 1.5, 1.75, 1.8, 1.81])     # orders 1, 2.3, 2.3: finest two agree
