@@ -1,16 +1,19 @@
 """The roughcontact command: a thin wrapper over the library (the same code path as the Python API).
 
 A user's mistake (an output path that is a file or whose parent does not exist, a bad value) ends with exit
-code 2 and a one-line message, never a traceback.
+code 2 and a one-line message, never a traceback; Ctrl-C ends with exit code 130 and one line; a warning is
+one line.
 """
 from __future__ import annotations
 
 import argparse
 import os
+from concurrent.futures.process import BrokenProcessPool
 from importlib import metadata
 import platform
 import sys
 import time
+import warnings
 
 from . import study
 from ._version import __version__
@@ -23,6 +26,8 @@ DEFAULT_FIGURES_OUTPUT = "roughcontact-figures"
 DEFAULT_RUN_OUTPUT = "roughcontact-results"
 #: Exit code of a user's mistake (as argparse's own).
 USAGE_ERROR = 2
+#: Exit code of a command interrupted by Ctrl-C (128 + SIGINT, as a shell reports it).
+INTERRUPTED = 130
 
 
 class _Parser(argparse.ArgumentParser):
@@ -95,6 +100,11 @@ def _cmd_run(args, provenance) -> int:
     except (ValueError, ImportError) as error:   # a scene key or parameter the preset cannot resolve, another
         print(f"roughcontact run: error: {error}", file=sys.stderr)        # scene, dask not installed
         return USAGE_ERROR
+    except RuntimeError as error:
+        if not isinstance(error.__cause__, BrokenProcessPool):
+            raise
+        print(f"roughcontact run: error: {error}", file=sys.stderr)        # a worker was killed
+        return 1
     written = study.write_results(result, output, provenance, time.perf_counter() - start)
     if not written["netcdf"]:
         print("roughcontact run: results.nc not written: xarray and h5netcdf are not installed "
@@ -131,10 +141,10 @@ def build_parser() -> argparse.ArgumentParser:
                      help="scene TOML file (default: the embedded scene, see 'roughcontact scene --show')")
     run.add_argument("--preset", choices=("draft", "standard", "reference", "auto"), default=argparse.SUPPRESS,
                      help="accuracy preset (default: the scene's study.preset); auto: the cheapest measured setting "
-                          "meeting --target-error (docs/presets.md)")
+                          "meeting --target-error (docs/guide/presets.md)")
     run.add_argument("--target-error", metavar="ERROR", default=argparse.SUPPRESS,
                      help="with --preset auto: the largest error accepted, e.g. 10%% or 0.1; refused below the "
-                          "reference setting's own error (the floor, docs/presets.md)")
+                          "reference setting's own error (the floor, docs/guide/presets.md)")
     run.add_argument("--out", default=DEFAULT_RUN_OUTPUT,
                      help="results directory; created if missing, but its parent must exist")
     executors = run.add_mutually_exclusive_group()
@@ -159,13 +169,23 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv=None) -> int:
     parser = build_parser()
     args, provenance = parse_arguments(parser, argv, "roughcontact")
+    program = f"roughcontact {args.command}"
+
+    def show_warning(message, category, filename, lineno, file=None, line=None):
+        print(f"{program}: warning: {message}", file=sys.stderr)          # one line, without the source line
+
     try:
-        return args.run(args, provenance)
+        with warnings.catch_warnings():
+            warnings.showwarning = show_warning
+            return args.run(args, provenance)
+    except KeyboardInterrupt:
+        kept = f"; finished tasks are kept in {args.out} (the same command resumes)" if args.command == "run" else ""
+        parser.exit(INTERRUPTED, f"{program}: interrupted{kept}\n")
     except OutputPathError as error:
-        parser.exit(USAGE_ERROR, f"roughcontact {args.command}: error: {error}\n")
+        parser.exit(USAGE_ERROR, f"{program}: error: {error}\n")
     except OSError as error:                      # e.g. the disk filled up while writing
-        parser.exit(USAGE_ERROR, f"roughcontact {args.command}: error: cannot write {error.filename}: "
-                                 f"{error.strerror}\n")
+        parser.exit(USAGE_ERROR, f"{program}: error: cannot write {error.filename or 'the output'}: "
+                                 f"{error.strerror or error}\n")
 
 
 if __name__ == "__main__":

@@ -16,6 +16,7 @@ used in place (no copy); other arrays of the right shape work too, through a cop
 Defaults (``threads=None``, ``planner_effort=None``): the cores this process may run on
 (``$ROUGHCONTACT_FFT_THREADS`` overrides; a pool worker sets 1) and ``FFTW_MEASURE``
 (``$ROUGHCONTACT_FFTW_PLANNER`` overrides; the test suite uses ``FFTW_ESTIMATE``).
+
 * ``"scipy"``: ``scipy.fft`` with ``workers=threads``; always available, agrees with pyFFTW to round-off
   (``scipy.fft`` cannot write into a given buffer, so each call allocates its result).
 

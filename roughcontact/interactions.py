@@ -1,6 +1,6 @@
 """Interaction laws between the elastic surface and the rigid counter-face, as functions of the gap g [m].
 
-An interaction is described by three per-area quantities (``docs/conventions.md``; ``docs/interactions.md``):
+An interaction is described by three per-area quantities (``docs/reference/conventions.md``; ``docs/guide/interactions.md``):
 
 * ``energy(g)``     V(g) [J/m²], the interaction energy per unit area, V → 0 as g → ∞;
 * ``traction(g)``   p_int(g) = −dV/dg [Pa], the normal traction it exerts on the elastic body, positive
@@ -15,7 +15,7 @@ traction p_int(g) everywhere, the wall's contact pressure where g = 0.
 
 A user's own law subclasses :class:`Interaction`, is a frozen dataclass (so that results can be saved and
 pickled with it) and implements the three methods on float arrays, plus ``length``, the gap scale [m] over
-which it varies (the solver's scale for "far away"). ``docs/interactions.md`` has an example.
+which it varies (the solver's scale for "far away"). ``docs/guide/interactions.md`` has an example.
 """
 from __future__ import annotations
 
@@ -88,7 +88,7 @@ class ElectrostaticInteraction(Interaction):
 
     ``field`` says how the field is taken: ``"layered"`` (the default), the stack's field over the whole gap field
     (:mod:`roughcontact.electrostatics.field`: the stratum corneum and the insulator couple the columns;
-    ``docs/electrostatics.md``), or ``"parallel_plate"``, Eq. 21 pixel by pixel (the methods below), the seed's
+    ``docs/guide/electrostatics.md``), or ``"parallel_plate"``, Eq. 21 pixel by pixel (the methods below), the seed's
     assumption. The layered law is non-local: its traction at a pixel depends on the whole gap field, so the
     contact solver evaluates it through :class:`~roughcontact.electrostatics.field.FieldLaw`, and the per-pixel
     methods give the parallel-plate values.

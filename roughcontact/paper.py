@@ -120,7 +120,7 @@ def _force_where_ratio_reaches(model, ratio, voltage, forces):
 
 
 def checkpoint_table() -> CheckpointTable:
-    """Compute every number the seed quotes for its macroscopic model and compare (see docs/paper_checkpoints.md)."""
+    """Compute every number the seed quotes for its macroscopic model and compare (see docs/validation/paper_checkpoints.md)."""
     stack = DielectricStack()
     w_gap = float(stack.work_of_adhesion(GAP_REALISTIC, VOLTAGE))
     w_contact = float(stack.work_of_adhesion(0.0, VOLTAGE))

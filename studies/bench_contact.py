@@ -5,9 +5,9 @@
     python studies/bench_contact.py --fast                   # tiny grids, no peers, seconds
 
 (from the repository root after ``pip install -e .[bench]``). All numbers come from one run on one machine;
-see ``docs/benchmarks.md`` for the method, the peer conventions and measured values. Writes, into
+see ``docs/dev/benchmarks.md`` for the method, the peer conventions and measured values. Writes, into
 ``--output``, ``bench_contact.csv`` (every row below) and ``bench_contact.md`` (the summary table of
-docs/benchmarks.md: per grid the FFT pair, our time to solution and its ratio to the FFT floor, the other
+docs/dev/benchmarks.md: per grid the FFT pair, our time to solution and its ratio to the FFT floor, the other
 starts, and the peers' times as multiples of ours), both with their provenance.
 
 Sections (column ``section`` of the table and the CSV):
@@ -339,7 +339,7 @@ def _find(rows, section, solver, n=None):
 
 
 def summary_table(rows) -> str:
-    """The Markdown tables of docs/benchmarks.md from the rows of one run: per grid the cache-warm pyFFTW pair,
+    """The Markdown tables of docs/dev/benchmarks.md from the rows of one run: per grid the cache-warm pyFFTW pair,
     our time to solution and its ratio to the FFT floor, the other starts and backends, the peers' times as
     multiples of ours; then the load sweeps."""
     def solve(n, label):
@@ -384,7 +384,7 @@ def main(argv=None):
     parser.add_argument("--no-peers", action="store_true", help="skip Tamaas and ContactMechanics")
     parser.add_argument("--peers", nargs="+", choices=list(PEERS), default=list(PEERS), help="peers to run")
     parser.add_argument("--wisdom", help="FFTW wisdom file: imported if it exists, saved at the end, so that "
-                                         "repeated runs use the same FFT plans (see docs/benchmarks.md)")
+                                         "repeated runs use the same FFT plans (see docs/dev/benchmarks.md)")
     args, provenance = parse_arguments(parser, argv, "python studies/bench_contact.py")
     output = output_directory(args.output)
     if args.fast:

@@ -1,13 +1,14 @@
 """Cost of electroadhesive contact against the hard wall, and of a voltage continuation against cold solves.
 
-    python studies/bench_interactions.py                     # 256² and 512², the table of docs/interactions.md
+    python studies/bench_interactions.py                     # 256² and 512², the table of docs/guide/interactions.md
     python studies/bench_interactions.py --sizes 1024 --output out
     python studies/bench_interactions.py --fast              # 64², seconds
 
 The scene is the electrostatic bar's rough patch: 1 mm square, 3 µm rms self-affine heights (H = 0.8, short
 cut-off 8 px), contact modulus E* (``--E-star``, default 1 MPa), external load p̄ (``--pressure``, default
 1 kPa), the seed's dielectric stack (Table 1). For each grid: the hard-wall solve (Polonsky–Keer) and the
-electrostatic solves at each voltage, cold, their time and FFT pairs as multiples of the hard wall's; then the
+electrostatic solves (the per-pixel law, ``field="parallel_plate"``: the peers' law; the layered field's cost
+is ``studies/bench_field.py``) at each voltage, cold, their time and FFT pairs as multiples of the hard wall's; then the
 voltage sweep 0 → max solved cold at every step and as a continuation (each solve starts from the last
 gap). ``--peers``: the same electrostatic problem in Tamaas (gap-primal Polonsky–Keer–Rey with the law as a
 Python functional, at our mean gap) and ContactMechanics + Adhesion (L-BFGS-B at our flat position), timed
@@ -58,7 +59,7 @@ def rows_for(n, args):
     sweeps = {"cold": 0.0, "continuation": 0.0}
     previous = None
     for voltage in args.voltages:
-        law = ElectrostaticInteraction(stack, voltage)
+        law = ElectrostaticInteraction(stack, voltage, field="parallel_plate")
         for kind in ("cold", "continuation"):
             x0 = previous if kind == "continuation" and previous is not None and voltage > 0 else None
             res, seconds = timed(lambda: solve_contact(surface, half, mean_pressure=args.pressure, tol=args.tol,
@@ -143,7 +144,7 @@ def peer_rows(n, args):
     surface, half = patch(n, args.E_star)
     rows = []
     for voltage in args.peer_voltages:
-        law = ElectrostaticInteraction(DielectricStack(), voltage)
+        law = ElectrostaticInteraction(DielectricStack(), voltage, field="parallel_plate")
         operating = solve_contact(surface, half, mean_pressure=args.pressure, tol=args.tol, interaction=law)
         ours, ours_time = timed(lambda: solve_contact(surface, half, penetration=operating.penetration,
                                                       tol=args.tol, interaction=law))

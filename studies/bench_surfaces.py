@@ -8,7 +8,7 @@
 Time is the best of ``--repeat`` runs without tracing; peak memory is measured in a separate traced run with
 ``tracemalloc`` (numpy reports its buffers to it) and printed in units of one float64 grid array.
 Design targets: self-affine 4096² < 5 s, fingerprint 2048² < 20 s on a 2-core machine (measured values:
-docs/surfaces.md).
+docs/guide/surfaces.md).
 """
 from __future__ import annotations
 

@@ -1,7 +1,7 @@
 """Small-load contact-area coefficient κ = (A/A0) / (p̄/(E* h'_rms)) of self-affine roughness: how it depends on
 the resolution of the short cutoff λ_s/Δx, the spectral breadth λ_r/λ_s, the load and the seed (a script).
 
-    python studies/contact_area_coefficient.py                 # the study of docs/contact_area.md, into out/
+    python studies/contact_area_coefficient.py                 # the study of docs/findings/contact_area.md, into out/
     python studies/contact_area_coefficient.py --fast          # tiny grids, seconds
 
 (from the repository root after ``pip install -e .``). H = 0.8, rms slope h' = 0.1
@@ -41,7 +41,7 @@ E_STAR = 1e6             # contact modulus [Pa] (κ depends only on p̄/(E* h'))
 HURST, RMS_SLOPE = 0.8, 0.1
 LOADS = (0.0025, 0.005, 0.01, 0.02, 0.04)       # p̄ / (E* h'_rms)
 EXTRAPOLATION_MAX_LOAD = 0.01                   # κ(p̄) fitted linearly over p̄ ≤ this to get κ at p̄ → 0
-BAND = (1.6, 2.3)                               # the band that κ of rigorous numerics falls in (docs/contact_area.md)
+BAND = (1.6, 2.3)                               # the band that κ of rigorous numerics falls in (docs/findings/contact_area.md)
 TOL = 1e-8
 SERIES = ("resolution", "breadth", "ensemble")
 ENSEMBLE_SEEDS = 16                             # seeds of the two broad, resolved 1024² cases

@@ -1,7 +1,7 @@
 """Speed against accuracy of the study's settings: errors of d_eq, A_R and F_T against the reference setting
-versus CPU cost, the Pareto front, and the measured table behind the presets (``docs/presets.md``).
+versus CPU cost, the Pareto front, and the measured table behind the presets (``docs/guide/presets.md``).
 
-    python studies/preset_pareto.py --output /tmp/pareto-out            # the table of docs/presets.md
+    python studies/preset_pareto.py --output /tmp/pareto-out            # the table of docs/guide/presets.md
     python studies/preset_pareto.py --output /tmp/pareto-out --library   # also roughcontact/study/preset_errors.csv
     python studies/preset_pareto.py --fast --output out                 # 32² patches, seconds
 

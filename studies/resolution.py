@@ -1,10 +1,10 @@
 """Resolution near contacts: how the electrostatic attraction F_el and the equivalent gaps converge with the
-pixel size, and the discretisation error at each preset's pixel (``docs/presets.md``, the tables of
+pixel size, and the discretisation error at each preset's pixel (``docs/guide/presets.md``, the tables of
 "Convergence with the pixel", "Discretisation error at the presets' pixels", "1-D profiles against the 2-D
 patch" and "The remedy: a measured correction of F_el"; the columns ``fel_error``, ``deq_error`` and
 ``field_deq_error`` of ``roughcontact/study/preset_errors.csv``).
 
-    python studies/resolution.py --patch-grids 128 256 512 1024 --output out            # docs/presets.md
+    python studies/resolution.py --patch-grids 128 256 512 1024 --output out            # docs/guide/presets.md
     python studies/resolution.py --patch-grids 128 256 512 1024 --library --output out  # + preset_errors.csv
     python studies/resolution.py --fast --output out                # 3 pixel sizes, 2 realisations: seconds
 

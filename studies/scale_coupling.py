@@ -1,6 +1,6 @@
 """The coupled path (roughcontact.study.coupled) against the fully resolved patches of the fingerpad study (a script).
 
-    python studies/scale_coupling.py --preset standard --realisations 3     # docs/equivalent_gap.md
+    python studies/scale_coupling.py --preset standard --realisations 3     # docs/findings/equivalent_gap.md
     python studies/scale_coupling.py --fast                                  # 32² patches, 100 V, seconds
 
 (from the repository root after ``pip install -e .``). The default scene at 0.5 and 2 N and the voltages given,
@@ -47,7 +47,7 @@ def _value(record, name):
 
 def _thinned(law):
     """The same law on every other node."""
-    columns = ("separations", "tractions", "equivalent_gaps", "contact_fractions", "slopes")
+    columns = ("separations", "tractions", "equivalent_gaps", "contact_fractions", "slopes", "field_gaps")
     return dataclasses.replace(law, **{name: getattr(law, name)[::2] for name in columns},
                                ridge_area_fractions=tuple(column[::2] for column in law.ridge_area_fractions))
 
@@ -62,7 +62,7 @@ def _shared_laws(scene, nodes):
     for voltage in scene.loads.voltages:
         start = time.process_time()
         law = interface_law(micro, body, scene.screen.stack(), voltage, nodes=nodes, tol=scene.preset.tolerance,
-                            coarse_graining=closing_lengths(scene))
+                            coarse_graining=closing_lengths(scene), field=scene.screen.field)
         laws[voltage] = law, time.process_time() - start
     return laws
 
@@ -82,7 +82,8 @@ def compare(scene, nodes: int, ridge_pixels, shared: bool) -> list:
             resolved_seconds = time.process_time() - start
             start = time.process_time()
             law = interface_law(micro, body, scene.screen.stack(), voltage, nodes=nodes,
-                                tol=scene.preset.tolerance, coarse_graining=closing_lengths(scene))
+                                tol=scene.preset.tolerance, coarse_graining=closing_lengths(scene),
+                                field=scene.screen.field)
             law_seconds = time.process_time() - start
             variants = [("own", law, law_seconds, n) for n in ridge_pixels]
             variants.append(("own", _thinned(law), law_seconds * len(law.separations[::2]) / nodes,

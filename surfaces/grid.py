@@ -1,6 +1,6 @@
 """The computational grid: shape, physical size and periodicity — the single source of truth for all three.
 
-Conventions (see ``docs/conventions.md``): axis 0 is x, axis 1 is y; pixel ``(i, j)`` sits at
+Conventions (see ``docs/reference/conventions.md``): axis 0 is x, axis 1 is y; pixel ``(i, j)`` sits at
 ``(i*dx, j*dy)``; wavevectors follow ``numpy.fft`` order, ``q = 2*pi*k/L`` in rad/m. A one-dimensional
 (plane-strain) profile is a grid of shape ``(n, 1)``.
 """

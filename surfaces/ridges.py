@@ -1,6 +1,6 @@
-"""Synthetic fingerprint ridges as a physical height field [m] (see ``docs/fingerprint.md``).
+"""Synthetic fingerprint ridges as a physical height field [m] (see ``docs/guide/fingerprint.md``).
 
-Construction (SFinGe-like, Cappelli et al. ICPR 2000; references in ``docs/fingerprint.md``):
+Construction (SFinGe-like, Cappelli et al. ICPR 2000; references in ``docs/guide/fingerprint.md``):
 
 1. **Orientation field** of the ridges from singular points, Sherlock & Monro (1993) zero-pole model
    ``θ(z) = θ∞ + ½ [Σ_cores arg(z − z_c) − Σ_deltas arg(z − z_d)]`` (mod π), evaluated as the
@@ -34,7 +34,7 @@ from .heightfield import HeightField
 PATTERNS = ("arch", "tented_arch", "left_loop", "right_loop", "whorl")
 _ALIASES = {"loop": "left_loop"}
 
-# Published defaults (sources in docs/fingerprint.md).
+# Published defaults (sources in docs/guide/fingerprint.md).
 RIDGE_PERIOD = 0.45e-3          # [m] ≈ 0.43–0.48 mm adult mean ridge breadth (Kralík & Novotný 2003)
 RIDGE_HEIGHT = 50e-6            # [m] crest-to-furrow height, ~50–100 µm (OCT, Adams et al. 2013)
 RIDGE_WIDTH_RATIO = 1.5         # ridge width / furrow width: 0.27 mm ridges, 0.18 mm furrows at 0.45 mm period
@@ -517,9 +517,10 @@ def fingerprint(grid: Grid, pattern: str = "left_loop", ridge_period=RIDGE_PERIO
                 pore_density: float = PORE_DENSITY, pore_diameter: float = PORE_DIAMETER,
                 pore_depth: float = PORE_DEPTH, cores=None, deltas=None, rotation: float = 0.0, rng=None,
                 workers: int = -1) -> HeightField:
-    """Synthetic fingerprint height field [m], zero mean, crests towards the counter-face.
+    """Synthetic fingerprint height field [m], zero mean, crests towards the counter-face (SI units; defaults
+    and sources in ``docs/guide/fingerprint.md``).
 
-    Parameters (SI; defaults and sources in ``docs/fingerprint.md``)
+    Parameters
     ----------
     pattern : ``"arch"``, ``"tented_arch"``, ``"left_loop"`` (alias ``"loop"``), ``"right_loop"``, ``"whorl"``.
     ridge_period : ridge-to-ridge distance [m] (default 0.45 mm), scalar or map of ``grid.shape`` (smooth).
@@ -529,8 +530,11 @@ def fingerprint(grid: Grid, pattern: str = "left_loop", ridge_period=RIDGE_PERIO
     pore_diameter, pore_depth : opening diameter (default 120 µm) and depth (default 20 µm) of the dimples [m].
     cores, deltas, rotation : singular points (x, y) [m] and θ∞ [rad]; see :func:`ridge_pattern`.
     rng : None, int seed or ``numpy.random.Generator`` (an int seed, or the fresh one drawn for None, is
-        stored in the metadata). workers : FFT threads for ``scipy.fft`` (−1 = all cores).
+        stored in the metadata).
+    workers : FFT threads for ``scipy.fft`` (−1 = all cores).
 
+    Notes
+    -----
     The metadata records all parameters, the singular points and the pore centres [m]. On a periodic grid
     the ridges are continuous across the boundary and the orientation field is blended with its periodic
     image over a band of three ridge periods at each edge (see :meth:`RidgePattern.orientation`).

@@ -1,6 +1,6 @@
 """Self-affine Gaussian roughness by Fourier synthesis of an isotropic PSD.
 
-Spectrum (docs/references.md §3.1, convention of ``docs/conventions.md``), with ``q = 2π/λ``:
+Spectrum (docs/references.md §3.1, convention of ``docs/reference/conventions.md``), with ``q = 2π/λ``:
 
     C(q) = 0                               q < q_L  (long-wavelength cutoff λ_L)
     C(q) = C0                              q_L <= q < q_r  (roll-off λ_r: flat plateau)

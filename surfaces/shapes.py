@@ -1,6 +1,6 @@
 """Macroscopic shapes: the fingertip cap.
 
-Heights are positive towards the counter-face (``docs/conventions.md``): the apex is the maximum, at
+Heights are positive towards the counter-face (``docs/reference/conventions.md``): the apex is the maximum, at
 height 0, and the cap falls away from it. Finger-pad radii of curvature are ~7–10 mm (docs/references.md §1;
 8 mm is the common model value).
 """

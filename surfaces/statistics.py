@@ -1,4 +1,4 @@
-"""Statistics of height fields, with one convention (``docs/conventions.md``).
+"""Statistics of height fields, with one convention (``docs/reference/conventions.md``).
 
 PSD: ``C(q) = (2π)^-2 ∫ d²x <h(x) h(0)> exp(-i q·x)`` [m^4], so that ``h_rms² = ∫ d²q C(q) = 2π ∫ q C(q) dq``,
 ``h'_rms² = 2π ∫ q³ C dq`` and ``h''_rms² = 2π ∫ q⁵ C dq``. On a periodic Lx×Ly grid with

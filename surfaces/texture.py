@@ -1,6 +1,6 @@
 """Texture statistics of ridged height fields: dominant wavelength, ridge orientation, sweat pores.
 
-Conventions as in ``docs/conventions.md``: orientation θ is the direction of the ridges measured from the
+Conventions as in ``docs/reference/conventions.md``: orientation θ is the direction of the ridges measured from the
 x axis (axis 0) in ``[0, π)``; wavevectors are angular, ``q = 2π/λ``.
 """
 from __future__ import annotations
@@ -129,7 +129,7 @@ def detect_pores(field: HeightField, pore_diameter: float = PORE_DIAMETER, min_d
     belong to it (distinct pores are at least 1.25 diameters apart, as :func:`fingerprint` places them).
     The pore must span at least 3 pixels. ``min_depth`` defaults to a quarter of the default pore depth
     (5 µm); on a rough field it must clear the roughness (about 4× its rms height, see
-    ``docs/fingerprint.md``).
+    ``docs/guide/fingerprint.md``).
     """
     field = as_height_field(field)
     grid = field.grid

@@ -1,7 +1,7 @@
 """Elastic response of the deformable body: surface displacement from surface pressure by FFT.
 
 Fourier multipliers Φ(q) [m/Pa] with ũ(q) = Φ(q) p̃(q) (u positive into the body, p positive compressive;
-``docs/conventions.md``):
+``docs/reference/conventions.md``):
 
 * periodic half-space: Φ = 2/(E* |q|) (Johnson 1985, Contact Mechanics, §2; docs/references.md §4); the q = 0 mode
   is undetermined and set to 0, so <u> = 0;
@@ -12,9 +12,9 @@ Fourier multipliers Φ(q) [m/Pa] with ũ(q) = Φ(q) p̃(q) (u positive into the 
 * a layer of thickness t on a rigid base or on a softer half-space: Φ(q) from :mod:`roughcontact.body.kernels`.
   Periodic: on a rigid base the uniform (q = 0) mode is the uniaxial-strain compression t/M (see
   :attr:`ElasticHalfSpace.uniform_compliance`), so <u> = <p> t/M; on a half-space it is set to 0. A layer much
-  thicker than the window is the half-space (docs/layered.md, "A layer much thicker than the window").
+  thicker than the window is the half-space (docs/guide/layered.md, "A layer much thicker than the window").
   Free surface: Love's coefficients of the layer's half-space plus the real-space correction of
-  :func:`roughcontact.body.influence.free_surface_correction` (docs/layered.md, "The free-surface kernel"), zero-padded
+  :func:`roughcontact.body.influence.free_surface_correction` (docs/guide/layered.md, "The free-surface kernel"), zero-padded
   like the half-space (wider, with a tapered continuation, where 2n would not give a positive multiplier).
 
 Periodicity comes from the grid and is never changed: a 2-D grid must be periodic on both axes or on none
@@ -37,7 +37,7 @@ from .kernels import BOTTOMS, layer_on_half_space_compliance, layer_on_rigid_bas
 
 # A rigid base's uniform column t/M is kept while it is at most 1/sqrt(ε) ≈ 6.7e7 times the compliance of the
 # longest wavelength of the window; beyond that the layer takes the half-space convention for q = 0
-# (docs/layered.md, "A layer much thicker than the window").
+# (docs/guide/layered.md, "A layer much thicker than the window").
 _COLUMN_LIMIT = 1.0 / np.sqrt(np.finfo(np.float64).eps)
 
 
@@ -237,7 +237,7 @@ class ElasticHalfSpace:
         of the frictionless Φ(q), t/E*, for which the layer can spread over a long wavelength). 0 for the half-space and the layer on a
         half-space (q = 0 mode undetermined, set to 0), and for a layer so thick that the column would exceed the
         compliance of the window's longest wavelength 6.7e7-fold (``layer["uniform_mode"] == "half-space"``;
-        ``docs/layered.md``, "A layer much thicker than the window")."""
+        ``docs/guide/layered.md``, "A layer much thicker than the window")."""
         if self.layer is None or self.layer.get("uniform_mode") != "column":
             return 0.0
         # the uniaxial column is the q → 0 limit of the *bonded* layer (no lateral strain at the base)
@@ -267,7 +267,7 @@ class ElasticHalfSpace:
         return self._fft.spectrum.real.astype(np.float64)   # coefficients are even in x and y → real spectrum
 
     def _layered_free_surface_spectrum(self) -> tuple:
-        """``(spectrum, transform_shape)`` of a layered body on a free surface (``docs/layered.md``, "The
+        """``(spectrum, transform_shape)`` of a layered body on a free surface (``docs/guide/layered.md``, "The
         free-surface kernel"): Love's coefficients of the layer's half-space plus
         :func:`roughcontact.body.influence.free_surface_correction` (b = 2/E0* − 2/E* on a half-space E0*, −2/E* on a
         rigid base), laid out for the linear convolution and transformed in float64. The window needs the offsets

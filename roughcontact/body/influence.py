@@ -4,7 +4,7 @@ pressure on one rectangular pixel, for the free-surface (zero-padded, linear) co
 * :func:`pixel_potential`: ∫∫ dA'/√(|r − r'|² + c²) over a pixel in closed form;
 * :func:`love_pixel_displacement`: the half-space, Love (1929), Phil. Trans. A 228:377;
 * :func:`free_surface_correction`: a layered body's correction to its layer's half-space, ΔΦ(q) = Φ(q) − 2/(E* q)
-  transformed to real space (``docs/layered.md``, "The free-surface kernel").
+  transformed to real space (``docs/guide/layered.md``, "The free-surface kernel").
 
 Pure numpy and scipy (special functions, splines): layer 2's bottom, beside the Fourier kernels of
 :mod:`roughcontact.body.kernels`, and imported by the FFT operator :mod:`roughcontact.body.elastic`.
@@ -45,7 +45,7 @@ def love_pixel_displacement(x, y, dx, dy, E_star):
     return pixel_potential(x, y, dx, dy) / (np.pi * E_star)
 
 
-# -- free surface: real-space influence coefficients (docs/layered.md, "The free-surface kernel") -------------
+# -- free surface: real-space influence coefficients (docs/guide/layered.md, "The free-surface kernel") -------------
 # ΔΦ(q) = Φ(q) − 2/(E* q) splits into b e^{−qt}/q (b = lim q ΔΦ, transformed in closed form) and a remainder
 # ΔΦ₂ whose q ΔΦ₂ vanishes at q = 0 and, like ΔΦ, dies beyond q t ≈ 25, so its Hankel transform converges fast.
 _HANKEL_QT = 30.0        # upper limit of the Hankel integral in q t: the remainder's tail is b e^{−30} ~ 1e-13 b
@@ -91,7 +91,7 @@ def _pixel_average(kernel, x, y, dx, dy, subcells):
 
 
 def free_surface_correction(compliance, E_star, long_wave_slope, thickness, x, y, dx, dy):
-    """Influence coefficients [m/Pa] of ΔΦ(q) = Φ(q) − 2/(E* q) on a free surface (``docs/layered.md``, Eq. L5).
+    """Influence coefficients [m/Pa] of ΔΦ(q) = Φ(q) − 2/(E* q) on a free surface (``docs/guide/layered.md``, Eq. L5).
 
     The displacement at the offsets ``x[:, None]``, ``y[None, :]`` [m] (≥ 0) under unit pressure on a dx × dy
     pixel, to be added to Love's coefficients of the layer's half-space (E* = the layer's modulus, the q → ∞

@@ -3,7 +3,7 @@
 For a frictionless normal surface pressure p̃(q) the normal surface displacement (positive into the body) is
 ũ(q) = Φ(q) p̃(q). Each Fourier mode of wavevector magnitude q is a plane-strain problem (no variation
 perpendicular to q), so the half-space has Φ = 2/(E* q) with the contact modulus E* = E/(1 − ν²).
-Derivation, limits and references: ``docs/layered.md`` ("Layered kernels").
+Derivation, limits and references: ``docs/guide/layered.md`` ("Layered kernels").
 
 All formulas are written with X = q t and e = exp(−2X) ≤ 1 (no cosh overflow at large q t) and without
 subtractions of nearly equal terms at small q t (``_sinh_excess`` replaces sinh y − y by its series).
@@ -62,7 +62,7 @@ def _bonded_ratio(X, mu, nu_, one_minus_mn):
     """R = Φ E* q / 2 of a layer bonded on a substrate, in the shifted parameters μ = 1 + m ≥ 0, ν' = 1 + n ≥ 0
     (and 1 − mn ≥ 0, passed in closed form).
 
-    R = [1 − 4mXe − mn e²] / [(1 + me)(1 + ne) + 4mX²e] (``docs/layered.md``, Eq. L3), rearranged so that
+    R = [1 − 4mXe − mn e²] / [(1 + me)(1 + ne) + 4mX²e] (``docs/guide/layered.md``, Eq. L3), rearranged so that
     the denominator is a sum of non-negative terms for every substrate (including the plate-bending
     cancellation of a stiff layer on a soft substrate, where (1−e)² − 4X²e ∝ X⁴).
     Returns numerator and denominator separately so the caller can divide by X when R(0) = 0.
@@ -81,7 +81,7 @@ def _bonded_ratio(X, mu, nu_, one_minus_mn):
 
 
 def layer_on_rigid_base_compliance(q, E_star, poisson, thickness, bottom="bonded"):
-    """Compliance Φ(q) [m/Pa] of an elastic layer of thickness t [m] on a rigid base (``docs/layered.md``).
+    """Compliance Φ(q) [m/Pa] of an elastic layer of thickness t [m] on a rigid base (``docs/guide/layered.md``).
 
     bonded (no slip):  Φ = 2/(E* q) · [κ(1−e²) − 4Xe] / [κ(1+e²) + (1+κ²+4X²) e]   (Eq. L1)
     frictionless:      Φ = 2/(E* q) · (1−e)² / (1 − e² + 4Xe)                       (Eq. L2)
@@ -124,7 +124,7 @@ def layer_on_rigid_base_compliance(q, E_star, poisson, thickness, bottom="bonded
 def layer_on_half_space_compliance(q, E_star, poisson, thickness, substrate_E_star, substrate_poisson):
     """Compliance Φ(q) [m/Pa] of a layer of thickness t [m] perfectly bonded on an elastic half-space.
 
-    Φ = 2/(E* q) · [1 − 4mXe − mn e²] / [1 + (m + n + 4mX²) e + mn e²]   (``docs/layered.md``, Eq. L3)
+    Φ = 2/(E* q) · [1 − 4mXe − mn e²] / [1 + (m + n + 4mX²) e + mn e²]   (``docs/guide/layered.md``, Eq. L3)
     with X = q t, e = exp(−2X), γ = G0/G (substrate over layer shear modulus), κ = 3 − 4ν,
     m = (γ − 1)/(γκ + 1), n = (γκ − κ0)/(γ + κ0). Limits: 2/(E* q) for q t → ∞ and
     2/(E0* q) for q t → 0. Φ(0) = inf (the mean displacement of a half-space is undetermined).

@@ -1,7 +1,7 @@
 """The field of the layered capacitor over a gap field: the stratum corneum and the insulator couple the columns.
 
 The seed's law (Eq. 21) treats every pixel as an independent parallel-plate capacitor. Here the two solid
-layers are slabs with their exact lateral response and only the air gap is local (``docs/electrostatics.md``):
+layers are slabs with their exact lateral response and only the air gap is local (``docs/guide/electrostatics.md``):
 
 * the insulator (thickness ``d_i``, permittivity ``eps_i``) lies flat on the screen electrode (potential 0);
 * the stratum corneum (``d_sc``, ``eps_sc``) has a uniform thickness under the conductive tissue (potential U),
@@ -28,7 +28,7 @@ and σ_el is Eq. 21 exactly. ``model="parallel_plate"`` replaces M by its unifor
 slope factor (no lateral coupling): Eq. 21 pixel by pixel, the seed's assumption. The slope factor matters
 only where the gap varies over lengths of the gap itself: it moves the second-order response of a 10 µm
 sinusoid at a 2 µm mean gap by 13 % and the attraction of resolved skin profiles by < 0.1 %
-(``docs/electrostatics.md``).
+(``docs/guide/electrostatics.md``).
 
 Periodic grids take the slabs' operator on the grid itself; a free window is zero-padded to twice its size per
 free axis, with no flux outside the window (the skin far from the screen there).
@@ -89,6 +89,7 @@ class StackField:
         self._buffer = self._fft.empty()
         self._window = tuple(slice(0, n) for n in grid.shape)
         self._stencil = _stencil(grid, enabled=self.model == "layered")
+        self._work = None
         self.residual = None
 
     @property
@@ -149,7 +150,15 @@ class StackField:
             return 1.0 / (self.stack.dielectric_offset / EPSILON_0 + column), 0, 0.0
         inverse_diagonal = 1.0 / (self._diagonal + column)
         flux = inverse_diagonal.copy() if initial is None else np.array(initial, dtype=float)
-        product, residual, z, direction = (np.empty_like(flux) for _ in range(4))
+        iterations, residual = self.conjugate_gradients(column, inverse_diagonal, flux, tol, maxiter)
+        return flux, iterations, residual
+
+    def conjugate_gradients(self, column, inverse_diagonal, flux, tol: float, maxiter: int) -> tuple:
+        """CG on (M + R) D₁ = 1 from ``flux`` (improved in place), preconditioned by ``inverse_diagonal`` =
+        1/(M_ii + R_ii); returns (iterations, relative residual), the residual field on ``self.residual``."""
+        if self._work is None or self._work[0].shape != column.shape:
+            self._work = tuple(np.empty(column.shape) for _ in range(4))       # allocated once per grid
+        product, residual, z, direction = self._work
         self.apply_elastance(flux, product)
         rz, rr = _cg_start(flux.reshape(-1), product.reshape(-1), column.reshape(-1), inverse_diagonal.reshape(-1),
                            residual.reshape(-1), z.reshape(-1), direction.reshape(-1))
@@ -164,7 +173,7 @@ class StackField:
             _cg_direction(direction.reshape(-1), z.reshape(-1), rz / rz_old)
             iterations += 1
         self.residual = residual
-        return flux, iterations, float(np.sqrt(rr / column.size))
+        return iterations, float(np.sqrt(rr / column.size))
 
 
 def _stencil(grid: Grid, enabled: bool) -> tuple:
@@ -212,6 +221,42 @@ def _attraction_into(gap, flux, factor, stencil, permittivity, out):
             value = weight * (gap[i, ahead_y[j]] - gap[i, behind_y[j]]) * inverse_y[j] * inverse_y[j]
             out[i, ahead_y[j]] += value
             out[i, behind_y[j]] -= value
+
+
+@njit(cache=True)
+def _law_start_into(gap, stencil, permittivity, diagonal, warm, start_column, start_flux, factor, column,
+                    inverse_diagonal, flux):
+    """factor, column R, 1/(M_ii + R_ii) and the starting flux of :class:`FieldLaw` in one pass: the start's flux
+    updated column by column to first order, δD ≈ −δR D/(M_ii + R_ii), where ``warm``, else D = 1/(M_ii + R_ii)."""
+    _slope_factor_into(gap, stencil, factor)
+    nx, ny = gap.shape
+    for i in range(nx):
+        for j in range(ny):
+            value = gap[i, j] / (permittivity * factor[i, j])
+            column[i, j] = value
+            inverse = 1.0 / (diagonal + value)
+            inverse_diagonal[i, j] = inverse
+            flux[i, j] = start_flux[i, j] * (diagonal + start_column[i, j]) * inverse if warm else inverse
+
+
+@njit(cache=True)
+def _law_outputs_into(gap, flux, factor, column, residual, stencil, permittivity, diagonal, squared_voltage,
+                      traction, stiffness, flux_out, column_out):
+    """traction −U² σ_el/U², stiffness U² D₁²/((ε f)² (M_ii + R_ii)), the flux and the columns into the solver's
+    arrays; returns Σ D₁ + Σ D₁ ρ₁ (the energy's sum, ρ₁ the residual)."""
+    _attraction_into(gap, flux, factor, stencil, permittivity, traction)
+    total = 0.0
+    nx, ny = gap.shape
+    for i in range(nx):
+        for j in range(ny):
+            d = flux[i, j]
+            traction[i, j] *= -squared_voltage
+            scale = permittivity * factor[i, j]
+            stiffness[i, j] = squared_voltage * d * d / (scale * scale * (diagonal + column[i, j]))
+            flux_out[i, j] = d
+            column_out[i, j] = column[i, j]
+            total += d + d * residual[i, j]
+    return total
 
 
 @njit(cache=True)
@@ -362,8 +407,12 @@ class FieldLaw:
 
     def __init__(self, stack: DielectricStack, voltage: float, grid: Grid, model: str = "layered",
                  tol: float = DEFAULT_TOL, backend: str = "pyfftw", threads=None):
+        if model != "layered":
+            raise ValueError(f"model = {model!r}: FieldLaw is the layered field's law (the parallel plate is a "
+                             "local law the solver evaluates pixel by pixel)")
         self.field = StackField(stack, grid, model=model, backend=backend, threads=threads)
         self.voltage, self.tol = float(voltage), tol
+        self._work = tuple(np.zeros(grid.shape) for _ in range(4))   # factor, R, 1/(M_ii + R_ii), D₁
         self.fft_pairs = 0                     # over all evaluations: one per CG iteration and per start
         self.evaluations = 0
 
@@ -372,26 +421,21 @@ class FieldLaw:
         ``gap``; returns Σ V [J/m² per pixel, summed].
 
         ``start``: (columns, flux) of a nearby evaluation, whose flux starts the field solve."""
-        field = self.field
-        factor = field.slope_factor(gap)
-        column = field.column_elastance(gap, factor)
-        initial = None
-        if start is not None:
-            # the start's flux, each column updated to first order: δD ≈ −δR D / (M_ii + R_ii) (exact for an
-            # isolated open pixel)
-            start_column, start_flux = start
-            initial = start_flux * (field.pixel_elastance + start_column) / (field.pixel_elastance + column)
-        unit_flux, iterations, residual = field.solve_columns(column, initial=initial, tol=self.tol)
+        field, work = self.field, self._work
+        permittivity = EPSILON_0 * field.stack.eps_a
+        start_column, start_flux = (work[1], work[3]) if start is None else start
+        _law_start_into(gap, field._stencil, permittivity, field.pixel_elastance, start is not None, start_column,
+                        start_flux, *work)
+        factor, column, inverse_diagonal, unit_flux = work
+        iterations, residual = field.conjugate_gradients(column, inverse_diagonal, unit_flux, self.tol,
+                                                         10 * unit_flux.size)
         if residual > self.tol:
             raise FloatingPointError(f"the field solve stalled at relative residual {residual:.3g} "
                                      f"(tol {self.tol:g}) after {iterations} iterations")
-        self.fft_pairs += iterations + (field.model == "layered")
+        self.fft_pairs += iterations + 1
         self.evaluations += 1
         squared_voltage = self.voltage ** 2
-        flux[...] = unit_flux
-        columns[...] = column
-        traction[...] = -squared_voltage * field.attraction(gap, unit_flux, factor)
-        stiffness[...] = squared_voltage * unit_flux ** 2 / (
-            (EPSILON_0 * field.stack.eps_a * factor) ** 2 * (field.pixel_elastance + column))
+        total = _law_outputs_into(gap, unit_flux, factor, column, field.residual, field._stencil, permittivity,
+                                  field.pixel_elastance, squared_voltage, traction, stiffness, flux, columns)
         # Φ = U² (−½⟨D₁⟩ − ½⟨D₁ ρ₁⟩) with ρ₁ = 1 − (M + R) D₁ the residual of the unit-voltage solve
-        return float(-0.5 * squared_voltage * (np.sum(unit_flux) + np.vdot(unit_flux, self.field.residual)))
+        return -0.5 * squared_voltage * total

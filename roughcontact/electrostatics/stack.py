@@ -3,7 +3,7 @@
 All quantities SI. ``gap`` is the air-gap thickness d_a [m] (>= 0, zero at contact points), ``voltage`` the
 voltage U across the stack [V] (only U² enters). Everything broadcasts over ``gap`` and ``voltage`` arrays.
 
-Sign convention (``docs/conventions.md``): :meth:`DielectricStack.pressure` returns the *magnitude* of the
+Sign convention (``docs/reference/conventions.md``): :meth:`DielectricStack.pressure` returns the *magnitude* of the
 attractive electrostatic stress σ_el >= 0. As a surface traction in the contact solver's convention
 (positive = compressive) it enters as ``-σ_el``. The interaction energy per unit area is
 ``V(d) = -w(d)`` (:meth:`DielectricStack.energy`) and ``σ_el = dV/dd``.

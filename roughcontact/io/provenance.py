@@ -78,12 +78,16 @@ def parse_arguments(parser, argv, program: str) -> tuple:
 def output_directory(path) -> Path:
     """``path`` as a writable directory, created if missing (only its last level). Raises
     :class:`OutputPathError` for an empty path, a file, a missing parent or a directory without write access."""
+    if not isinstance(path, (str, os.PathLike)):
+        raise TypeError(f"the output path must be a str or os.PathLike, got {type(path).__name__}")
     if not str(path).strip():
         raise OutputPathError("the output path is empty")
     path = Path(path)
     if path.exists() and not path.is_dir():
         raise OutputPathError(f"output path {path} is a file, not a directory")
     if not path.exists():
+        if path.parent.exists() and not path.parent.is_dir():
+            raise OutputPathError(f"the parent of the output directory, {path.parent}, is a file, not a directory")
         if not path.parent.is_dir():
             raise OutputPathError(f"the parent of the output directory, {path.parent}, does not exist "
                                   "(only the last level of the path is created)")
@@ -101,7 +105,7 @@ def write_csv(path, rows, provenance: Provenance | None, columns=None, echo=Fals
     (default: the first row's keys; other keys are ignored, missing ones left empty); ``echo`` also prints
     each row as ``key=value, …``. ``provenance=None`` writes no comment line, for a reader that cannot skip one."""
     rows = list(rows)
-    with open(path, "w", newline="") as stream:
+    with open(path, "w", newline="", encoding="utf-8") as stream:
         if provenance is not None:
             stream.write(f"# {provenance.line}\n")
         writer = csv.DictWriter(stream, fieldnames=columns or list(rows[0]), extrasaction="ignore", restval="")
@@ -115,12 +119,22 @@ def write_csv(path, rows, provenance: Provenance | None, columns=None, echo=Fals
 
 
 def write_atomic(path, text: str) -> Path:
-    """Write ``text`` to ``path`` through a sibling ``.part`` file renamed over it: a reader (or a resumed run)
-    sees the old file or the whole new one, never a half-written one."""
+    """Write ``text`` (UTF-8) to ``path`` through a sibling ``.part`` file, synced to disk and renamed over it
+    (the directory synced after): a reader, or a run resumed after a crash or a power cut, sees the old file or
+    the whole new one, never a half-written or empty one."""
     path = Path(path)
     temporary = path.with_name(path.name + ".part")
-    temporary.write_text(text)
+    with open(temporary, "w", encoding="utf-8") as stream:
+        stream.write(text)
+        stream.flush()
+        os.fsync(stream.fileno())
     os.replace(temporary, path)
+    if hasattr(os, "O_DIRECTORY"):                   # (POSIX: the rename itself reaches the disk)
+        directory = os.open(path.parent, os.O_RDONLY | os.O_DIRECTORY)
+        try:
+            os.fsync(directory)
+        finally:
+            os.close(directory)
     return path
 
 
@@ -136,8 +150,11 @@ def write_columns(path, header, columns, provenance: Provenance) -> Path:
 
 def read_csv(path) -> list:
     """The rows of a CSV file written here, as dicts of strings (comment lines skipped)."""
-    with open(path, newline="") as stream:
-        return list(csv.DictReader(line for line in stream if not line.startswith("#")))
+    try:
+        with open(path, newline="", encoding="utf-8") as stream:
+            return list(csv.DictReader(line for line in stream if not line.startswith("#")))
+    except UnicodeDecodeError as error:
+        raise ValueError(f"{path} is not UTF-8 text (byte {error.start}); the CSV files written here are") from None
 
 
 def save_figure(figure, path, provenance: Provenance, dpi=FIGURE_DPI, colors=None) -> Path:

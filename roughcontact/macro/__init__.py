@@ -2,7 +2,7 @@
 (Eqs. 29–33), equivalent-gap models (Eq. 46), a tabulated ridge area (the role of Eq. 9) and sliding friction
 under electroadhesion (Eqs. 35–45).
 
-Pure numpy: importing it loads neither numba nor an FFT library. Equation map: ``docs/theory.md``.
+Pure numpy: importing it loads neither numba nor an FFT library. Equation map: ``docs/guide/friction_model.md``.
 """
 from .area import TabulatedArea
 from .friction import SlidingFrictionModel, SlidingState

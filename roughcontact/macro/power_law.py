@@ -4,7 +4,7 @@ The non-adhesive contact is given by two power laws (Eqs. 5–6),
 
     A = α F₁^m,   A = β δ₁^n,   0 < m < n,
 
-and the adhesive solution follows from Eq. 1 with G = w (errata (a), (b) in ``docs/errata.md``):
+and the adhesive solution follows from Eq. 1 with G = w (errata (a), (b) in ``docs/findings/errata.md``):
 
     F₁ − F_N = S √(2w / (dS/dA)) = n √(2 w A F₁ / ((n − m) δ₁)),
     δ₁ − δ   =   √(2w / (dS/dA)) = m √(2 w A δ₁ / ((n − m) F₁)).

@@ -1,4 +1,4 @@
-"""The benchmark problem of the solver studies in ``studies/`` (docs/benchmarks.md), and a contact-set count.
+"""The benchmark problem of the solver studies in ``studies/`` (docs/dev/benchmarks.md), and a contact-set count.
 
 The benchmark surface is a seeded self-affine patch on a periodic 1 mm × 1 mm window whose short-wavelength
 cutoff is :data:`CUTOFF_PIXELS` pixels of each grid: every grid resolves its roughness with the same number of
@@ -24,7 +24,7 @@ SWEEP_STEPS = 20
 
 
 def rough_surface(n: int, seed: int = 0, periodic: bool = True) -> surfaces.HeightField:
-    """The benchmark surface on an n² grid (seed 0: the one of docs/benchmarks.md); ``periodic=False``: the same
+    """The benchmark surface on an n² grid (seed 0: the one of docs/dev/benchmarks.md); ``periodic=False``: the same
     heights on a free-surface (non-periodic) grid."""
     grid = surfaces.Grid((n, n), (LENGTH, LENGTH), periodic=True)
     field = surfaces.self_affine(grid, hurst=HURST, rms_slope=RMS_SLOPE, short_cutoff=CUTOFF_PIXELS * LENGTH / n,

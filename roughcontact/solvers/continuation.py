@@ -1,7 +1,7 @@
 """Load paths of an adhesive contact: approach and retract branches, their jumps, and pull-off.
 
 An adhesive contact is non-convex: at one external load there can be several equilibria, and which one a solve
-finds depends on where it starts (``docs/interactions.md``). A path solves a sequence of loads, each step
+finds depends on where it starts (``docs/guide/interactions.md``). A path solves a sequence of loads, each step
 started from the previous equilibrium (quasi-static loading), so an approach followed by a retract gives the
 loading and unloading branches. Where the branch being followed ends, the next solve falls onto another one:
 that step is a **jump** (into contact, to full contact, out of contact, or a detachment), flagged on the path.

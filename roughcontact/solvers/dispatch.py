@@ -37,13 +37,13 @@ def solve_contact(height_field, half: ElasticHalfSpace, *, mean_pressure=None, t
     cold_start : {"nested", "pk"}
         Initial guess without ``x0``. ``"nested"``: the pressure of the same problem on the grid coarsened
         2 × 2, recursively (:func:`~.polonsky_keer._nested_start`; fewer fine steps on rough surfaces,
-        ``docs/solver.md``); grids that do not halve down to 2 × ``NESTED_MIN`` pixels fall back to ``"pk"``:
+        ``docs/guide/solver.md``); grids that do not halve down to 2 × ``NESTED_MIN`` pixels fall back to ``"pk"``:
         Polonsky and Keer's uniform p̄ (load control) or the rigid overlap (displacement control).
     callback : callable, optional
         ``callback(SolverState)`` after every step; raising ``StopIteration`` halts (``converged=False``).
     preconditioned : bool
         Precondition the conjugate gradients with the inverse kernel K⁻¹: one more FFT pair per step, fewer
-        steps (``docs/solver.md``).
+        steps (``docs/guide/solver.md``).
     interaction : Interaction, optional
         Surface interaction law (:mod:`roughcontact.interactions`): :class:`~roughcontact.interactions.HardWall`
         (the default; Polonsky–Keer, :mod:`.polonsky_keer`) or a smooth law acting with the wall

@@ -1,6 +1,6 @@
 """Contact with a smooth interaction law and the impenetrable flat: the minimum of the total energy over the gap.
 
-Unknown: the gap g ≥ 0 [m] on a periodic grid (``docs/interactions.md``); a free surface is solved as the
+Unknown: the gap g ≥ 0 [m] on a periodic grid (``docs/guide/interactions.md``); a free surface is solved as the
 periodic body of its zero-padded grid, the law and the wall acting on the window only (:class:`_PaddedBody`). With u = g + h − s, the body's
 displacement fluctuation u_f = (g − ⟨g⟩) + (h − ⟨h⟩) fixes the elastic traction fluctuation p_el = K⁻¹ u_f
 (zero mean). The external load λ = ⟨p⟩ [Pa] is the mean traction. Total energy per unit area:
@@ -361,7 +361,7 @@ class _PaddedBody:
     """The free surface on its zero-padded 2n × 2n transform grid, as a periodic body: the padded operator K_T is
     a Fourier multiplier with an exact inverse and a positive uniform mode. With the law and the wall acting on
     the window only and the padding's displacement left free, the minimum has zero traction on the padding, so
-    the window's displacement is the free surface's (``docs/interactions.md``)."""
+    the window's displacement is the free surface's (``docs/guide/interactions.md``)."""
 
     def __init__(self, half):
         self.dtype, self._fft, self._multiplier = half.dtype, half._fft, half._multiplier

@@ -1,7 +1,7 @@
 """Frictionless normal contact of a rough elastic body with a rigid flat: Polonsky–Keer constrained CG.
 
 Unknown: the contact pressure p ≥ 0 [Pa] on the grid; the gap g = s − h + u(p) ≥ 0 [m] with u = K p from
-:class:`~roughcontact.body.ElasticHalfSpace` and p g = 0 (``docs/conventions.md``). Load control fixes
+:class:`~roughcontact.body.ElasticHalfSpace` and p g = 0 (``docs/reference/conventions.md``). Load control fixes
 <p> (the flat position s is the Lagrange multiplier); displacement control fixes s = max(h) − δ.
 
 Algorithm: Polonsky & Keer (1999), Wear 231:206, steps (a)–(h), restricted conjugate gradients on the
@@ -18,7 +18,7 @@ criterion, with ``gap_scale`` the rms height of h:
 
     sqrt(<(g − ḡ_c)²>_{I_c}) ≤ tol · gap_scale   and   max(−g outside I_c) ≤ tol · gap_scale,
 
-the load constraint being satisfied exactly by construction. See ``docs/solver.md``.
+the load constraint being satisfied exactly by construction. See ``docs/guide/solver.md``.
 """
 from __future__ import annotations
 

@@ -14,7 +14,7 @@ from ..io.results import SavableResult
 
 # Counting contact pixels over-estimates the true area by a perimeter term that falls as Δx/λ_s; Yastrebov,
 # Anciaux & Molinari (2017, Tribol. Int. 114:161) remove it by subtracting this fraction of a pixel per edge
-# between a contact and a non-contact pixel (docs/contact_area.md measures it: κ flat from 4 to 64 px).
+# between a contact and a non-contact pixel (docs/findings/contact_area.md measures it: κ flat from 4 to 64 px).
 PERIMETER_CORRECTION = (math.pi - 1 + math.log(2)) / 24
 
 
@@ -31,7 +31,7 @@ def boundary_edges(contact: np.ndarray, periodic=(True, True)) -> int:
 
 @dataclass(frozen=True, eq=False)
 class ContactResult(SavableResult):
-    """Solution of one contact problem. Fields in SI units; see ``docs/conventions.md`` for signs.
+    """Solution of one contact problem. Fields in SI units; see ``docs/reference/conventions.md`` for signs.
 
     Tractions [Pa], positive compressive: ``pressure`` p, the total normal traction that deforms the body
     (u = K p), = ``contact_pressure`` (the wall's multiplier: ≥ 0, non-zero on the contact set only) +
@@ -45,7 +45,7 @@ class ContactResult(SavableResult):
     ``params`` the solver's settings and diagnostics. ``unstable_steps``: steps of a smooth law's solve along
     which the energy was concave (the attraction out-softened the elastic stiffness): the solve crossed an
     instability (a snap-in), so the equilibrium it reached may depend on the path to it (0 for the hard wall;
-    ``docs/interactions.md``, "Several equilibria").
+    ``docs/guide/interactions.md``, "Several equilibria").
     """
 
     pressure: np.ndarray

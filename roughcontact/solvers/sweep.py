@@ -49,7 +49,7 @@ def load_path(height_field, half: ElasticHalfSpace, mean_pressures, warm_start=T
     the first step, so a sweep resumes where it stopped: a ``ContactResult`` (e.g. the last one saved by an
     interrupted sweep) or the last two in order, with which the secant predictor continues exactly as if
     uninterrupted. ``progress`` shows a tqdm bar with the contact fraction and iterations of the
-    last step. ``solver_options`` go to :func:`solve_contact`. (docs/solver.md, "Warm start", measures the
+    last step. ``solver_options`` go to :func:`solve_contact`. (docs/guide/solver.md, "Warm start", measures the
     predictors and lists the variants that did not shorten warm solves.)
     """
     if "x0" in solver_options:

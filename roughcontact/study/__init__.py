@@ -1,4 +1,4 @@
-"""The multiscale fingerpad study: d_eq(F_N, U) and A_R(F_N, U) bottom-up from a scene (``docs/equivalent_gap.md``).
+"""The multiscale fingerpad study: d_eq(F_N, U) and A_R(F_N, U) bottom-up from a scene (``docs/findings/equivalent_gap.md``).
 Layer 4: imports the solvers, the body, the interaction laws, the macroscopic model and io below it.
 
 Inside, imports run one way: :mod:`.scene` (the scene file) ← :mod:`.presets` (the measured preset table);
@@ -35,6 +35,7 @@ _LAZY = {
     "coupled_chain": "coupled",
     "interface_law": "coupled",
     "TaskStore": "execution",
+    "StaleTaskWarning": "execution",
     "StudyResult": "run",
     "run_study": "run",
     "bottom_up_friction": "friction",

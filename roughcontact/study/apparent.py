@@ -1,5 +1,5 @@
 """The apparent scale of the study: the apparent area A0 and the nominal pressures over it at each normal force
-(``docs/equivalent_gap.md``) — the power law of seed Eq. 27, the Hertz ring means of a fingertip cap, or the
+(``docs/findings/equivalent_gap.md``) — the power law of seed Eq. 27, the Hertz ring means of a fingertip cap, or the
 cap solved on the layered skin (:mod:`.fingertip`)."""
 from __future__ import annotations
 

@@ -1,25 +1,28 @@
 """Scale coupling: the micro-roughness reduced to an interface law that a ridge-scale solve uses.
 
 The fully resolved study (:mod:`roughcontact.study`) puts ridges and micro-roughness in one grid. The coupled
-path separates them (``docs/equivalent_gap.md``, "Scale coupling"):
+path separates them (``docs/findings/equivalent_gap.md``, "Scale coupling"):
 
 1. **Micro scale** (:func:`interface_law`). A periodic patch of the micro-roughness alone on the same skin is
    brought to a sequence of mean separations ū (displacement control, from far to near, each solve started
    from the last, with the electrostatic attraction at the voltage U). Each gives the mean traction p(ū) [Pa]
    that the interface transmits (contact minus attraction, positive compressive), its Eq. 25 gap e(ū) [m], its
-   real contact fraction φ(ū), the fraction a_ℓ(ū) of its real contact closed with a disc of diameter ℓ (the
-   study's A_R definition, :func:`roughcontact.study.ridge_area_fraction`) and its weighted mean-square gap
-   slope.
+   field-equivalent gap f(ū) [m] (the uniform gap whose Eq. 21 attraction is the patch's mean attraction in the
+   scene's field model), its real contact fraction φ(ū), the fraction a_ℓ(ū) of its real contact closed with
+   a disc of diameter ℓ (the study's A_R definition, :func:`roughcontact.study.ridge_area_fraction`) and its
+   weighted mean-square gap slope.
 2. **Ridge scale** (:func:`coupled_point`). The ridges alone, on a coarser grid, are pressed at the nominal
    pressure with :class:`InterfaceLaw` (traction p(ū), ū the ridge-scale gap) acting between them and the
    screen.
 3. **Averages.** d_eq = Eq. 25 of the field e(ū(x)) (exact: Eq. 25 of the pixel-wise equivalent gaps is Eq. 25
-   of the underlying field), the mean gap that of ū (a periodic micro patch's mean gap is its separation), the
-   real contact fraction the mean of φ(ū(x)), A_R/A0 the mean of a_ℓ(ū(x)).
+   of the underlying field), the field-equivalent gap likewise from f(ū(x)), the mean gap that of ū (a periodic
+   micro patch's mean gap is its separation), the real contact fraction the mean of φ(ū(x)), A_R/A0 the mean of
+   a_ℓ(ū(x)).
 
 :func:`coupled_chain` runs one realisation at one voltage over the scene's loads (one law serves them all).
 Scale separation is the assumption: a ridge-scale pixel behaves like a micro patch at the same mean
-separation; the micro-roughness's long-wavelength coupling to the ridge curvature is lost.
+separation; the micro-roughness's long-wavelength coupling to the ridge curvature is lost, and so is the lateral
+field between ridge-scale pixels (the layered field acts within each micro patch only).
 """
 from __future__ import annotations
 
@@ -35,7 +38,7 @@ from ..solvers import solve_contact
 from .apparent import apparent_scale, ring_count
 from .patch import (closing_lengths, gap_slope, patch_body, patch_grid, ridge_area_fraction, ridge_equivalent_gap,
                     ridge_heights, roughness_heights)
-from .records import PatchRecord
+from .records import PatchRecord, field_ratio, unit_attraction
 
 #: Pixels per ridge period of the ridge-scale grid of :func:`coupled_chain`.
 RIDGE_PIXELS_PER_PERIOD = 64
@@ -47,13 +50,14 @@ LAW_NODES = 23
 class InterfaceLaw(Interaction):
     """Tabulated interface law of a rough micro patch at mean separations ū [m] (``separations``, strictly
     increasing): traction p(ū) [Pa] (positive compressive), Eq. 25 gap e(ū) [m], real contact fraction φ(ū),
-    weighted mean-square gap slope s²(ū) (weights (ε_a c + g)⁻², as the study's gap slope) and, for each
+    weighted mean-square gap slope s²(ū) (weights (ε_a c + g)⁻², as the study's gap slope), field-equivalent
+    gap f(ū) [m] (Eq. 21 inverted at the patch's mean attraction in its field model) and, for each
     closing diameter of ``coarse_graining`` [m], the closed contact fraction a_ℓ(ū) (``ridge_area_fractions``,
     one tuple per diameter); ``converged``, whether every node's micro-patch solve converged.
 
     Between the nodes monotone cubic (PCHIP) interpolation; below the first node the cubic extrapolates; beyond
     the last node the traction follows the flat-plate attraction −σ_el(ū) of ``stack`` at ``voltage`` scaled to
-    be continuous (0 at 0 V), e(ū) = ū shifted to be continuous, φ = a_ℓ = 0, s² that of the last node.
+    be continuous (0 at 0 V), e(ū) and f(ū) = ū shifted to be continuous, φ = a_ℓ = 0, s² that of the last node.
     Energy V(ū) = ∫_ū^∞ p dū'.
     """
 
@@ -62,6 +66,7 @@ class InterfaceLaw(Interaction):
     equivalent_gaps: tuple
     contact_fractions: tuple
     slopes: tuple
+    field_gaps: tuple
     stack: object
     voltage: float
     length: float
@@ -76,7 +81,7 @@ class InterfaceLaw(Interaction):
         if x.ndim != 1 or x.size < 3 or (np.diff(x) <= 0).any():
             raise ValueError(f"separations must be >= 3 strictly increasing values, got {self.separations!r}")
         columns = {"tractions": self.tractions, "equivalent_gaps": self.equivalent_gaps,
-                   "contact_fractions": self.contact_fractions, "slopes": self.slopes,
+                   "contact_fractions": self.contact_fractions, "slopes": self.slopes, "field_gaps": self.field_gaps,
                    **{f"ridge_area_fractions[{k}]": column for k, column in enumerate(self.ridge_area_fractions)}}
         for name, column in columns.items():
             if np.shape(column) != x.shape:
@@ -117,11 +122,21 @@ class InterfaceLaw(Interaction):
         inside = antiderivative(last) - antiderivative(np.minimum(gap, last))
         return np.where(gap > last, tail, inside + self._tail_scale * float(self.stack.energy(last, self.voltage)))
 
+    def _gap_column(self, name, gap) -> np.ndarray:
+        """The gap column ``name`` [m] at mean separation ``gap``: ū shifted to be continuous beyond the table,
+        clipped at 0."""
+        inside, far = self._inside(name, gap)
+        return np.maximum(np.where(far, np.asarray(gap) - self.separations[-1] + getattr(self, name)[-1],
+                                   inside), 0.0)
+
     def equivalent_gap(self, gap) -> np.ndarray:
         """e(ū) [m]: the Eq. 25 gap of the micro patch at mean separation ū."""
-        inside, far = self._inside("equivalent_gaps", gap)
-        return np.maximum(np.where(far, np.asarray(gap) - self.separations[-1] + self.equivalent_gaps[-1],
-                                   inside), 0.0)
+        return self._gap_column("equivalent_gaps", gap)
+
+    def field_gap(self, gap) -> np.ndarray:
+        """f(ū) [m]: the micro patch's field-equivalent gap at mean separation ū (clipped at 0, where the mean
+        attraction would exceed full contact's)."""
+        return self._gap_column("field_gaps", gap)
 
     def contact_fraction(self, gap) -> np.ndarray:
         """φ(ū): the real contact fraction of the micro patch at mean separation ū."""
@@ -139,11 +154,11 @@ class InterfaceLaw(Interaction):
 
 
 def interface_law(heights, body, stack, voltage: float, nodes: int = LAW_NODES, tol: float = 1e-7,
-                  coarse_graining=()) -> InterfaceLaw:
-    """The :class:`InterfaceLaw` of the periodic micro patch ``heights`` [m] on ``body`` at ``voltage`` [V]:
-    ``nodes`` mean separations from 2 % of the rms height to the highest summit plus two rms heights, solved
-    from far to near (displacement control, each from the last); closed contact fractions for each diameter of
-    ``coarse_graining`` [m]."""
+                  coarse_graining=(), field: str = "layered") -> InterfaceLaw:
+    """The :class:`InterfaceLaw` of the periodic micro patch ``heights`` [m] on ``body`` at ``voltage`` [V] with
+    the attraction's ``field`` model ("layered" or "parallel_plate"): ``nodes`` mean separations from 2 % of the
+    rms height to the highest summit plus two rms heights, solved from far to near (displacement control, each
+    from the last); closed contact fractions for each diameter of ``coarse_graining`` [m]."""
     if not isinstance(nodes, (int, np.integer)) or nodes < 3:
         raise ValueError(f"nodes = {nodes!r}; it must be an integer >= 3")
     heights = np.asarray(heights, float)
@@ -151,7 +166,7 @@ def interface_law(heights, body, stack, voltage: float, nodes: int = LAW_NODES, 
     if rms == 0:
         raise ValueError("heights are flat; an interface law needs a rough micro patch")
     separations = np.geomspace(0.02 * rms, top - mean + 2 * rms, nodes)
-    law = ElectrostaticInteraction(stack, voltage=voltage) if voltage > 0 else None
+    law = ElectrostaticInteraction(stack, voltage=voltage, field=field) if voltage > 0 else None
     spacing, offset = body.grid.spacing, stack.eps_a * stack.dielectric_offset
     rows, previous, converged = [], None, True
     for separation in separations[::-1]:
@@ -160,29 +175,30 @@ def interface_law(heights, body, stack, voltage: float, nodes: int = LAW_NODES, 
         gap, contact = np.asarray(result.gap), np.asarray(result.contact)
         rows.append((result.mean_pressure, stack.equivalent_gap(gap), result.contact_fraction,
                      gap_slope(gap, (offset + gap) ** -2.0, spacing) ** 2,
+                     stack.gap_for_pressure(unit_attraction(stack, field, result, voltage), 1.0),
                      *(ridge_area_fraction(contact, spacing[0], length) for length in coarse_graining)))
         previous, converged = result, converged and bool(result.converged)
     columns = [tuple(float(v) for v in column[::-1]) for column in zip(*rows)]
     return InterfaceLaw(separations=tuple(float(s) for s in separations), tractions=columns[0],
-                        equivalent_gaps=columns[1], contact_fractions=columns[2], slopes=columns[3], stack=stack,
-                        voltage=float(voltage), length=float(rms),
+                        equivalent_gaps=columns[1], contact_fractions=columns[2], slopes=columns[3],
+                        field_gaps=columns[4], stack=stack, voltage=float(voltage), length=float(rms),
                         coarse_graining=tuple(float(v) for v in coarse_graining),
-                        ridge_area_fractions=tuple(columns[4:]), converged=converged)
+                        ridge_area_fractions=tuple(columns[5:]), converged=converged)
 
 
 @dataclass(frozen=True)
 class CoupledPoint:
-    """The coupled path at one nominal ``pressure`` [Pa] and ``voltage`` [V]: d_eq [m] (Eq. 25), the mean gap
-    [m], the real contact fraction, A_R/A0 for each of the law's closing diameters, the mean attraction σ̄_el
-    [Pa], the weighted rms gap slope (ridge and micro scale in quadrature), and the ridge-scale solve's
+    """The coupled path at one nominal ``pressure`` [Pa] and ``voltage`` [V]: d_eq [m] (Eq. 25), the
+    field-equivalent gap [m], the mean gap [m], the real contact fraction, A_R/A0 for each of the law's closing
+    diameters, the weighted rms gap slope (ridge and micro scale in quadrature), and the ridge-scale solve's
     convergence, iterations and concave (unstable) steps."""
     pressure: float
     voltage: float
     equivalent_gap: float
+    field_equivalent_gap: float
     mean_gap: float
     contact_fraction: float
     ridge_area_fractions: tuple
-    electrostatic_pressure: float
     gap_slope: float
     converged: bool
     iterations: int
@@ -200,10 +216,11 @@ def coupled_point(ridges, body, law: InterfaceLaw, pressure: float, tol: float =
                     + np.sum(weights * law.slope_squared(separation)) / np.sum(weights))
     point = CoupledPoint(
         pressure=float(pressure), voltage=law.voltage, equivalent_gap=law.stack.equivalent_gap(gaps),
+        field_equivalent_gap=law.stack.equivalent_gap(law.field_gap(separation)),
         mean_gap=float(separation.mean()), contact_fraction=float(np.mean(law.contact_fraction(separation))),
         ridge_area_fractions=tuple(float(np.mean(law.ridge_area_fraction(separation, k)))
                                    for k in range(len(law.coarse_graining))),
-        electrostatic_pressure=float(np.mean(law.stack.pressure(gaps, law.voltage))), gap_slope=float(slope),
+        gap_slope=float(slope),
         converged=bool(result.converged), iterations=int(result.iterations),
         unstable_steps=int(result.unstable_steps))
     return point, result
@@ -235,7 +252,7 @@ def coupled_chain(scene, realisation: int, voltage_index: int, threads: int | No
     start = time.perf_counter()
     law = interface_law(roughness_heights(scene, realisation), patch_body(scene, threads=threads),
                         scene.screen.stack(), scene.loads.voltages[voltage_index], tol=scene.preset.tolerance,
-                        coarse_graining=closing_lengths(scene))
+                        coarse_graining=closing_lengths(scene), field=scene.screen.field)
     return ridge_chain(scene, law, threads, spent=(len(law.separations), time.perf_counter() - start),
                        apparent=apparent)
 
@@ -258,12 +275,15 @@ def ridge_chain(scene, law: InterfaceLaw, threads: int | None = None, grid=None,
                                                x0=previous[k])
             points.append(point)
         d_eq = stack.equivalent_gap(np.array([point.equivalent_gap for point in points]))   # rings of equal area
+        d_field = stack.equivalent_gap(np.array([point.field_equivalent_gap for point in points]))
         fractions = tuple(float(np.mean(column)) for column in zip(*(p.ridge_area_fractions for p in points)))
         records.append(PatchRecord(
-            equivalent_gap=d_eq, ridge_equivalent_gap=ridge_equivalent_gap(stack, d_eq, fractions[0]),
+            equivalent_gap=d_eq, field_equivalent_gap=d_field,
+            ridge_equivalent_gap=ridge_equivalent_gap(stack, d_field, fractions[0]),
             mean_gap=float(np.mean([p.mean_gap for p in points])),
             contact_fraction=float(np.mean([p.contact_fraction for p in points])), ridge_area_fractions=fractions,
-            electrostatic_pressure=float(np.mean([p.electrostatic_pressure for p in points])),
+            electrostatic_pressure=float(stack.pressure(d_field, law.voltage)),
+            pixel_law_pressure=float(stack.pressure(d_eq, law.voltage)), field_ratio=field_ratio(stack, d_field, d_eq),
             gap_slope=float(np.mean([p.gap_slope for p in points])),
             converged=law.converged and all(p.converged for p in points),
             iterations=sum(p.iterations for p in points), unstable_steps=sum(p.unstable_steps for p in points),

@@ -1,20 +1,23 @@
 """Where the study's tasks run and where their records are kept: :class:`TaskStore` (finished tasks on disk, so
 an interrupted run resumes) and the executors — in this process, a local process pool, a dask.distributed
-cluster (``docs/scaling.md``)."""
+cluster (``docs/guide/scaling.md``)."""
 from __future__ import annotations
 
 import dataclasses
+import hashlib
 import json
+import math
 import os
 import signal
 import threading
-import time
+import warnings
 from pathlib import Path
 
 from surfaces.validation import check_integer
 
 from ..fft import THREADS_VARIABLE, available_cores
 from ..io.provenance import write_atomic
+from .patch import closing_lengths
 from .records import RECORD_FIELDS, PatchRecord
 from .scene import Scene, load_scene
 
@@ -27,73 +30,177 @@ class DirectoryInUse(ValueError):
     """A results directory that another running study is writing into."""
 
 
+class StaleTaskWarning(UserWarning):
+    """A stored task that cannot be reused (damaged, edited, another scene's or another version's): it is solved
+    again."""
+
+
+def scene_fingerprint(scene: Scene) -> str:
+    """The SHA-256 of the scene's TOML text (every value, exact floats): stored with every task's records."""
+    return hashlib.sha256(scene.to_toml().encode("utf-8")).hexdigest()
+
+
+def _digest(records: list) -> str:
+    return hashlib.sha256(json.dumps(records).encode("utf-8")).hexdigest()
+
+
 class TaskStore:
-    """The records of finished tasks in ``directory/tasks/`` (``R{r}_U{j}.json``, written atomically) beside
-    ``directory/scene.toml``; refuses another scene, and a directory that a running process holds (``run.lock``
-    with its process id; a lock of a process that no longer runs, e.g. one that was killed, is taken over).
-    :meth:`release` frees the directory."""
+    """The records of finished tasks in ``directory/tasks/`` (``R{r}_U{j}.json``, written atomically and synced
+    to disk) beside ``directory/scene.toml``; refuses another scene, and a directory that a running process
+    holds (an exclusive lock on ``run.lock``, which the system frees when that process ends, however it ends).
+    Every task file carries the scene's fingerprint and a digest of its records: a file that is unreadable,
+    edited, of another scene or of another version is named in a :class:`StaleTaskWarning` and its task solved
+    again. :meth:`release` frees the directory."""
 
     def __init__(self, directory, scene: Scene):
         self.directory = Path(directory)
         self.tasks = self.directory / "tasks"
+        self.lock = self.directory / "run.lock"
+        self.scene, self.fingerprint = scene, scene_fingerprint(scene)
+        self.directory.mkdir(exist_ok=True)
+        self._descriptor = _lock(self.lock)
+        try:
+            self._check_scene()
+            self.tasks.mkdir(exist_ok=True)
+        except BaseException:
+            self.release()
+            raise
+
+    def _check_scene(self) -> None:
         stored = self.directory / "scene.toml"
-        if stored.exists():
+        if stored.exists() and stored.stat().st_size > 0:           # (an empty one: a write cut short)
             old = load_scene(stored)
-            if old != scene:
-                new, before = scene.flat(), old.flat()
+            if old != self.scene:
+                new, before = self.scene.flat(), old.flat()
                 changed = [f"{key} = {before[key]!r} -> {new[key]!r}" for key in new if new[key] != before.get(key)]
                 raise SceneMismatch(f"{self.directory} holds the results of another scene ({'; '.join(changed)}); "
                                     "run into a new --out directory, or delete this one to start over")
         else:
-            self.directory.mkdir(exist_ok=True)
-            write_atomic(stored, scene.to_toml())
-        self.tasks.mkdir(exist_ok=True)
-        self.lock = self.directory / "run.lock"
-        try:
-            descriptor = os.open(self.lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY)     # atomic: one run wins
-        except FileExistsError:
-            try:
-                holder = int(self.lock.read_text())
-            except (OSError, ValueError):
-                holder = None
-            if holder is not None and holder != os.getpid() and _running(holder):
-                raise DirectoryInUse(f"{self.directory} is being written by another roughcontact run (process "
-                                     f"{holder}); wait for it to finish or choose another --out directory") from None
-            write_atomic(self.lock, str(os.getpid()))                                # a stale lock: taken over
-        else:
-            with os.fdopen(descriptor, "w") as stream:
-                stream.write(str(os.getpid()))
+            write_atomic(stored, self.scene.to_toml())
 
     def release(self) -> None:
         """Free the directory for other runs."""
-        self.lock.unlink(missing_ok=True)
+        if self._descriptor is not None:
+            try:
+                self.lock.unlink(missing_ok=True)      # before the lock is freed: a waiting run locks a new file
+            except PermissionError:                    # (Windows removes no open file: the next run takes it over)
+                pass
+            os.close(self._descriptor)
+            self._descriptor = None
 
     def _path(self, realisation: int, voltage_index: int) -> Path:
         return self.tasks / f"R{realisation:03d}_U{voltage_index:03d}.json"
 
     def load(self, realisation: int, voltage_index: int) -> tuple | None:
-        """The records of task (r, j), or None if it has not finished (or was written with other fields, by
-        another version: solved again)."""
+        """The records of task (r, j), or None if it has not finished, or if its file cannot be reused (a
+        :class:`StaleTaskWarning` names the file and the reason)."""
         path = self._path(realisation, voltage_index)
-        if not path.exists():
+        try:
+            text = path.read_text(encoding="utf-8")
+        except FileNotFoundError:
             return None
-        records = json.loads(path.read_text())
-        if any(set(record) != RECORD_FIELDS for record in records):
-            return None
+        except (OSError, UnicodeDecodeError) as error:
+            return _stale(path, f"cannot be read ({error})")
+        try:
+            stored = json.loads(text)
+        except json.JSONDecodeError as error:
+            return _stale(path, "empty" if not text.strip() else f"not valid JSON ({error})")
+        if isinstance(stored, list):
+            return _stale(path, "written by an older roughcontact, without the scene's fingerprint")
+        if not isinstance(stored, dict) or set(stored) != {"scene", "digest", "records"}:
+            return _stale(path, "not a task file (its keys are not scene, digest and records)")
+        if stored["scene"] != self.fingerprint:
+            return _stale(path, "written for another scene (its fingerprint is not this scene's)")
+        problem = _record_problem(stored["records"], self.scene)
+        if problem is None and stored["digest"] != _digest(stored["records"]):
+            problem = "its records do not match their digest (edited or damaged)"
+        if problem is not None:
+            return _stale(path, problem)
         return tuple(PatchRecord(**{key: tuple(value) if isinstance(value, list) else value
-                                    for key, value in record.items()}) for record in records)
+                                    for key, value in record.items()}) for record in stored["records"])
 
     def save(self, realisation: int, voltage_index: int, records: tuple) -> None:
-        write_atomic(self._path(realisation, voltage_index), json.dumps([dataclasses.asdict(r) for r in records]))
+        stored = [dataclasses.asdict(record) for record in records]
+        write_atomic(self._path(realisation, voltage_index),
+                     json.dumps({"scene": self.fingerprint, "digest": _digest(stored), "records": stored}))
 
 
-def _running(pid: int) -> bool:
+def _stale(path: Path, reason: str) -> None:
+    warnings.warn(f"task file {path}: {reason}; its task is solved again", StaleTaskWarning, stacklevel=3)
+    return None
+
+
+def _record_problem(records, scene: Scene) -> str | None:
+    """What makes the stored ``records`` of a task unusable for ``scene`` (None if nothing): not one record of
+    the fields of :class:`PatchRecord` per load, a value of the wrong type, a non-finite number in a converged
+    solve."""
+    forces, lengths = scene.loads.normal_forces, closing_lengths(scene)
+    if not isinstance(records, list) or len(records) != len(forces):
+        return f"not one record per load ({len(forces)} loads)"
+    for index, (record, force) in enumerate(zip(records, forces)):
+        where = f"record {index + 1} (F_N = {force:g} N)"
+        if not isinstance(record, dict) or set(record) != RECORD_FIELDS:
+            return f"{where} lacks the fields of a PatchRecord (another version's?)"
+        if not isinstance(record["ridge_area_fractions"], list) or len(record["ridge_area_fractions"]) != len(lengths):
+            return f"{where}: ridge_area_fractions is not a list of {len(lengths)} numbers (one per closing length)"
+        for name, kind in _RECORD_TYPES.items():
+            if kind is None:                                # (a field of another type: any JSON value)
+                continue
+            for value in record[name] if name == "ridge_area_fractions" else [record[name]]:
+                number = isinstance(value, (int, float)) and not isinstance(value, bool)
+                if not (number if kind is float else type(value) is kind):
+                    return f"{where}: {name} = {value!r} is not of type {kind.__name__}"
+                if kind is float and record["converged"] and not math.isfinite(value):
+                    return f"{where}: {name} = {value!r} in a converged solve"
+    return None
+
+
+#: The JSON type of each field of a stored :class:`PatchRecord` (of each item for a tuple).
+_RECORD_TYPES = {field.name: {"float": float, "tuple": float, "bool": bool, "int": int}.get(field.type)
+                 for field in dataclasses.fields(PatchRecord)}
+
+
+def _lock(path: Path) -> int:
+    """An open descriptor of ``path`` holding the exclusive lock of a results directory (the system frees it
+    when this process ends, killed or not; the process id in the file is for messages only). Raises
+    :class:`DirectoryInUse` naming the file and its holder if another process holds it."""
+    while True:
+        descriptor = os.open(path, os.O_CREAT | os.O_RDWR, 0o644)
+        if not _try_lock(descriptor, path):
+            holder = os.read(descriptor, 32).decode("ascii", "replace").strip() or "unknown"
+            os.close(descriptor)
+            raise DirectoryInUse(f"{path.parent} is being written by another roughcontact run (process {holder} "
+                                 f"holds {path}); wait for it to finish or choose another --out directory")
+        try:
+            current = os.path.samestat(os.fstat(descriptor), os.stat(path))
+        except FileNotFoundError:
+            current = False
+        if current:
+            break
+        os.close(descriptor)                         # released (and removed) while this run opened it: again
+    os.ftruncate(descriptor, 0)
+    os.write(descriptor, str(os.getpid()).encode("ascii"))
+    return descriptor
+
+
+def _try_lock(descriptor: int, path: Path) -> bool:
+    """Take the exclusive lock of ``path``, open as ``descriptor``, if no other open file holds it."""
     try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:                     # it runs, under another user
+        import fcntl
+    except ImportError:                              # Windows
+        import msvcrt
+        try:
+            msvcrt.locking(descriptor, msvcrt.LK_NBLCK, 1)
+        except OSError:
+            return False
         return True
+    try:
+        fcntl.flock(descriptor, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        return False
+    except OSError as error:                         # e.g. a file system without locks
+        os.close(descriptor)
+        raise OSError(error.errno, error.strerror, str(path)) from None
     return True
 
 
@@ -125,19 +232,23 @@ class InProcess:
         return iter(futures)
 
 
-def _start_worker(threads: int, client: int):
+def _start_worker(threads: int, client):
     """Pool worker start: ``threads`` FFT threads unless ``$ROUGHCONTACT_FFT_THREADS`` says otherwise; Ctrl-C is
     the client's to handle (it cancels the tasks and stops the workers); the worker ends with the client
-    process ``client`` even when that is killed (a worker would otherwise wait for tasks for ever)."""
+    process, even when that is killed: ``client`` is the reading end of a pipe whose writing end only the
+    client holds, so it reads end-of-file once the client is gone, reaped or not (a worker would otherwise
+    wait for tasks for ever, holding the client's output pipes open)."""
     if not os.environ.get(THREADS_VARIABLE):                 # (unset or empty)
         os.environ[THREADS_VARIABLE] = str(threads)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     threading.Thread(target=_end_with, args=(client,), daemon=True).start()
 
 
-def _end_with(client: int) -> None:
-    while _running(client):
-        time.sleep(1.0)
+def _end_with(client) -> None:
+    try:
+        client.recv_bytes()                                  # nothing is ever sent: returns at the client's end
+    except (EOFError, OSError):
+        pass
     os._exit(1)
 
 
@@ -157,20 +268,23 @@ class _Pool:
             context.set_forkserver_preload(["roughcontact.study.resolved", "roughcontact.study.coupled"])
         else:
             context = multiprocessing.get_context("spawn")
-        self.executor = ProcessPoolExecutor(self.workers, mp_context=context,
-                                            initializer=_start_worker, initargs=(self.fft_threads, os.getpid()))
+        self.lifeline = context.Pipe(duplex=False)      # (reading, writing): only this process holds the writing end
+        self.executor = ProcessPoolExecutor(self.workers, mp_context=context, initializer=_start_worker,
+                                            initargs=(self.fft_threads, self.lifeline[0]))
         return self
 
     def __exit__(self, kind, error, traceback):
         if kind is None:
             self.executor.shutdown()
-            return False
-        processes = list(self.executor._processes.values())     # (no public way to stop running tasks before 3.14)
-        self.executor.shutdown(wait=False, cancel_futures=True)
-        for process in processes:
-            process.terminate()
-        for process in processes:
-            process.join()
+        else:
+            processes = list(self.executor._processes.values())  # (no public way to stop running tasks before 3.14)
+            self.executor.shutdown(wait=False, cancel_futures=True)
+            for process in processes:
+                process.terminate()
+            for process in processes:
+                process.join()
+        for end in self.lifeline:
+            end.close()
         return False
 
     def submit(self, function, *arguments):
@@ -193,6 +307,14 @@ class _Dask:
         except ImportError:
             raise ImportError("running on a dask cluster needs dask.distributed: pip install 'roughcontact[parallel]'"
                               ) from None
+        if not isinstance(address, str):
+            raise TypeError(f"dask must be a scheduler address such as 'tcp://host:8786', got {type(address).__name__}")
+        try:
+            distributed.comm.resolve_address(address)          # its form (a Client would fail, then hang at exit)
+        except ValueError as error:
+            raise ValueError(f"dask = {address!r} is not a scheduler address (tcp://host:port): {error}") from None
+        except OSError as error:
+            raise ValueError(f"dask = {address!r}: its host cannot be resolved ({error.strerror})") from None
         self.distributed, self.address, self.futures = distributed, address, []
 
     def __enter__(self):

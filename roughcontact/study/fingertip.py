@@ -5,9 +5,9 @@ The cap h(r) = −r²/(2R) (``surfaces.fingertip``, apex at the window's centre 
 scene's ``skin`` (``layer_E_star``, ``layer_thickness``, ``poisson``) bonded on tissue of ``fingerpad.E_star``
 (the fingertip-scale modulus; ``tissue_E_star`` overrides it), or the tissue half-space when
 ``layer_thickness`` is 0. The hard-wall solve (:func:`roughcontact.solve_contact`, free-surface layered kernel
-of ``docs/layered.md``) gives the apparent area A0 (the contact set) and the nominal pressure over it as means
+of ``docs/guide/layered.md``) gives the apparent area A0 (the contact set) and the nominal pressure over it as means
 over ``rings`` rings of equal area, the form of ``roughcontact.study.apparent_contact`` for the Hertz model.
-With ``layer_thickness`` = 0 the answer is Hertz's to the grid's resolution (``docs/equivalent_gap.md``,
+With ``layer_thickness`` = 0 the answer is Hertz's to the grid's resolution (``docs/findings/equivalent_gap.md``,
 "The apparent scale on the layered skin").
 """
 from __future__ import annotations

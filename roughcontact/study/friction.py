@@ -2,8 +2,11 @@
 
 :func:`bottom_up_friction` puts the study's d_eq,R(F_N, U) (:class:`~roughcontact.macro.TabulatedGap`) and
 A_R(F_N, w) (:class:`~roughcontact.macro.TabulatedArea`) into :class:`~roughcontact.macro.SlidingFrictionModel`
-with the seed's μ0 and c₂; :func:`assumption_errors` measures what a voltage-independent gap or the arithmetic
-mean gap would make of the electrostatic force.
+with the seed's μ0 and c₂. d_eq,R is the uniform gap whose Eq. 21 attraction over A_R equals the solved field
+force F_el (σ_el(d_eq,R) A_R = F_el), so the friction law's σ_el A_R is the solve's attraction whatever the field
+model. The law interpolates its tables in F_N, so it needs at least two loads (:data:`FRICTION_MIN_LOADS`).
+:func:`assumption_errors` measures what a voltage-independent gap, the arithmetic mean gap or the per-pixel
+field (Eq. 21 pixel by pixel) would make of the electrostatic force.
 """
 from __future__ import annotations
 
@@ -14,12 +17,22 @@ from .run import StudyResult
 
 #: Relative error of the electrostatic force within which the report counts the equivalent-gap assumption as held.
 HOLDS_WITHIN = 0.10
+#: Loads the bottom-up friction law needs: its gap and area tables are interpolated in F_N.
+FRICTION_MIN_LOADS = 2
+
+
+def friction_computed(result: StudyResult) -> bool:
+    """Whether the study has the loads the friction law needs (:data:`FRICTION_MIN_LOADS`)."""
+    return len(result.normal_forces) >= FRICTION_MIN_LOADS
 
 
 def bottom_up_friction(result: StudyResult, c2: float | None = None) -> SlidingFrictionModel:
     """The seed's friction law (μ0 and, unless ``c2`` [m⁴/N²] is given, c₂ of Table 1) with the study's mean
-    d_eq,R and A_R = (A_R/A0) A0."""
+    d_eq,R (σ_el(d_eq,R) A_R = the solved F_el) and A_R = (A_R/A0) A0; ``ValueError`` for a study of one load."""
     forces, voltages = result.normal_forces, result.voltages
+    if not friction_computed(result):
+        raise ValueError(f"loads.normal_forces = {forces.tolist()}: the bottom-up friction law interpolates d_eq,R and "
+                         f"A_R in F_N and needs at least {FRICTION_MIN_LOADS} loads")
     stack = result.scene.screen.stack()
     gaps = result.summary("ridge_equivalent_gap")[0]
     areas = result.summary("ridge_area_fractions")[0][:, :, 0] * result.array("apparent_area")
@@ -31,16 +44,19 @@ def bottom_up_friction(result: StudyResult, c2: float | None = None) -> SlidingF
 
 
 def assumption_errors(result: StudyResult) -> dict:
-    """Relative errors of the electrostatic force σ̄_el A0 (shape loads × voltages, realisation means; NaN at
-    0 V): ``constant_gap``: the d_eq of the lowest voltage (0 V in the default scene) used at every voltage (the
-    seed's voltage-independent gap); ``mean_gap``: the arithmetic mean gap used instead of Eq. 25."""
+    """Relative errors of the solved electrostatic force σ̄_el A0 (shape loads × voltages, realisation means;
+    NaN at 0 V): ``constant_gap``: the field-equivalent gap of the lowest voltage (0 V in the default scene: the
+    small-voltage limit) used at every voltage (the seed's voltage-independent gap); ``mean_gap``: Eq. 21 at the
+    arithmetic mean gap; ``per_pixel``: Eq. 21 pixel by pixel on the solved gap (Eq. 21 at d_eq)."""
     stack = result.scene.screen.stack()
     voltages = result.voltages[None, :]
     sigma = result.summary("electrostatic_pressure")[0]
-    d_eq = result.summary("equivalent_gap")[0]
+    d_field = result.summary("field_equivalent_gap")[0]
     mean_gap = result.summary("mean_gap")[0]
     with np.errstate(divide="ignore", invalid="ignore"):
-        constant = stack.pressure(d_eq[:, :1], voltages) / sigma - 1
+        constant = stack.pressure(np.maximum(d_field[:, :1], 0.0), voltages) / sigma - 1
         naive = stack.pressure(mean_gap, voltages) / sigma - 1
+        per_pixel = result.summary("pixel_law_pressure")[0] / sigma - 1
     on = result.voltages > 0
-    return {"constant_gap": np.where(on[None, :], constant, np.nan), "mean_gap": np.where(on[None, :], naive, np.nan)}
+    return {name: np.where(on[None, :], error, np.nan)
+            for name, error in (("constant_gap", constant), ("mean_gap", naive), ("per_pixel", per_pixel))}

@@ -4,13 +4,13 @@
 measured setting (the :class:`~roughcontact.study.scene.Preset` keys :data:`SETTING_KEYS` and ``realisations``), its
 CPU seconds on the default scene's four points (F_N = 0.5, 2 N; U = 0, 200 V; one FFT thread) and its error on
 each scene of the experiment, the largest relative difference of d_eq, A_R/A0 and F_T at 200 V from the
-reference setting (``docs/presets.md``). :func:`measured` looks a preset up in it, so that a run's report quotes
+reference setting (``docs/guide/presets.md``). :func:`measured` looks a preset up in it, so that a run's report quotes
 its error; :func:`choose` picks the cheapest setting whose error meets a target (``roughcontact run --preset
 auto --target-error 2%``), and :func:`auto_scene` puts it into a scene as ``[presets.auto]``.
 
 The columns :data:`RESOLUTION_COLUMNS`, written by ``studies/resolution.py --library`` after the table, hold the
 discretisation error of the setting's pixel (ridge period / grid × periods) against the converged pixel
-(``docs/presets.md``, "Discretisation error at the presets' pixels"): ``fel_error`` of the layered attraction
+(``docs/guide/presets.md``, "Discretisation error at the presets' pixels"): ``fel_error`` of the layered attraction
 F_el at 200 V, ``deq_error`` of Eq. 25's d_eq (0 and 200 V) and ``field_deq_error`` of the field-equivalent gap
 at 200 V, each the largest magnitude of the relative error of the realisation mean over F_N = 0.5 and 2 N,
 measured on 1-D profiles of the default scene; empty (nan) for a pixel not measured. The errors of the other
@@ -149,7 +149,7 @@ def choose(target_error: float, table=None) -> Measurement:
     if target_error < floor:
         raise ValueError(f"target error {100 * target_error:g} % cannot be promised: the most accurate measured "
                          f"setting is the reference, whose error against itself is 0 by definition; the floor is "
-                         f"{100 * floor:.3g} %, {reason} (docs/presets.md); valid: at least {100 * floor:.3g} %")
+                         f"{100 * floor:.3g} %, {reason} (docs/guide/presets.md); valid: at least {100 * floor:.3g} %")
     meeting = [entry for entry in table if entry.error <= target_error]
     return min(meeting, key=lambda entry: entry.cpu_seconds)
 
@@ -166,17 +166,17 @@ def describe(preset: Preset, name: str, table=None) -> str:
     its setting was not measured."""
     entry = measured(preset, table)
     if entry is None:
-        return (f"The setting of preset `{name}` is not among the measured settings of `docs/presets.md`: its "
+        return (f"The setting of preset `{name}` is not among the measured settings of `docs/guide/presets.md`: its "
                 "error against the reference setting is not known.")
     chosen = " (chosen by --preset auto)" if name == AUTO else ""
     if entry.error == 0:
         floor, reason = error_floor(table)
-        return (f"Preset `{name}`{chosen} is the reference setting of `docs/presets.md`: its error against itself "
-                f"is 0 by definition and not a measured error. Its floor is {100 * floor:.2g} %, {reason}; "
+        return (f"Preset `{name}`{chosen} is the reference setting of `docs/guide/presets.md`: its error against "
+                f"itself is 0 by definition and not a measured error. Its floor is {100 * floor:.2g} %, {reason}; "
                 f"{entry.cpu_seconds:.3g} CPU seconds for the four measured points.")
     errors = ", ".join(f"{100 * entry.errors[scene]:.2g} % on the {scene} scene" for scene in SCENES)
     return (f"Measured error of preset `{name}`{chosen} against the reference setting (largest relative "
-            f"difference of d_eq, A_R/A0 and F_T at 200 V at F_N = 0.5, 2 N and U = 0, 200 V; `docs/presets.md`): "
+            f"difference of d_eq, A_R/A0 and F_T at 200 V at F_N = 0.5, 2 N and U = 0, 200 V; `docs/guide/presets.md`): "
             f"{errors}; {entry.cpu_seconds:.3g} CPU seconds for those four points. It holds for scenes like "
             "these; a scene far from them may err differently.")
 

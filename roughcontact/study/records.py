@@ -8,6 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import stdtrit
 
+from ..electrostatics import solve_field
 from .patch import gap_slope, ridge_area_fraction, ridge_equivalent_gap
 
 #: Two-sided confidence level of every reported interval.
@@ -28,21 +29,47 @@ def confidence_interval(samples) -> tuple:
     return mean, half
 
 
+def unit_attraction(stack, field: str, result, voltage: float) -> float:
+    """⟨σ_el⟩/U² [Pa/V²] over the window of a solved patch ``result`` in the ``field`` model: from the solve's
+    own attraction at ``voltage`` > 0 (F_el/(A0 U²)), at 0 V from the field of the hard-wall gap at 1 V
+    (σ_el ∝ U², so this is the small-voltage limit)."""
+    grid = result.params["grid"]
+    if voltage > 0:
+        return result.electrostatic_force / grid.area / voltage ** 2
+    gap = np.asarray(result.gap, dtype=np.float64)
+    return solve_field(stack, gap, grid.lengths, 1.0, model=field, periodic=grid.periodic).mean_pressure
+
+
+def field_ratio(stack, field_gap: float, equivalent_gap: float) -> float:
+    """F_el of the field over F_el of Eq. 21 per pixel on the same gap field: σ_el(d_field)/σ_el(d_eq) =
+    (h(d_eq)/h(d_field))², h(d) = c + d/ε_a (seed Eq. 21 at the two equivalent gaps; independent of U)."""
+    def thickness(gap):
+        return stack.dielectric_offset + gap / stack.eps_a
+    return float((thickness(equivalent_gap) / thickness(field_gap)) ** 2)
+
+
 @dataclass(frozen=True)
 class PatchRecord:
-    """One realisation's patch at one (F_N, U), averaged over the rings: ``equivalent_gap`` d_eq,
-    ``ridge_equivalent_gap`` d_eq,R, ``mean_gap`` [m]; ``contact_fraction``; ``ridge_area_fractions`` A_R/A0
-    per coarse-graining length; ``electrostatic_pressure`` σ̄_el [Pa]; ``gap_slope`` (rms |∇g|, weighted by
+    """One realisation's patch at one (F_N, U), averaged over the rings: ``equivalent_gap`` d_eq (seed Eq. 25
+    of the solved gap), ``field_equivalent_gap`` d_field (the uniform gap whose Eq. 21 attraction is the solve's
+    mean attraction; at 0 V that of the hard-wall gap's field in the small-voltage limit), ``ridge_equivalent_gap``
+    d_eq,R (the uniform gap whose Eq. 21 attraction over A_R is the solve's F_el), ``mean_gap`` [m];
+    ``contact_fraction``; ``ridge_area_fractions`` A_R/A0 per coarse-graining length; ``electrostatic_pressure``
+    σ̄_el [Pa] of the solve's field, ``pixel_law_pressure`` [Pa] of Eq. 21 per pixel on the same solved gap and
+    ``field_ratio`` their ratio (the small-voltage limit at 0 V); ``gap_slope`` (rms |∇g|, weighted by
     (ε_a c + g)⁻²); ``converged`` (every ring); ``iterations``, ``unstable_steps`` (concave steps: the solves
-    crossed instabilities, so the answer may depend on the path; ``docs/interactions.md``) and ``solves`` (summed
+    crossed instabilities, so the answer may depend on the path; ``docs/guide/interactions.md``) and ``solves`` (summed
     over the rings, a cold retry included); ``seconds`` of solving."""
 
     equivalent_gap: float
+    field_equivalent_gap: float
     ridge_equivalent_gap: float
     mean_gap: float
     contact_fraction: float
     ridge_area_fractions: tuple
     electrostatic_pressure: float
+    pixel_law_pressure: float
+    field_ratio: float
     gap_slope: float
     converged: bool
     iterations: int
@@ -54,18 +81,24 @@ class PatchRecord:
 RECORD_FIELDS = {f.name for f in dataclasses.fields(PatchRecord)}
 
 
-def patch_record(stack, voltage, results, lengths, spacing, solves, seconds) -> PatchRecord:
-    """Average the solved rings ``results`` of one patch over the apparent area (gaps in float64)."""
+def patch_record(stack, field, voltage, results, lengths, spacing, solves, seconds) -> PatchRecord:
+    """Average the solved rings ``results`` of one patch (solved with the ``field`` model at ``voltage``) over the
+    apparent area (gaps in float64)."""
     gaps = np.stack([np.asarray(res.gap, dtype=np.float64) for res in results])
     d_eq = stack.equivalent_gap(gaps)
     fractions = tuple(float(np.mean([ridge_area_fraction(np.asarray(res.contact), spacing[0], length)
                                      for res in results])) for length in lengths)
     offset = stack.eps_a * stack.dielectric_offset
+    attraction = float(np.mean([unit_attraction(stack, field, res, voltage) for res in results]))  # rings: equal area
+    d_field = stack.gap_for_pressure(attraction, 1.0)
     return PatchRecord(
-        equivalent_gap=float(d_eq), ridge_equivalent_gap=ridge_equivalent_gap(stack, d_eq, fractions[0]),
+        equivalent_gap=float(d_eq), field_equivalent_gap=d_field,
+        ridge_equivalent_gap=ridge_equivalent_gap(stack, max(d_field, 0.0), fractions[0]),
         mean_gap=float(gaps.mean()),
         contact_fraction=float(np.mean([res.contact_fraction for res in results])), ridge_area_fractions=fractions,
-        electrostatic_pressure=float(np.mean(stack.pressure(gaps, voltage))),
+        electrostatic_pressure=attraction * voltage ** 2,
+        pixel_law_pressure=float(np.mean(stack.pressure(gaps, voltage))),
+        field_ratio=field_ratio(stack, d_field, d_eq),
         gap_slope=float(np.mean([gap_slope(g, (offset + g) ** -2.0, spacing) for g in gaps])),
         converged=all(bool(res.converged) for res in results), iterations=int(sum(res.iterations for res in results)),
         unstable_steps=int(sum(res.unstable_steps for res in results)), solves=solves, seconds=seconds)
@@ -82,11 +115,14 @@ class PointResult:
     apparent_area: float
     nominal_pressures: tuple
     equivalent_gap: tuple
+    field_equivalent_gap: tuple
     ridge_equivalent_gap: tuple
     mean_gap: tuple
     contact_fraction: tuple
     ridge_area_fractions: tuple
     electrostatic_pressure: tuple
+    pixel_law_pressure: tuple
+    field_ratio: tuple
     gap_slope: tuple
     converged: tuple
     iterations: tuple
@@ -94,8 +130,9 @@ class PointResult:
     seconds: float
 
 
-_PER_REALISATION = ("equivalent_gap", "ridge_equivalent_gap", "mean_gap", "contact_fraction",
-                    "electrostatic_pressure", "gap_slope", "converged", "iterations", "unstable_steps")
+_PER_REALISATION = ("equivalent_gap", "field_equivalent_gap", "ridge_equivalent_gap", "mean_gap",
+                    "contact_fraction", "electrostatic_pressure", "pixel_law_pressure", "field_ratio", "gap_slope",
+                    "converged", "iterations", "unstable_steps")
 
 
 def point_result(force, voltage, area, pressures, records) -> PointResult:

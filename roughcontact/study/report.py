@@ -1,5 +1,5 @@
 """Results of a fingerpad study on disk: netCDF, CSV, PNG and report.md, with the seed's friction law fed
-bottom-up (:mod:`.friction`).
+bottom-up (:mod:`roughcontact.study.friction`).
 
 :func:`write_results` writes ``results.nc`` (xarray + h5netcdf, the ``io`` dependencies; skipped
 with a message when missing), the CSV tables, the PNG figures and ``report.md`` into a results directory.
@@ -13,7 +13,7 @@ import numpy as np
 from .._version import __version__
 from ..io.provenance import save_figure, write_csv
 from ..macro import LinearGap, PowerLawGap, SlidingFrictionModel
-from .friction import HOLDS_WITHIN, assumption_errors, bottom_up_friction
+from .friction import FRICTION_MIN_LOADS, HOLDS_WITHIN, assumption_errors, bottom_up_friction, friction_computed
 from .presets import describe
 from .records import CONFIDENCE
 from .run import StudyResult
@@ -50,13 +50,21 @@ def _friction_rows(result: StudyResult) -> list:
 # ---------------------------------------------------------------------------------------------------------
 #: Per-point fields: (StudyResult field, CSV/netCDF name, scale, unit, description).
 FIELDS = (
-    ("equivalent_gap", "equivalent_gap", MICRO, "um", "Eq. 25 equivalent air gap over the apparent area"),
+    ("equivalent_gap", "equivalent_gap", MICRO, "um", "Eq. 25 equivalent air gap of the solved gap over the "
+     "apparent area"),
+    ("field_equivalent_gap", "field_equivalent_gap", MICRO, "um",
+     "uniform gap whose Eq. 21 attraction is the solve's mean attraction (0 V: small-voltage limit)"),
     ("ridge_equivalent_gap", "ridge_equivalent_gap", MICRO, "um",
-     "gap with sigma_el(d) A_R = mean sigma_el A0 (the friction law's gap)"),
+     "gap with sigma_el(d) A_R = F_el of the solve (the friction law's gap)"),
     ("mean_gap", "mean_gap", MICRO, "um", "arithmetic mean air gap over the apparent area"),
     ("contact_fraction", "real_contact_fraction", 1.0, "1", "real (pixel) contact area / apparent area"),
-    ("electrostatic_pressure", "electrostatic_pressure", 1e-3, "kPa", "mean sigma_el over the apparent area"),
-    ("gap_slope", "gap_slope", 1.0, "1", "rms gap slope weighted by (c + g)^-2 (parallel-plate check)"),
+    ("electrostatic_pressure", "electrostatic_pressure", 1e-3, "kPa",
+     "mean sigma_el of the solve's field over the apparent area"),
+    ("pixel_law_pressure", "pixel_law_pressure", 1e-3, "kPa",
+     "mean sigma_el of Eq. 21 pixel by pixel on the same solved gap"),
+    ("field_ratio", "field_ratio", 1.0, "1",
+     "F_el of the solve's field / F_el of Eq. 21 per pixel on the same gap (0 V: small-voltage limit)"),
+    ("gap_slope", "gap_slope", 1.0, "1", "rms gap slope weighted by (c + g)^-2"),
 )
 
 
@@ -75,7 +83,10 @@ def _point_rows(result: StudyResult) -> list:
                 row[f"{column}_ci95_{unit}"] = means[name][1][i, j] * scale
             row["ridge_area_fraction"] = ridge_mean[i, j, 0]
             row["ridge_area_fraction_ci95"] = ridge_half[i, j, 0]
-            row["electrostatic_force_N"] = means["electrostatic_pressure"][0][i, j] * point.apparent_area
+            for name, column in (("electrostatic_pressure", "electrostatic_force"),
+                                 ("pixel_law_pressure", "pixel_law_force")):
+                row[f"{column}_N"] = means[name][0][i, j] * point.apparent_area
+                row[f"{column}_ci95_N"] = means[name][1][i, j] * point.apparent_area
             row["converged"] = all(point.converged)
             row["solve_seconds"] = point.seconds
             rows.append(row)
@@ -118,8 +129,9 @@ def dataset(result: StudyResult):
               "realisation": ("realisation", np.arange(result.array("equivalent_gap").shape[-1])),
               "coarse_graining": ("coarse_graining", np.array(result.coarse_graining), {"units": "m"})}
     dims = ("normal_force", "voltage", "realisation")
-    units = {"equivalent_gap": "m", "ridge_equivalent_gap": "m", "mean_gap": "m", "contact_fraction": "1",
-             "electrostatic_pressure": "Pa", "gap_slope": "1", "iterations": "1", "unstable_steps": "1"}
+    units = {"equivalent_gap": "m", "field_equivalent_gap": "m", "ridge_equivalent_gap": "m", "mean_gap": "m",
+             "contact_fraction": "1", "electrostatic_pressure": "Pa", "pixel_law_pressure": "Pa", "field_ratio": "1",
+             "gap_slope": "1", "iterations": "1", "unstable_steps": "1"}
     descriptions = {name: text for name, _, _, _, text in FIELDS}
     variables = {name: (dims, result.array(name), {"units": unit, "long_name": descriptions.get(name, name)})
                  for name, unit in units.items()}
@@ -129,15 +141,15 @@ def dataset(result: StudyResult):
                                         {"units": "1", "long_name": "A_R / A0 after closing at coarse_graining"})
     variables["apparent_area"] = (("normal_force",), result.array("apparent_area")[:, 0], {"units": "m2"})
     variables["solve_seconds"] = (("normal_force", "voltage"), result.array("seconds"), {"units": "s"})
-    friction = _friction_rows(result) if len(result.normal_forces) > 1 else []
+    friction = _friction_rows(result) if friction_computed(result) else []
     for key, unit in (("bottom_up_tangential_force_N", "N"), ("seed_tangential_force_N", "N"),
                       ("bottom_up_friction_coefficient", "1"), ("seed_friction_coefficient", "1")):
         if friction:
             values = np.array([row[key] for row in friction]).reshape(len(result.normal_forces), -1)
             variables[key.removesuffix("_N")] = (("normal_force", "voltage"), values, {"units": unit})
     attrs = {"title": "roughcontact multiscale fingerpad study", "roughcontact_version": __version__,
-             "preset": scene.study.preset, "seed": scene.study.seed, "scene_toml": scene.to_toml(),
-             "short_cutoff_in_use": result.short_cutoff, "confidence": CONFIDENCE}
+             "preset": scene.study.preset, "field": scene.screen.field, "seed": scene.study.seed,
+             "scene_toml": scene.to_toml(), "short_cutoff_in_use": result.short_cutoff, "confidence": CONFIDENCE}
     for key, value in scene.flat().items():
         attrs[f"scene.{key}"] = int(value) if isinstance(value, bool) else value
     return xr.Dataset(variables, coords=coords, attrs=attrs)
@@ -188,7 +200,28 @@ def _figures(result: StudyResult, out, provenance) -> list:
     written.append(save_figure(figure, out / "voltage_dependence.png", provenance))
     plt.close(figure)
 
-    if len(forces) > 1:
+    figure, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
+    field_mean, field_half = result.summary("field_equivalent_gap")
+    ratio_mean, ratio_half = result.summary("field_ratio")
+    for j, voltage in enumerate(voltages):
+        colour = f"C{j}"
+        left.errorbar(forces, d_mean[:, j] * MICRO, yerr=d_half[:, j] * MICRO, marker="o", capsize=3, color=colour,
+                      label=f"Eq. 25, {voltage:g} V")
+        left.errorbar(forces, field_mean[:, j] * MICRO, yerr=field_half[:, j] * MICRO, marker="s", capsize=3,
+                      ls="--", color=colour, label=f"field-equivalent, {voltage:g} V")
+    for i, force in enumerate(forces):
+        right.errorbar(voltages, ratio_mean[i], yerr=ratio_half[i], marker="o", capsize=3, label=f"{force:g} N")
+    right.axhline(1.0, color="k", lw=0.8)
+    left.set(xlabel="normal force F_N [N]", ylabel="gap [µm]", title="Eq. 25 (solid) vs field-equivalent (dashed)")
+    right.set(xlabel="voltage U [V]", ylabel="F_el(field) / F_el(Eq. 21 per pixel)",
+              title=f"{result.scene.screen.field} field against the per-pixel law")
+    left.legend(fontsize=6)
+    right.legend(fontsize=7)
+    figure.tight_layout()
+    written.append(save_figure(figure, out / "field_ratio.png", provenance))
+    plt.close(figure)
+
+    if friction_computed(result):
         model, seed = bottom_up_friction(result), SlidingFrictionModel.paper_table1()
         figure, axes = plt.subplots(1, 3, figsize=(14, 4))
         for j, voltage in enumerate(voltages):
@@ -215,7 +248,7 @@ def _figures(result: StudyResult, out, provenance) -> list:
 # report.md
 # ---------------------------------------------------------------------------------------------------------
 def _cell(mean, half, scale=1.0, digits=2) -> str:
-    text = f"{mean * scale:.{digits}f}"
+    text = f"{np.round(mean * scale, digits) + 0.0:.{digits}f}"           # + 0.0: no "-0.00" for a rounded zero
     return text if not np.isfinite(half) else f"{text} ± {half * scale:.{digits}f}"
 
 
@@ -237,7 +270,7 @@ def _unstable_sentence(result: StudyResult) -> str:
     lowest = result.voltages[int(np.flatnonzero(crossed.any(axis=(0, 2)))[0])]
     return (f"{int(crossed.sum())} of {crossed.size} patch results came from solves that crossed an instability "
             f"(concave steps, from {lowest:g} V on): where the attraction snaps regions into contact the "
-            "equilibrium may depend on the path to it (`docs/interactions.md`, \"Several equilibria\").")
+            "equilibrium may depend on the path to it (`docs/guide/interactions.md`, \"Several equilibria\").")
 
 
 def report_text(result: StudyResult, nc_written: bool, seconds: float | None = None) -> str:
@@ -245,7 +278,10 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
     assumption holds and where it fails, with numbers."""
     scene, preset = result.scene, result.scene.preset
     forces, voltages = result.normal_forces, result.voltages
+    friction_figure, friction_table = ((", `friction.png`", ", `friction.csv`") if friction_computed(result)
+                                       else ("", ""))
     d_mean, d_half = result.summary("equivalent_gap")
+    f_mean, f_half = result.summary("field_equivalent_gap")
     r_mean, r_half = result.summary("ridge_equivalent_gap")
     a_mean, a_half = result.summary("ridge_area_fractions")
     c_mean, c_half = result.summary("contact_fraction")
@@ -263,19 +299,27 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
             + (f" Run time {seconds:.0f} s ({result.computed} points computed with {result.solves} solves, "
                f"{result.array('seconds').size - result.computed} read back)." if seconds is not None else ""), "",
             describe(preset, scene.study.preset), "",
-            "Figures: `equivalent_gap.png`, `voltage_dependence.png`, `friction.png`. Tables: `points.csv`, "
-            "`realisations.csv`, `ridge_area_sensitivity.csv`, `friction.csv`"
+            f"Figures: `equivalent_gap.png`, `voltage_dependence.png`, `field_ratio.png`{friction_figure}. Tables: "
+            f"`points.csv`, `realisations.csv`, `ridge_area_sensitivity.csv`{friction_table}"
             + (", all of it in `results.nc`." if nc_written else
                "; `results.nc` was not written (xarray/h5netcdf missing: `pip install 'roughcontact[io]'`)."), "",
-            "Definitions: d_eq by seed Eq. 25 over the apparent area A0 (contact points included); A_R the real "
-            f"contact closed with a disc of {scene.ridge_area.coarse_graining * MICRO:g} µm diameter; d_eq,R the gap "
-            "with σ_el(d_eq,R) A_R = σ̄_el A0, which the seed's friction law (σ_el acting on A_R) needs. "
-            "Assumptions and their checks: `docs/equivalent_gap.md` of the roughcontact repository.", "",
+            f"Definitions: the attraction is solved with the `{scene.screen.field}` field of the stack (`[screen] "
+            "field`; `docs/guide/electrostatics.md`). d_eq by seed Eq. 25 of the solved gap over the apparent area A0 "
+            "(contact points included): the seed's definition, the gap at which Eq. 21 gives the mean of Eq. 21 "
+            "pixel by pixel. d_field, the field-equivalent gap: the uniform gap whose Eq. 21 attraction is the "
+            "solve's mean attraction σ̄_el = F_el/A0 (at 0 V the same for the field of the hard-wall gap in the "
+            "small-voltage limit). A_R the real contact closed with a disc of "
+            f"{scene.ridge_area.coarse_graining * MICRO:g} µm diameter; d_eq,R the uniform gap whose Eq. 21 "
+            "attraction over A_R is the solved F_el, σ_el(d_eq,R) A_R = σ̄_el A0: the seed's friction law (σ_el "
+            "acting on A_R) is fed d_eq,R, so its electrostatic force is the solved one. "
+            "Assumptions and their checks: `docs/findings/equivalent_gap.md` of the roughcontact repository.", "",
             "## Equivalent air gap d_eq [µm] (Eq. 25)", "", *_table(result, d_mean, d_half, MICRO, 2, "µm"), "",
+            "## Field-equivalent gap d_field [µm]", "", *_table(result, f_mean, f_half, MICRO, 2, "µm"), "",
+            *_per_pixel_section(result), "",
             "## Ridge contact fraction A_R/A0", "", *_table(result, a_mean[:, :, 0], a_half[:, :, 0], 1.0, 3, "-"),
             "", "## Real contact fraction", "", *_table(result, c_mean, c_half, 100.0, 2, "%"), "",
             "## Ridge-area gap d_eq,R [µm] (fed to the friction law)", "",
-            *_table(result, r_mean, r_half, MICRO, 3, "µm"), ""]
+            *_table(result, r_mean, r_half, MICRO, 3, "µm"), *_clipped_ridge_gap(result), ""]
 
     text += ["## Where the equivalent-gap assumption holds and where it fails", ""]
     low = f"{voltages[0]:g} V"                       # the reference voltage of the comparisons (0 V by default)
@@ -287,10 +331,10 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
         change = (d_mean[:, 0] - d_mean[:, -1]) / d_mean[:, 0]
         text += [f"* **Voltage independence** (seed: d_eq depends on F_N only). From {low} to {voltages[-1]:g} V d_eq "
                  "falls by " + ", ".join(f"{100 * c:.0f} % at {f:g} N" for c, f in zip(change, forces)) + ". "
-                 f"Using the {low} gap at voltage U misjudges the electrostatic force by up to {100 * worst:.0f} % "
-                 f"(table below); it stays within {100 * HOLDS_WITHIN:.0f} % at every load "
+                 f"Using the field-equivalent gap of {low} at voltage U misjudges the solved electrostatic force by "
+                 f"up to {100 * worst:.0f} % (table below); it stays within {100 * HOLDS_WITHIN:.0f} % at every load "
                  + (f"for {', '.join(held)}" if held else "at no voltage") + ".", "",
-                 f"  Force error of the voltage-independent gap, σ_el(d_eq({low}), U)/σ̄_el(U) − 1 [%]:",
+                 f"  Force error of the voltage-independent gap, σ_el(d_field({low}), U)/σ̄_el(U) − 1 [%]:",
                  "", *_error_table(forces, voltages[on], 100 * constant[:, on]), ""]
         naive = errors["mean_gap"]
         text += ["* **Arithmetic mean gap instead of Eq. 25**: the mean gap is "
@@ -307,14 +351,16 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
     text += [f"* **Against the seed's fit (Eq. 46)**: at {low} d_eq = "
              + ", ".join(f"{d * MICRO:.2f} µm" for d in d_mean[:, 0]) + " against Eq. 46's "
              + ", ".join(f"{d * MICRO:.2f}" for d in seed_gap) + " µm and Guo et al.'s power law "
-             + ", ".join(f"{d * MICRO:.2f}" for d in guo) + f" µm at F_N = {', '.join(f'{f:g}' for f in forces)} N; "
-             f"Eq. 46 lies inside the confidence interval at {', '.join(inside) if inside else 'no load'}. "
+             + ", ".join(f"{d * MICRO:.2f}" for d in guo) + f" µm at F_N = {', '.join(f'{f:g}' for f in forces)} N "
+             "(field-equivalent gap d_field: " + ", ".join(f"{d * MICRO:.2f}" for d in f_mean[:, 0]) + " µm); "
+             f"Eq. 46 lies inside the confidence interval of d_eq at {', '.join(inside) if inside else 'no load'}. "
              f"d_eq falls with load at every voltage: {_yes(np.diff(d_mean, axis=0) < 0)}; A_R grows with load: "
              f"{_yes(np.diff(a_mean[:, :, 0], axis=0) > 0)}; A_R grows with voltage: "
              f"{_yes(np.diff(a_mean[:, :, 0], axis=1) > 0)} (realisation means).", "",
-             f"* **Parallel-plate field per pixel**: the (c + g)⁻²-weighted rms gap slope is {np.min(slope):.2f} to "
-             f"{np.max(slope):.2f}; the pixel-wise parallel-plate field (Eq. 21 per pixel) is accurate where this "
-             "is well below 1 and errs by a fraction of the order of its square where it is not.", ""]
+             f"* **Parallel-plate field per pixel** (Eq. 21 pixel by pixel, the assumption behind Eq. 25): on the "
+             f"solved gaps it misjudges the solved attraction by {_range(100 * errors['per_pixel'], '+.0f')} % "
+             f"({scene.screen.field} field; table above); the (c + g)⁻²-weighted rms gap slope is "
+             f"{np.min(slope):.2f} to {np.max(slope):.2f}.", ""]
     lengths = result.coarse_graining
     if len(lengths) > 1:
         ratio = a_mean[:, :, 1:] / a_mean[:, :, :1]
@@ -324,14 +370,18 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
                  + f" the A_R at {lengths[0] * MICRO:g} µm (`ridge_area_sensitivity.csv`). d_eq does not depend "
                  "on it; the friction law's F_el = σ_el(d_eq,R) A_R = σ̄_el A0 does not either, only the "
                  "tangential area reduction (Eq. 44, η = c₂/A_R0) does.", ""]
-    if len(forces) > 1:
+    if not friction_computed(result):
+        text += ["## Friction", "", f"Not computed: the bottom-up friction law interpolates d_eq,R and A_R in F_N "
+                 f"and needs at least {FRICTION_MIN_LOADS} loads; the scene has one (`loads.normal_forces`), so "
+                 "`friction.csv` and `friction.png` are not written.", ""]
+    else:
         rows = _friction_rows(result)
         saturated = sum(row["bottom_up_area_saturated"] for row in rows)
         text += ["## Friction: bottom-up vs the seed's fitted model (Table 1)", "",
                  "μ = F_T/F_N: bottom-up / bottom-up without the tangential area reduction (c₂ = 0) / seed. "
                  "Where the bottom-up A_R0 is below √c₂ μ0 F_N the seed's reduction law (Eq. 43, c₂ fitted to its "
                  "own, larger ridge area) empties the ridge area and F_T = μ0 F_N (the saturation rule of "
-                 f"`docs/theory.md`): {saturated} of {len(rows)} "
+                 f"`docs/guide/friction_model.md`): {saturated} of {len(rows)} "
                  "points.", "",
                  "| F_N [N] | " + " | ".join(f"{v:g} V" for v in voltages) + " |",
                  "|---" * (len(voltages) + 1) + "|"]
@@ -349,6 +399,47 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
                                                        f"{c['seed_ridge_area_mm2']:.1f}" for c in cells) + " |")
         text.append("")
     return "\n".join(text) + "\n"
+
+
+def _per_pixel_section(result: StudyResult) -> list:
+    """The table "how wrong is the per-pixel assumption": F_el of the solve's field and of Eq. 21 pixel by pixel
+    on the same solved gap [N], and their ratio with its interval over the realisations."""
+    area = result.array("apparent_area")                  # one per point: the intervals scale with it
+    field_mean, field_half = (area * value for value in result.summary("electrostatic_pressure"))
+    pixel_mean, pixel_half = (area * value for value in result.summary("pixel_law_pressure"))
+    ratio_mean, ratio_half = result.summary("field_ratio")
+    voltages = result.voltages
+    lines = ["## How wrong is the per-pixel field assumption", "",
+             f"F_el [N] of the solve's `{result.scene.screen.field}` field / F_el [N] of Eq. 21 pixel by pixel on "
+             "the same solved gap (what Eq. 25 assumes) / their ratio, each ± the "
+             f"{CONFIDENCE:.0%} confidence half-width over the realisations (0 V: no force, –; the ratio is the "
+             "small-voltage limit on the hard-wall gap):", "",
+             "| F_N [N] | " + " | ".join(f"{v:g} V" for v in voltages) + " |", "|---" * (len(voltages) + 1) + "|"]
+    for i, force in enumerate(result.normal_forces):
+        cells = []
+        for j, voltage in enumerate(voltages):
+            forces = (f"{_cell(field_mean[i, j], field_half[i, j], 1.0, 3)} / "
+                      f"{_cell(pixel_mean[i, j], pixel_half[i, j], 1.0, 3)}" if voltage > 0 else "– / –")
+            cells.append(f"{forces} / {_cell(ratio_mean[i, j], ratio_half[i, j], 1.0, 2)}")
+        lines.append(f"| {force:g} | " + " | ".join(cells) + " |")
+    return lines
+
+
+def _clipped_ridge_gap(result: StudyResult) -> list:
+    """A note where A_R cannot carry the solved F_el at any gap (d_eq,R = 0 in some realisation)."""
+    clipped = int(np.sum(result.array("ridge_equivalent_gap") == 0))
+    if clipped == 0:
+        return []
+    return ["", f"{clipped} of {result.array('ridge_equivalent_gap').size} patch results have A_R too small to carry "
+            "the solved F_el even in full contact (σ_el(0) A_R < σ̄_el A0): d_eq,R = 0 there, and the friction "
+            "law's electrostatic force falls short of the solved one."]
+
+
+def _range(values, spec) -> str:
+    finite = np.round(np.asarray(values)[np.isfinite(values)], 12) + 0.0      # + 0.0: no "-0" for a zero error
+    if finite.size == 0:
+        return "n/a (no voltage above 0 V)"
+    return f"{format(np.min(finite), spec)} to {format(np.max(finite), spec)}"
 
 
 def _yes(condition) -> str:
@@ -369,7 +460,7 @@ def write_results(result: StudyResult, out, provenance, seconds: float | None = 
     files = [write_csv(out / "points.csv", _point_rows(result), provenance),
              write_csv(out / "realisations.csv", _realisation_rows(result), provenance),
              write_csv(out / "ridge_area_sensitivity.csv", _sensitivity_rows(result), provenance)]
-    if len(result.normal_forces) > 1:
+    if friction_computed(result):
         files.append(write_csv(out / "friction.csv", _friction_rows(result), provenance))
     files += _figures(result, out, provenance)
     netcdf = all(importlib.util.find_spec(name) is not None for name in NETCDF_MODULES)

@@ -1,10 +1,10 @@
 """The resolved chain, one task of the study: the patch with ridges and micro-roughness in one grid, solved with
-the electrostatic attraction at one voltage under every load in order (``docs/equivalent_gap.md``)."""
+the electrostatic attraction of the scene's field model (``[screen] field``) at one voltage under every load in
+order (``docs/findings/equivalent_gap.md``)."""
 from __future__ import annotations
 
 import time
 
-from ..interactions import ElectrostaticInteraction
 from ..solvers import solve_contact
 from .apparent import apparent_scale, ring_count
 from .patch import closing_lengths, patch_body, patch_grid, patch_surface
@@ -22,7 +22,7 @@ def solve_chain(scene: Scene, realisation: int, voltage_index: int, threads: int
     where the task runs."""
     stack = scene.screen.stack()
     voltage = scene.loads.voltages[voltage_index]
-    law = ElectrostaticInteraction(stack, voltage=voltage) if voltage > 0 else None       # 0 V: the hard wall
+    law = scene.screen.interaction(voltage)                  # the scene's field model; None at 0 V: the hard wall
     heights, body = patch_surface(scene, realisation), patch_body(scene, threads=threads)
     lengths, spacing = closing_lengths(scene), patch_grid(scene).spacing
     warm_start = scene.preset.warm_start
@@ -40,6 +40,6 @@ def solve_chain(scene: Scene, realisation: int, voltage_index: int, threads: int
                                        tol=scene.preset.tolerance, warn=False)
                 solves += 1
             latest[k] = result
-        records.append(patch_record(stack, voltage, latest, lengths, spacing, solves,
+        records.append(patch_record(stack, scene.screen.field, voltage, latest, lengths, spacing, solves,
                                      time.perf_counter() - start))
     return tuple(records)

@@ -1,4 +1,4 @@
-"""The multiscale fingerpad study: d_eq(F_N, U) and A_R(F_N, U) bottom-up from a scene (``docs/equivalent_gap.md``).
+"""The multiscale fingerpad study: d_eq(F_N, U) and A_R(F_N, U) bottom-up from a scene (``docs/findings/equivalent_gap.md``).
 
 For each normal force F_N and voltage U:
 
@@ -12,9 +12,10 @@ For each normal force F_N and voltage U:
 3. **Averages over the apparent area** (rings of equal area weigh equally): d_eq by seed Eq. 25
    (``DielectricStack.equivalent_gap`` of all gaps), the arithmetic mean gap, the real contact fraction, the
    ridge contact fraction A_R/A0 (:func:`~.patch.ridge_area_fraction`: the real contact closed morphologically
-   with a disc of diameter ℓ, at ℓ and at the scene's sensitivity factors on it), the mean attraction σ̄_el and
-   the ridge-area equivalent gap d_eq,R with σ_el(d_eq,R) A_R = σ̄_el A0 (the gap that the seed's friction law,
-   which applies σ_el on A_R, needs).
+   with a disc of diameter ℓ, at ℓ and at the scene's sensitivity factors on it), the mean attraction σ̄_el of
+   the scene's field model (``[screen] field``), the field-equivalent gap (Eq. 21 inverted at σ̄_el), σ̄_el of
+   Eq. 21 pixel by pixel on the same gap and the ratio of the two, and the ridge-area equivalent gap d_eq,R
+   with σ_el(d_eq,R) A_R = σ̄_el A0 (the gap that the seed's friction law, which applies σ_el on A_R, needs).
 4. **Realisations**: ``realisations`` rough patches (rng seed + r); every reported number is a mean with a 95 %
    Student-t confidence interval (:func:`~.records.confidence_interval`) over the realisations whose solves
    converged (a solve that fails from its warm start is repeated from the solver's own start first).
@@ -34,18 +35,24 @@ resumes without recomputing finished tasks; a different scene in the same direct
 """
 from __future__ import annotations
 
+import dataclasses
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
 
 import numpy as np
 
+from ..io.provenance import output_directory
 from .apparent import apparent_scale
 from .coupled import coupled_chain
 from .execution import InProcess, TaskStore, check_executor, make_executor
 from .patch import closing_lengths, realisation_count, resolved_short_cutoff
-from .records import confidence_interval, point_result
+from .records import _PER_REALISATION, PointResult, confidence_interval, point_result
 from .resolved import solve_chain
 from .scene import Scene
+
+
+#: The fields of a point with one value per realisation (per closing length and realisation for the A_R).
+SUMMARISED = (*_PER_REALISATION, "ridge_area_fractions")
 
 
 @dataclass(frozen=True)
@@ -70,12 +77,20 @@ class StudyResult:
         return np.array(self.scene.loads.voltages)
 
     def array(self, name: str) -> np.ndarray:
-        """Field ``name`` of every point: shape (loads, voltages, realisations), or (…, lengths, realisations)
-        for ``ridge_area_fractions``, or (loads, voltages) for scalars."""
+        """Field ``name`` of every point (a field of :class:`~.records.PointResult`): shape (loads, voltages,
+        realisations), or (…, lengths, realisations) for ``ridge_area_fractions``, or (loads, voltages) for
+        scalars."""
+        names = [field.name for field in dataclasses.fields(PointResult)]
+        if name not in names:
+            raise ValueError(f"name = {name!r} is not a field of the study's points; valid: {', '.join(names)}")
         return np.array([[getattr(point, name) for point in row] for row in self.points], dtype=float)
 
     def summary(self, name: str) -> tuple:
-        """``(mean, 95 % half-width)`` of field ``name`` over the realisations whose solves converged."""
+        """``(mean, 95 % half-width)`` of field ``name`` (one value per realisation) over the realisations whose
+        solves converged."""
+        if name not in SUMMARISED:
+            raise ValueError(f"name = {name!r} is not a field with one value per realisation; valid: "
+                             f"{', '.join(SUMMARISED)} (array(name) gives any field of the points)")
         values, converged = self.array(name), self.array("converged").astype(bool)
         if converged.ndim < values.ndim:                       # ridge_area_fractions: (…, lengths, realisations)
             converged = converged[:, :, None, :]
@@ -101,8 +116,13 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
     Interrupted (Ctrl-C), the waiting tasks are cancelled and the pool's workers stopped (a cluster's running
     tasks finish and are dropped); the finished ones stay in ``directory``.
     """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a Scene (roughcontact.study.load_scene reads one from a TOML file), got "
+                        f"{type(scene).__name__}")
+    if not isinstance(progress, bool):
+        raise TypeError(f"progress must be True or False, got {progress!r}")
     check_executor(workers, dask)
-    store = None if directory is None else TaskStore(directory, scene)
+    store = None if directory is None else TaskStore(output_directory(directory), scene)
     forces, voltages = scene.loads.normal_forces, scene.loads.voltages
     count = realisation_count(scene)
     cutoff = resolved_short_cutoff(scene) if scene.roughness.enabled else float("nan")
@@ -113,16 +133,16 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
     todo = [key for key in order if key not in records]
     executor = make_executor(workers, dask, len(todo)) if todo else InProcess()
     bar = None
-    if progress and todo:
-        from tqdm import tqdm
-        bar = tqdm(total=len(todo) * len(forces) / count, desc="roughcontact run", unit="point",
-                   bar_format="{l_bar}{bar}| {n:.4g}/{total:.4g} [{elapsed}<{remaining}]")
     task = solve_chain
     if scene.preset.scales == "coupled":            # the micro-roughness as an interface law (.coupled)
         task = coupled_chain
     apparent = apparent_scale(scene)                # once, for every task
     try:
         with executor:
+            if progress and todo:                   # (once the executor runs: a refused one shows no bar)
+                from tqdm import tqdm
+                bar = tqdm(total=len(todo) * len(forces) / count, desc="roughcontact run", unit="point",
+                           bar_format="{l_bar}{bar}| {n:.4g}/{total:.4g} [{elapsed}<{remaining}]")
             futures = {executor.submit(task, scene, r, j, executor.threads, apparent): (r, j) for r, j in todo}
             for future in executor.as_completed(list(futures)):
                 key = futures[future]

@@ -1,6 +1,6 @@
 """Scenes of the multiscale fingerpad study: a TOML file validated into frozen dataclasses.
 
-A scene says what to model (``docs/tutorial.md``): the fingerpad's apparent contact, the fingerprint ridges,
+A scene says what to model (``docs/getting-started/tutorial.md``): the fingerpad's apparent contact, the fingerprint ridges,
 the micro-roughness on them, the skin, the screen's dielectric stack, the loads and voltages, the A_R
 coarse-graining length and the accuracy preset. Values are SI (m, Pa, N, V). The defaults live in one place,
 :data:`DEFAULT_SCENE_TOML` (each value with its source in ``docs/references.md``); a user's file overrides any
@@ -27,6 +27,7 @@ from surfaces.ridges import ridge_fraction
 from surfaces.validation import check_integer, check_real
 
 from ..electrostatics import DielectricStack
+from ..interactions import FIELDS, ElectrostaticInteraction
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -51,7 +52,7 @@ DEFAULT_SCENE_TOML = """\
 # al. 2017, references.md §0.5) with uniform nominal pressure F_N/A0, or "fingertip": a Hertzian cap of
 # radius and E_star (seed R* = 1 cm, E* = 47.4 kPa, references.md §1.1), Hertz pressure over the disc.
 # layer = true (fingertip only): the cap is pressed onto the [skin] layer bonded on tissue of E_star, solved on
-# a free grid of layer_grid x layer_grid pixels (roughcontact.study.fingertip; docs/equivalent_gap.md, "The apparent
+# a free grid of layer_grid x layer_grid pixels (roughcontact.study.fingertip; docs/findings/equivalent_gap.md, "The apparent
 # scale on the layered skin": A0 2.5-4.2 % smaller, the outer ring's pressure 10-18 % higher at 0.5-2 N).
 model = "power_law"
 area_prefactor = 9.19e-05      # m^2 N^-area_exponent (91.9 mm^2)
@@ -101,6 +102,10 @@ eps_sc = 3000.0
 d_i = 1e-06                    # m, insulator thickness
 eps_i = 3.9
 eps_a = 1.0
+# The field of the stack over the gap field (docs/guide/electrostatics.md): "layered" (the stratum corneum and the
+# insulator couple the columns; validated against a finite-element solve) or "parallel_plate" (seed Eq. 21 pixel
+# by pixel, the seed's assumption). The report compares the two on every solved gap either way.
+field = "layered"
 
 [loads]
 # The seed's range: 0.5-2 N and 0-200 V (seed Table 1, Fig. 9).
@@ -119,7 +124,7 @@ sensitivity = [0.5, 0.75, 1.25]
 preset = "standard"
 seed = 0                       # realisation r uses rng seed + r
 
-# Accuracy presets, chosen from the measured speed-accuracy front (errors and costs: docs/presets.md): patch
+# Accuracy presets, chosen from the measured speed-accuracy front (errors and costs: docs/guide/presets.md): patch
 # side = periods ridge periods on grid x grid pixels; realisations of the roughness; solver tolerance; rings of
 # equal area over the apparent contact (fingertip model only); pixels_per_cutoff: the shortest roughness
 # wavelength in pixels; dtype of the solves ("float64" or "float32"); warm_start: each solve starts from its
@@ -256,7 +261,7 @@ class _Section:
 class Fingerpad(_Section):
     """Apparent contact: ``model`` "power_law" (A0 = area_prefactor F_N^area_exponent [m²], uniform nominal
     pressure) or "fingertip" (Hertz cap of ``radius`` [m] on tissue of ``E_star`` [Pa]; with ``layer`` the cap
-    pressed onto the skin's layer on that tissue, solved on ``layer_grid``² pixels)."""
+    pressed onto the skin's layer on that tissue, solved on ``layer_grid`` × ``layer_grid`` pixels)."""
     section = "fingerpad"
     model: str = _field(_Choice(("power_law", "fingertip")))
     area_prefactor: float = _field(_Real(0.0, low_open=True))
@@ -318,16 +323,24 @@ class Skin(_Section):
 
 @dataclass(frozen=True)
 class Screen(_Section):
-    """Dielectric stack (``roughcontact.electrostatics.DielectricStack`` fields)."""
+    """Dielectric stack (``roughcontact.electrostatics.DielectricStack`` fields) and the ``field`` model of its
+    attraction over a gap field ("layered" or "parallel_plate", ``ElectrostaticInteraction.field``)."""
     section = "screen"
     d_sc: float = _field(_Real(0.0, low_open=True))
     eps_sc: float = _field(_Real(0.0, low_open=True))
     d_i: float = _field(_Real(0.0, low_open=True))
     eps_i: float = _field(_Real(0.0, low_open=True))
     eps_a: float = _field(_Real(0.0, low_open=True))
+    field: str = _field(_Choice(FIELDS))
 
     def stack(self):
-        return DielectricStack(**dataclasses.asdict(self))
+        return DielectricStack(**{key: value for key, value in dataclasses.asdict(self).items() if key != "field"})
+
+    def interaction(self, voltage: float):
+        """The attraction at ``voltage`` [V] with the scene's field model; None at 0 V (the hard wall)."""
+        if voltage == 0:
+            return None
+        return ElectrostaticInteraction(self.stack(), voltage=voltage, field=self.field)
 
 
 @dataclass(frozen=True)
@@ -357,7 +370,7 @@ class Study(_Section):
 
 @dataclass(frozen=True)
 class Preset(_Section):
-    """Accuracy against cost (``docs/presets.md``): ``grid`` pixels per side of a patch of ``periods`` ridge
+    """Accuracy against cost (``docs/guide/presets.md``): ``grid`` pixels per side of a patch of ``periods`` ridge
     periods, ``realisations``, solver ``tolerance``, ``rings`` over the apparent area (fingertip),
     ``pixels_per_cutoff`` at the short cut-off, ``dtype`` of the solves, ``warm_start`` (continuation along
     load, else cold solves) and ``scales`` ("resolved" in one grid or "coupled" through an interface law)."""
@@ -507,6 +520,23 @@ def _parse(text: str, origin: str) -> dict:
 _DEFAULTS = _parse(DEFAULT_SCENE_TOML, "the default scene")
 
 
+def _read_scene_file(path) -> str:
+    """The text of the scene file ``path`` (TOML is UTF-8); a ValueError naming the file if it cannot be read."""
+    try:
+        data = Path(path).read_bytes()
+    except TypeError:
+        raise TypeError(f"scene path must be a str or os.PathLike, got {type(path).__name__}") from None
+    except OSError as error:
+        raise ValueError(f"cannot read the scene file {path}: {error.strerror}") from None
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        line = data.count(b"\n", 0, error.start) + 1
+        column = error.start - data.rfind(b"\n", 0, error.start)
+        raise ValueError(f"the scene file {path} is not UTF-8 text: byte 0x{data[error.start]:02x} at line {line}, "
+                         f"column {column} (TOML files are UTF-8; save it as UTF-8 in the editor)") from None
+
+
 def load_scene(path=None, *, text: str | None = None, preset: str | None = None) -> Scene:
     """The scene of the TOML file ``path`` (or of the TOML ``text``; neither: the default scene), every value
     not given taken from :data:`DEFAULT_SCENE_TOML`; ``preset`` overrides ``study.preset``."""
@@ -514,10 +544,7 @@ def load_scene(path=None, *, text: str | None = None, preset: str | None = None)
         raise ValueError("give a scene path or its text, not both")
     origin = "the default scene" if path is None and text is None else str(path) if path is not None else "scene"
     if path is not None:
-        try:
-            text = Path(path).read_text()
-        except OSError as error:
-            raise ValueError(f"cannot read the scene file {path}: {error.strerror}") from None
+        text = _read_scene_file(path)
     text = "" if text is None else text
     given = _parse(text, origin)
     for name, value in given.items():

@@ -4,6 +4,8 @@ import io
 import json
 import subprocess
 import sys
+import warnings
+from concurrent.futures.process import BrokenProcessPool
 from datetime import datetime, timedelta, timezone
 from pathlib import Path
 
@@ -11,11 +13,12 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from roughcontact import __version__
+from roughcontact import __version__, study
 from roughcontact.cli import DEFAULT_FIGURES_OUTPUT, info, main
 from roughcontact.io import provenance
 from roughcontact.io import read_csv
 from roughcontact.paper import checkpoint_table
+from roughcontact.study.execution import StaleTaskWarning
 
 FIGURES = ["fig3_apparent_area", "fig4_ridge_area", "fig5_peeling", "fig9_area_reduction_gap",
            "fig10_tangential_force", "fig11_friction_coefficient"]
@@ -104,7 +107,7 @@ def test_figures_csv_readers_skip_the_provenance(figures_run):
 @pytest.mark.parametrize("make_output, message", [
     (lambda tmp: tmp / "file.txt", "is a file"),                                    # an existing file
     (lambda tmp: tmp / "missing" / "out", "does not exist"),                        # a deep path from a typo
-    (lambda tmp: tmp / "file.txt" / "out", "does not exist"),                       # a file as parent
+    (lambda tmp: tmp / "file.txt" / "out", "file.txt, is a file, not a directory"),  # a file as parent
     (lambda tmp: "", "empty"),
 ])
 def test_figures_output_mistakes_exit_2_with_one_line(tmp_path, capsys, make_output, message):
@@ -157,3 +160,52 @@ def test_run_executor_mistakes_exit_2_with_one_line(tmp_path, capsys, monkeypatc
     error = capsys.readouterr().err
     assert len(error.strip().splitlines()) == 1 and message in error
     assert not (tmp_path / "out" / "scene.toml").exists()                  # refused before the study starts
+
+
+def test_ctrl_c_exits_130_with_one_line(tmp_path, capsys, monkeypatch):
+    def interrupted(*arguments, **options):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(study, "run_study", interrupted)
+    with pytest.raises(SystemExit) as exit_info:
+        main(["run", "--out", str(tmp_path / "out")])
+    assert exit_info.value.code == 130
+    assert capsys.readouterr().err.splitlines() == [
+        f"roughcontact run: interrupted; finished tasks are kept in {tmp_path / 'out'} (the same command resumes)"]
+
+
+def test_a_warning_is_one_line(tmp_path, capsys, monkeypatch):
+    def warned(*arguments, **options):
+        warnings.warn("task file R000_U000.json: empty; its task is solved again", StaleTaskWarning)
+        raise ValueError("stop here")
+
+    monkeypatch.setattr(study, "run_study", warned)
+    assert main(["run", "--out", str(tmp_path / "out")]) == 2
+    assert capsys.readouterr().err.splitlines() == [
+        "roughcontact run: warning: task file R000_U000.json: empty; its task is solved again",
+        "roughcontact run: error: stop here"]
+
+
+def test_a_broken_pool_is_one_line(tmp_path, capsys, monkeypatch):
+    # (a worker killed by the system, e.g. out of memory): run_study's RuntimeError, one line, exit code 1
+    def broken(*arguments, **options):
+        try:
+            raise BrokenProcessPool("A process in the process pool was terminated abruptly")
+        except BrokenProcessPool as error:
+            raise RuntimeError("a worker of the study's process pool ended abruptly") from error
+
+    monkeypatch.setattr(study, "run_study", broken)
+    assert main(["run", "--out", str(tmp_path / "out")]) == 1
+    assert capsys.readouterr().err.splitlines() == [
+        "roughcontact run: error: a worker of the study's process pool ended abruptly"]
+
+
+def test_a_full_disk_under_the_standard_output_is_one_line(capsys, monkeypatch):
+    def full(*arguments, **options):
+        raise OSError(28, "No space left on device")        # (writing to /dev/full: no file name)
+
+    monkeypatch.setattr("builtins.print", full)
+    with pytest.raises(SystemExit) as exit_info:
+        main(["info"])
+    assert exit_info.value.code == 2
+    assert capsys.readouterr().err == "roughcontact info: error: cannot write the output: No space left on device\n"

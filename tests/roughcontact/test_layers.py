@@ -2,7 +2,7 @@
 
 Every ``.py`` file under ``roughcontact/`` is parsed (``ast``, nothing is imported) and every import of a
 roughcontact module is collected, at module level and inside functions, together with the names that a lazy
-package ``__init__`` maps to its submodules (``_LAZY``). The layers (``docs/architecture.md``, "Where the code
+package ``__init__`` maps to its submodules (``_LAZY``). The layers (``docs/guide/architecture.md``, "Where the code
 lives"):
 
     0  surfaces, roughcontact._version

@@ -206,7 +206,7 @@ def test_compliance_values_and_coarsened_body():
 
 @pytest.mark.parametrize("thickness", [1e6, 1e9, 1e30])
 def test_layer_much_thicker_than_the_window_is_the_half_space(thickness):
-    """docs/layered.md, "A layer much thicker than the window": every q > 0 mode is the half-space's to
+    """docs/guide/layered.md, "A layer much thicker than the window": every q > 0 mode is the half-space's to
     round-off (q t > 25 here) and the rigid base's column t/M (> 6.7e7 times the compliance of the longest
     wavelength) takes the half-space convention ⟨u⟩ = 0, so the operator is the half-space's bit for bit and a
     contact solve gives the half-space answer (before: 0-step 'converged' full contact at 1e30 m, no convergence at

@@ -172,7 +172,7 @@ def test_stable_at_extreme_qt():
 
 @pytest.mark.parametrize("thickness", [1e6, 1e9, 1e30, 1e300])
 def test_thick_layer_is_exactly_the_half_space(thickness):
-    """Beyond q t = THICK_X = 25 every kernel returns 2/(E* q) itself (docs/layered.md), also where q t overflows
+    """Beyond q t = THICK_X = 25 every kernel returns 2/(E* q) itself (docs/guide/layered.md), also where q t overflows
     (1e300 m × 1e10 rad/m was NaN); just below it the formula agrees to round-off (measured 1.1e-15, bound 4e-15)."""
     q = np.array([1e2, 1e4, 1e10])
     for phi in (layer_on_rigid_base_compliance(q, 1e6, 0.3, thickness),
@@ -221,7 +221,7 @@ def test_invalid_input_names_parameter(kwargs, name):
 
 
 # ---------------------------------------------------------------------------------------------------------
-# Free surface: the real-space influence coefficients (docs/layered.md, "The free-surface kernel")
+# Free surface: the real-space influence coefficients (docs/guide/layered.md, "The free-surface kernel")
 # ---------------------------------------------------------------------------------------------------------
 FREE_LAYERS = {   # (Φ, layer E*, b = lim q ΔΦ): a 40 µm layer on 10 µm pixels
     "stiff on soft": (lambda q: layer_on_half_space_compliance(q, 1e7, 0.5, 4e-5, 5e4, 0.5), 1e7, 2 / 5e4 - 2 / 1e7),

@@ -63,7 +63,7 @@ def test_pressure_and_its_derivatives_by_finite_differences(stack):
 def test_quoted_work_of_adhesion_values():
     # seed: w = 0.132 J/m² at 200 V and a 1 µm gap (3 digits -> 0.4 % tolerance)
     assert TABLE1.work_of_adhesion(1e-6, 200.0) == pytest.approx(0.132, rel=4e-3)
-    # seed quotes 0.532 J/m² for d = 0; Table-1 values give 0.5212 (erratum, docs/errata.md): assert the
+    # seed quotes 0.532 J/m² for d = 0; Table-1 values give 0.5212 (erratum, docs/findings/errata.md): assert the
     # closed form eps0 U²/(2c) and that the quoted value is off by 2.1 %
     w0 = TABLE1.work_of_adhesion(0.0, 200.0)
     assert w0 == pytest.approx(EPSILON_0 * 200.0 ** 2 / (2 * 0.33974e-6), rel=2e-5)

@@ -1,5 +1,7 @@
 """The one writer of provenance-carrying outputs (roughcontact.io.provenance)."""
 import json
+import os
+import re
 
 import numpy as np
 import pytest
@@ -46,6 +48,27 @@ def test_output_directory_creates_only_the_last_level(tmp_path):
     with pytest.raises(OutputPathError, match="does not exist"):
         output_directory(tmp_path / "missing" / "new")
     assert not (tmp_path / "missing").exists()
+
+
+def test_output_directory_and_read_csv_name_a_bad_argument(tmp_path):
+    for path in (None, 3):
+        with pytest.raises(TypeError, match=f"the output path must be a str or os.PathLike, got {type(path).__name__}"):
+            output_directory(path)
+    latin1 = tmp_path / "points.csv"                       # re-saved by a spreadsheet in Latin-1
+    latin1.write_bytes("# roughcontact\nload,unit\n1,µm\n".encode("latin-1"))
+    with pytest.raises(ValueError, match=f"{re.escape(str(latin1))} is not UTF-8 text"):
+        read_csv(latin1)
+
+
+def test_write_atomic_syncs_the_file_before_renaming_it(tmp_path, monkeypatch):
+    # a crash or power cut after the rename must not leave an empty file (a resumed study would read it)
+    events, fsync, replace = [], os.fsync, os.replace
+    monkeypatch.setattr(os, "fsync", lambda descriptor: events.append(("fsync", os.fstat(descriptor).st_size))
+                        or fsync(descriptor))
+    monkeypatch.setattr(os, "replace", lambda *paths: events.append(("replace",)) or replace(*paths))
+    write_atomic(tmp_path / "record.json", '{"new": 1}')
+    assert events[:2] == [("fsync", 10), ("replace",)]          # the whole text on disk, then renamed
+    assert events[2:] == [("fsync", os.stat(tmp_path).st_size)]  # and the directory's entry after it
 
 
 def test_write_atomic_replaces_the_file_whole(tmp_path):

@@ -27,7 +27,7 @@ def rough():
 def test_small_load_area_coefficient():
     """A/A0 = κ p̄/(E* h'_rms) at small load with κ in issue 4's band [1.6, 2.3] (Hyun et al. 2004: κ ≈ 2).
 
-    docs/contact_area.md (studies/contact_area_coefficient.py): pixel counting adds a perimeter term that
+    docs/findings/contact_area.md (studies/contact_area_coefficient.py): pixel counting adds a perimeter term that
     falls as Δx/λ_s (Yastrebov et al. 2017), κ falls slowly with the breadth λ_r/λ_s, and one surface with 16
     roll-off cells scatters by ±0.11 (16 seeds), so a resolved, broad case averaged over seeds is tested:
     λ_s = 16 px, λ_r = 16 λ_s = L/4, p̄ = 0.01 E* h', seeds 0–3: κ = 2.40, 2.26, 2.29, 1.99, mean 2.24
@@ -53,7 +53,7 @@ def test_area_coefficient_falls_with_resolution_of_short_cutoff():
 
     Pixel counting over-estimates the area by a perimeter term ∝ Δx, so κ falls and converges at first order:
     measured κ = 2.81, 2.55, 2.47, steps 0.26 and 0.09 (step ratio 2.2–3.0 over seeds 0–3; 2 for exact first
-    order; the perimeter-corrected κ stays at 2.32–2.35 on all three grids, docs/contact_area.md).
+    order; the perimeter-corrected κ stays at 2.32–2.35 on all three grids, docs/findings/contact_area.md).
 
     The Yastrebov correction removes that bias: corrected κ = 2.342, 2.317, 2.348 (spread 0.031; seeds 1–3:
     0.054, 0.014, 0.020) where the pixel count spreads by 0.35. Asserted: spread < 0.1, which the pixel count
@@ -304,7 +304,7 @@ def test_boundary_edges_and_corrected_contact_fraction():
 
 
 def test_reentries_do_not_restart_the_conjugate_gradients():
-    """Only a point's first entry into the contact set restarts the CG (docs/solver.md, Restarts). On the
+    """Only a point's first entry into the contact set restarts the CG (docs/guide/solver.md, Restarts). On the
     benchmark surface at 256² (λ_s = 4 px, p̄ = 0.01 E*, tol 1e-10) plain PK then takes 88 steps, against 153
     with Polonsky–Keer's restart on every entry: the bound 110 fails if re-entries restart again."""
     grid = Grid((256, 256), (L, L), periodic=True)

@@ -413,7 +413,7 @@ def test_float32_on_the_layered_skin_at_200_volts():
     # float32 reaches tol 1e-6 (it stalled at 1.0e-5 while the line search took float32's round-off of the energy
     # for a rise) with float64's contact set and d_eq to 3e-8 (measured; bound 1e-6, float32's resolution of the
     # gap against its 1 µm scale). The per-pixel law: with the layered field the two precisions cross the snap-in
-    # to equilibria whose contact sets differ on 56 of 65536 pixels (docs/interactions.md, "Several equilibria")
+    # to equilibria whose contact sets differ on 56 of 65536 pixels (docs/guide/interactions.md, "Several equilibria")
     from roughcontact.study.apparent import apparent_contact
     from roughcontact.study.patch import patch_body, patch_surface
     from roughcontact.study.scene import load_scene

@@ -17,7 +17,7 @@ from roughcontact.study.scene import load_scene
 
 # Largest relative differences coupled/resolved allowed on the tiny scene (32² patches, one realisation, 150 V,
 # 0.5 and 2 N; measured: d_eq +3 % and +15 %, real contact −4 % and −16 %, A_R +5 % and −19 %): the few
-# micro-contacts of a 32² patch make single differences large; docs/equivalent_gap.md states the errors at
+# micro-contacts of a 32² patch make single differences large; docs/findings/equivalent_gap.md states the errors at
 # 64² and 256². A law shifted by one rms height misses d_eq by more than twice the bound.
 BOUNDS = {"equivalent_gap": 0.2, "contact_fraction": 0.25, "ridge_area": 0.25}
 
@@ -53,10 +53,13 @@ def test_interface_law_is_consistent(scene, law):
                        rtol=1e-4, atol=1e-6 * np.abs(law.tractions).max())
     assert np.allclose(law.stiffness(gaps), (law.traction(gaps + step) - law.traction(gaps - step)) / (2 * step),
                        rtol=1e-3)
-    for method in (law.traction, law.energy, law.equivalent_gap, law.slope_squared):   # continuous at the end
+    for method in (law.traction, law.energy, law.equivalent_gap, law.field_gap, law.slope_squared):  # continuous
         assert method(last * (1 + 1e-9)) == pytest.approx(method(last * (1 - 1e-9)), rel=1e-6, abs=1e-12)
     assert law.contact_fraction(last * 2) == 0.0 and law.ridge_area_fraction(last * 2, 1) == 0.0
     assert law.tractions[-1] < 0 < law.tractions[0]             # attraction far away, contact pressure near
+    # the layered field attracts more than Eq. 21 per pixel on every node's gap (smaller field gap; measured
+    # f/e = 0.61-0.98, the largest difference near contact); the parallel-plate law's field gap is e itself
+    assert (np.array(law.field_gaps) < np.array(law.equivalent_gaps)).all()
     assert law.coarse_graining == closing_lengths(scene) and len(law.separations) == LAW_NODES
     for closed in law.ridge_area_fractions:                    # a closing only adds to the contact set
         assert (np.array(closed) >= np.array(law.contact_fractions)).all()
@@ -107,6 +110,8 @@ def test_coupled_chain_follows_the_resolved_chain(scene, law, chains):
         # the mean gap is the ridge-scale separation's, σ̄_el that of the pixel-wise e(ū)
         assert coupled.mean_gap == pytest.approx(resolved.mean_gap, rel=0.12)         # measured +1 %, −8 %
         assert coupled.electrostatic_pressure == pytest.approx(resolved.electrostatic_pressure, rel=0.2)
+        assert coupled.field_equivalent_gap == pytest.approx(resolved.field_equivalent_gap,
+                                                             rel=BOUNDS["equivalent_gap"])
     rms = float(np.std(roughness_heights(scene, 0)))
     wrong = dataclasses.replace(law, separations=tuple(s + rms for s in law.separations))
     for coupled, resolved in zip(ridge_chain(scene, wrong), chains["resolved"]):

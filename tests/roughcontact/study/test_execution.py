@@ -2,8 +2,11 @@
 records, bit for bit (one FFT thread and FFTW_ESTIMATE plans everywhere, tests/conftest.py); an interrupted run
 resumes with the missing tasks only, and a run that loses a worker completes with the same numbers."""
 import dataclasses
+import json
 import multiprocessing
 import os
+import re
+import shutil
 import signal
 import subprocess
 import sys
@@ -14,7 +17,8 @@ from pathlib import Path
 
 import pytest
 
-from roughcontact.study.execution import TaskStore
+from roughcontact.cli import main
+from roughcontact.study.execution import StaleTaskWarning, TaskStore
 from roughcontact.study.resolved import solve_chain
 from roughcontact.study.run import run_study
 from roughcontact.study.scene import load_scene
@@ -72,6 +76,77 @@ def test_interrupted_pool_keeps_finished_tasks_and_resume_solves_the_rest(tiny, 
     assert numbers(resumed) == numbers(tiny_result)
 
 
+@pytest.fixture(scope="module")
+def finished(tiny, tmp_path_factory):
+    """A results directory of the tiny study, run to the end."""
+    directory = tmp_path_factory.mktemp("finished")
+    run_study(tiny, directory, workers=1)
+    return directory
+
+
+def _nan_gap(text):
+    stored = json.loads(text)
+    stored["records"][1]["equivalent_gap"] = float("nan")
+    return json.dumps(stored)
+
+
+def _edited_gap(text):
+    stored = json.loads(text)
+    stored["records"][0]["equivalent_gap"] *= 1.01
+    return json.dumps(stored)
+
+
+@pytest.mark.parametrize("damage, reason", [
+    (lambda text: "", "empty"),
+    (lambda text: text[:len(text) // 2], "not valid JSON"),
+    (lambda text: text.encode("utf-8")[:5] + b"\xff\xfe", "cannot be read"),
+    (lambda text: "[1, 2]", "written by an older roughcontact"),
+    (lambda text: '{"records": 3}', "not a task file"),
+    (lambda text: text.replace('"records": [{', '"records": [3, {', 1), r"not one record per load \(2 loads\)"),
+    (lambda text: text.replace('"converged": true', '"converged": "yes"', 1),
+     r"record 1 \(F_N = 0.5 N\): converged = 'yes' is not of type bool"),
+    (_nan_gap, r"record 2 \(F_N = 2 N\): equivalent_gap = nan in a converged solve"),
+    (_edited_gap, r"its records do not match their digest \(edited or damaged\)"),
+], ids=["empty", "truncated", "not UTF-8", "old list", "wrong keys", "record count", "wrong type", "NaN", "edited"])
+def test_a_damaged_task_file_is_named_and_solved_again(tiny, tiny_result, finished, tmp_path, damage, reason):
+    directory = shutil.copytree(finished, tmp_path / "run")
+    path = directory / "tasks" / "R001_U001.json"
+    damaged = damage(path.read_text())
+    path.write_bytes(damaged if isinstance(damaged, bytes) else damaged.encode("utf-8"))
+    with pytest.warns(StaleTaskWarning, match=f"task file {re.escape(str(path))}: {reason}.*; its task is solved "
+                                              "again"):
+        resumed = run_study(tiny, directory, workers=1)
+    assert resumed.computed == 2 and resumed.solves == 2                # that task's two loads, solved again
+    assert numbers(resumed) == numbers(tiny_result)
+    again = run_study(tiny, directory, workers=1)                       # rewritten whole: reused, no warning
+    assert again.computed == 0 and numbers(again) == numbers(tiny_result)
+
+
+def test_another_scene_in_a_directory_without_its_scene_file_solves_everything_again(tiny, finished, tmp_path):
+    # scene.toml deleted: the tasks still carry their scene's fingerprint, so another scene does not reuse them
+    directory = shutil.copytree(finished, tmp_path / "run")
+    (directory / "scene.toml").unlink()
+    other = load_scene(text=TINY.replace("normal_forces = [0.5, 2.0]", "normal_forces = [1.0, 3.0]"),
+                       preset="draft")
+    with pytest.warns(StaleTaskWarning) as caught:
+        result = run_study(other, directory, workers=1)
+    assert sorted(str(warning.message).split(" ")[2] for warning in caught) == [
+        f"{directory / 'tasks' / name}.json:" for name in ("R000_U000", "R000_U001", "R001_U000", "R001_U001")]
+    assert all("written for another scene" in str(warning.message) for warning in caught)
+    assert result.computed == 4
+    assert numbers(result) == numbers(run_study(other, workers=1))
+    assert load_scene(directory / "scene.toml") == other
+
+
+def test_an_empty_scene_file_is_written_again(tiny, tiny_result, finished, tmp_path):
+    # (a write cut short by a crash before write_atomic synced its files): the tasks' fingerprints decide
+    directory = shutil.copytree(finished, tmp_path / "run")
+    (directory / "scene.toml").write_text("")
+    resumed = run_study(tiny, directory, workers=1)
+    assert resumed.computed == 0 and numbers(resumed) == numbers(tiny_result)
+    assert load_scene(directory / "scene.toml") == tiny
+
+
 @pytest.mark.slow
 def test_the_pool_ends_with_a_killed_client(tmp_path):
     psutil = pytest.importorskip("psutil")
@@ -86,18 +161,51 @@ def test_the_pool_ends_with_a_killed_client(tmp_path):
             scene = load_scene(text=TINY.replace("realisations = 2", "realisations = 500"), preset="draft")
             run_study(scene, {str(tmp_path / "out")!r}, workers=2)
         """))
-    client = subprocess.Popen([sys.executable, str(script)])
+    # the client's output goes to a pipe, as under subprocess.run(capture_output=True): its reader waits for
+    # every holder of the pipe, the workers included, to end
+    client = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
     try:
         while not any((tmp_path / "out" / "tasks").glob("*.json")):          # the workers have started
             assert client.poll() is None
             time.sleep(0.05)
         pool = psutil.Process(client.pid).children(recursive=True)          # forkserver, workers, tracker
     finally:
-        client.kill()                                                        # SIGKILL: no clean-up runs
-        client.wait()
+        client.kill()                       # SIGKILL: no clean-up runs; not reaped yet, so it stays a zombie
     assert len(pool) >= 3
+    while psutil.Process(client.pid).status() != psutil.STATUS_ZOMBIE:        # (the signal is delivered)
+        time.sleep(0.01)
     gone, alive = psutil.wait_procs(pool, timeout=30)
     assert alive == []
+    ended = threading.Thread(target=client.stdout.read, daemon=True)       # end of file: no process holds it
+    ended.start()
+    ended.join(timeout=30)
+    assert not ended.is_alive()
+    client.wait()
+
+
+@pytest.mark.slow
+def test_ctrl_c_stops_the_command_and_its_pool_with_one_line(tmp_path):
+    psutil = pytest.importorskip("psutil")
+    scene = tmp_path / "scene.toml"
+    scene.write_text(TINY.replace("realisations = 2", "realisations = 500"))
+    command = [sys.executable, "-m", "roughcontact.cli", "run", str(scene), "--preset", "draft", "--out",
+               str(tmp_path / "out"), "--workers", "2"]
+    client = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                              cwd=Path(__file__).parents[3], start_new_session=True)
+    try:
+        while not any((tmp_path / "out" / "tasks").glob("*.json")):          # the workers have started
+            assert client.poll() is None
+            time.sleep(0.05)
+        pool = psutil.Process(client.pid).children(recursive=True)
+        os.killpg(client.pid, signal.SIGINT)                 # Ctrl-C: the terminal signals the whole group
+        out, err = client.communicate(timeout=60)
+    finally:
+        client.kill()
+    assert client.returncode == 130 and "Traceback" not in err
+    assert err.splitlines()[-1] == (f"roughcontact run: interrupted; finished tasks are kept in {tmp_path / 'out'} "
+                                    "(the same command resumes)")
+    assert psutil.wait_procs(pool, timeout=30)[1] == []
+    assert not (tmp_path / "out" / "run.lock").exists()
 
 
 def test_local_cluster_gives_the_in_process_records(tiny, tiny_result, cluster):
@@ -145,6 +253,45 @@ def test_an_unreachable_scheduler_is_named(tiny, tmp_path):
         with pytest.raises(ValueError, match=r"dask = 'tcp://127.0.0.1:9': Timed out trying to connect"):
             run_study(tiny, tmp_path, dask="tcp://127.0.0.1:9")
     assert not (tmp_path / "run.lock").exists() and not any((tmp_path / "tasks").iterdir())
+
+
+@pytest.mark.parametrize("address, message", [
+    ("nonsense", r"dask = 'nonsense' is not a scheduler address \(tcp://host:port\): missing port number"),
+    ("tcp://host:port", r"dask = 'tcp://host:port' is not a scheduler address"),
+    ("foo://host:1", r"dask = 'foo://host:1' is not a scheduler address \(tcp://host:port\): unknown address scheme"),
+])
+def test_a_malformed_scheduler_address_is_refused_at_once(address, message, tmp_path):
+    pytest.importorskip("distributed")
+    with pytest.raises(ValueError, match=message):
+        run_study(load_scene(text=TINY, preset="draft"), tmp_path, dask=address)
+    assert not (tmp_path / "scene.toml").exists()                         # refused before anything is written
+    with pytest.raises(TypeError, match="dask must be a scheduler address such as 'tcp://host:8786', got int"):
+        run_study(load_scene(text=TINY, preset="draft"), dask=8786)
+
+
+def test_the_command_with_a_malformed_scheduler_address_ends_at_once(tmp_path):
+    # a distributed.Client that failed on the address kept its event loop and hung the interpreter's exit for
+    # 60 s, then printed a traceback
+    pytest.importorskip("distributed")
+    command = ["run", "--out", str(tmp_path / "out"), "--dask", "nonsense"]
+    done = subprocess.run([sys.executable, "-m", "roughcontact.cli", *command], capture_output=True, text=True,
+                          timeout=45, cwd=Path(__file__).parents[3])
+    assert done.returncode == 2 and done.stderr.strip().splitlines() == [
+        "roughcontact run: error: dask = 'nonsense' is not a scheduler address (tcp://host:port): missing port "
+        "number in address 'nonsense'"]
+
+
+def test_the_command_with_an_unreachable_scheduler_prints_one_line(tmp_path, capsys):
+    dask = pytest.importorskip("dask")
+    pytest.importorskip("distributed")
+    scene = tmp_path / "scene.toml"
+    scene.write_text(TINY)
+    with dask.config.set({"distributed.comm.timeouts.connect": "1s"}):
+        assert main(["run", str(scene), "--preset", "draft", "--out", str(tmp_path / "out"), "--dask",
+                     "tcp://127.0.0.1:9"]) == 2
+    assert capsys.readouterr().err.splitlines() == [       # (no progress bar before the refusal)
+        "roughcontact run: error: dask = 'tcp://127.0.0.1:9': Timed out trying to connect to tcp://127.0.0.1:9 "
+        "after 1 s"]
 
 
 @pytest.mark.parametrize("workers, dask, message", [

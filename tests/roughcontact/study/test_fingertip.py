@@ -49,7 +49,7 @@ def test_layer_of_the_tissue_itself_is_the_half_space():
 def test_default_skin_shrinks_the_footprint():
     """The scene's 30 µm, 10 MPa layer on 47.4 kPa tissue at 1 N: A0 −2.88 % and the outer ring's mean pressure
     +12.0 % against the half-space (measured at 64²; at 128² −2.90 / +12.3 %, at 256² −3.31 / +13.9 %,
-    docs/equivalent_gap.md); bounds ±0.5 % and ±1.5 %. The layer's half-space alone (the correction dropped) would
+    docs/findings/equivalent_gap.md); bounds ±0.5 % and ±1.5 %. The layer's half-space alone (the correction dropped) would
     shrink A0 35-fold."""
     layered = fingertip_contact(FINGERPAD, SKIN, 1.0, 3, grid_points=64)
     half = fingertip_contact(FINGERPAD, HALF_SPACE, 1.0, 3, grid_points=64)

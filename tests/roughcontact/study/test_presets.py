@@ -1,6 +1,6 @@
 """roughcontact.study.presets: the measured table, the cheapest setting for a target error, the auto scene, and the
 shipped measurement of the default presets (issue 14's bar: draft >= 10x cheaper than standard, standard >= 5x
-cheaper than reference, each within the error docs/presets.md states for it on every measured scene)."""
+cheaper than reference, each within the error docs/guide/presets.md states for it on every measured scene)."""
 import dataclasses
 import math
 
@@ -111,11 +111,11 @@ def test_shipped_table_measures_the_presets_and_meets_the_bar():
     assert reference.error == 0.0                                   # the reference setting itself
     assert 10 * draft.cpu_seconds <= standard.cpu_seconds
     assert 5 * standard.cpu_seconds <= reference.cpu_seconds
-    # the errors docs/presets.md states for the presets, on every scene (the rough and smooth ones untuned)
+    # the errors docs/guide/presets.md states for the presets, on every scene (the rough and smooth ones untuned)
     assert max(standard.errors.values()) <= STATED["standard"]
     assert max(draft.errors.values()) <= STATED["draft"]
     # the discretisation columns (studies/resolution.py --library): measured at each preset's pixel, the layered
-    # F_el under-resolved at every one (docs/presets.md: 14.3, 13.9, 9.2 %), and the reference's sets the floor
+    # F_el under-resolved at every one (docs/guide/presets.md: 14.3, 13.9, 9.2 %), and the reference's sets the floor
     for entry in (draft, standard, reference):
         assert all(0 < entry.discretisation[column] < 0.3 for column in RESOLUTION_COLUMNS)
     assert draft.discretisation["fel_error"] >= standard.discretisation["fel_error"] \
@@ -125,7 +125,7 @@ def test_shipped_table_measures_the_presets_and_meets_the_bar():
         choose(0.05, table)
 
 
-#: The error bounds docs/presets.md states (fractions).
+#: The error bounds docs/guide/presets.md states (fractions).
 STATED = {"draft": 0.20, "standard": 0.05}
 
 

@@ -1,5 +1,6 @@
 """Scenes: the default round-trips through TOML; every scene error names the key, its line and the valid values."""
 import dataclasses
+import re
 
 import pytest
 
@@ -44,6 +45,7 @@ def test_partial_scene_keeps_the_other_defaults_and_preset_override():
     ("[presets.reference]\nscales = \"mixed\"\n", "presets.reference.scales", 2, '"resolved", "coupled"'),
     ("\n[study]\npreset = \"auto\"\n", "study.preset", 3, "[presets.auto]"),
     ("[presets.auto]\ngrid = 64\n", "presets.auto", 1, "missing keys periods, realisations"),
+    ("[screen]\neps_a = 1.0\nfield = \"fem\"\n", "screen.field", 3, '"parallel_plate", "layered"'),
 ])
 def test_scene_errors_name_key_line_and_valid_values(text, key, line, valid):
     with pytest.raises(ValueError) as error:
@@ -75,6 +77,15 @@ def test_invalid_toml_and_missing_file(tmp_path):
         load_scene(text="[ridges\n")
     with pytest.raises(ValueError, match="cannot read the scene file"):
         load_scene(tmp_path / "missing.toml")
+    latin1 = tmp_path / "latin1.toml"                              # a comment saved in Latin-1 by an editor
+    latin1.write_bytes(b"[loads]\nvoltages = [0.0]\n# caf\xe9\n")
+    with pytest.raises(ValueError, match=f"the scene file {re.escape(str(latin1))} is not UTF-8 text: byte 0xe9 "
+                                         "at line 3, column 6.*TOML files are UTF-8"):
+        load_scene(latin1)
+    with pytest.raises(ValueError, match=f"cannot read the scene file {re.escape(str(tmp_path))}: Is a directory"):
+        load_scene(tmp_path)
+    with pytest.raises(TypeError, match="scene path must be a str or os.PathLike, got int"):
+        load_scene(3)
 
 
 def test_sections_validate_when_built_in_python():

@@ -1,0 +1,107 @@
+"""Cost of the layered field inside the contact solve against the per-pixel law on the same patch and tolerance.
+
+    python studies/bench_field.py                      # 256² and 512², 30/100/200 V: the table of docs/guide/electrostatics.md
+    python studies/bench_field.py --repeat 3 --output out
+    python studies/bench_field.py --fast               # 64², seconds
+
+Two patches per grid size n: ``bench``, the electrostatic bar's rough patch (1 mm square, 3 µm rms self-affine
+heights, H = 0.8, short cut-off 8 px, E* = 1 MPa, p̄ = 1 kPa), and ``scene``, the default scene's patch (one ridge
+period with micro-roughness on the layered skin, at the apparent pressure of the first ring at 0.5 N). At each
+voltage the per-pixel law (``field="parallel_plate"``) and the layered field are solved cold at the same
+tolerance; the layered solve's time and FFT pairs (the elastic ones and the field solves' ones) are printed as
+multiples of the per-pixel solve's. Writes ``bench_field.csv`` with its provenance into ``--output``.
+"""
+from __future__ import annotations
+
+import argparse
+import time
+
+from surfaces import Grid, self_affine
+from roughcontact import ElasticHalfSpace, ElectrostaticInteraction, solve_contact
+from roughcontact.electrostatics import DielectricStack
+from roughcontact.io import output_directory, parse_arguments, write_csv
+
+COLUMNS = ("patch", "n", "voltage_V", "field", "time_s", "time_ratio", "iterations", "fft_pairs",
+           "fft_pair_ratio", "contact_fraction", "electrostatic_force_N", "field_equivalent_gap_m",
+           "equivalent_gap_m", "converged")
+
+
+def bench_patch(n):
+    """The electrostatic bar's rough patch and its body, with its load p̄ [Pa]."""
+    grid = Grid((n, n), (1e-3, 1e-3), periodic=True)
+    surface = self_affine(grid, hurst=0.8, rms_height=3e-6, short_cutoff=8e-3 / n, rng=1)
+    return surface, ElasticHalfSpace(grid, E_star=1e6, planner_effort="FFTW_MEASURE"), 1e3, DielectricStack()
+
+
+def scene_patch(n):
+    """The default scene's patch on n² pixels, its skin body and the first ring's apparent pressure at 0.5 N."""
+    from roughcontact.study.apparent import apparent_contact
+    from roughcontact.study.patch import patch_body, patch_surface
+    from roughcontact.study.scene import load_scene
+    scene = load_scene(text=f"[presets.standard]\ngrid = {n}\n", preset="standard")
+    _, (pressure,) = apparent_contact(scene.fingerpad, 0.5, 1)
+    return patch_surface(scene, 0), patch_body(scene), pressure, scene.screen.stack()
+
+
+def timed(solve, repeat):
+    """The result of ``solve()`` and its best wall time [s] over ``repeat`` calls (the solves are deterministic)."""
+    best = float("inf")
+    for _ in range(repeat):
+        start = time.perf_counter()
+        result = solve()
+        best = min(best, time.perf_counter() - start)
+    return result, best
+
+
+def rows_for(name, n, args):
+    surface, body, pressure, stack = {"bench": bench_patch, "scene": scene_patch}[name](n)
+    rows = []
+    for voltage in args.voltages:
+        reference = None
+        for field in ("parallel_plate", "layered"):
+            law = ElectrostaticInteraction(stack, voltage, field=field)
+            solve_contact(surface, body, mean_pressure=pressure, tol=args.tol, interaction=law, warn=False)  # warm
+            result, seconds = timed(lambda: solve_contact(surface, body, mean_pressure=pressure, tol=args.tol,
+                                                          interaction=law, warn=False), args.repeat)
+            reference = reference or (seconds, result.params["fft_pairs"])
+            rows.append(dict(patch=name, n=n, voltage_V=voltage, field=field, time_s=seconds,
+                             time_ratio=seconds / reference[0], iterations=result.iterations,
+                             fft_pairs=result.params["fft_pairs"],
+                             fft_pair_ratio=result.params["fft_pairs"] / reference[1],
+                             contact_fraction=result.contact_fraction,
+                             electrostatic_force_N=result.electrostatic_force,
+                             field_equivalent_gap_m=result.field_equivalent_gap,
+                             equivalent_gap_m=result.equivalent_gap, converged=result.converged))
+            print(f"{name:5s} {n:4d}² {voltage:5.0f} V {field:14s} {seconds:8.3f} s  x{rows[-1]['time_ratio']:.2f}  "
+                  f"{result.params['fft_pairs']:7.1f} FFT pairs  x{rows[-1]['fft_pair_ratio']:.2f}  "
+                  f"A/A0 {result.contact_fraction:.4f}", flush=True)
+    return rows
+
+
+def _at_least_one(text):
+    value = int(text)
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be at least 1, got {value}")
+    return value
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0],
+                                     formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    parser.add_argument("--sizes", type=int, nargs="+", default=[256, 512], help="grid sizes n (n² pixels)")
+    parser.add_argument("--voltages", type=float, nargs="+", default=[30.0, 100.0, 200.0], help="voltages U [V]")
+    parser.add_argument("--patches", nargs="+", choices=("bench", "scene"), default=["bench", "scene"])
+    parser.add_argument("--tol", type=float, default=1e-8, help="relative tolerance of both solves")
+    parser.add_argument("--repeat", type=_at_least_one, default=1, help="timings per solve; the best is kept")
+    parser.add_argument("--fast", action="store_true", help="64² and one voltage: a test that the script runs")
+    parser.add_argument("--output", default="out", help="directory for bench_field.csv")
+    args, provenance = parse_arguments(parser, argv, "studies/bench_field.py")
+    if args.fast:
+        args.sizes, args.voltages = [64], [30.0]
+    directory = output_directory(args.output)
+    rows = [row for n in args.sizes for name in args.patches for row in rows_for(name, n, args)]
+    write_csv(directory / "bench_field.csv", rows, provenance, COLUMNS)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,19 @@
+"""The layered field's benchmark runs in fast mode and its rows are self-consistent (no timing is asserted)."""
+import pytest
+
+
+@pytest.fixture(scope="module")
+def rows(fast_run, read_csv):
+    return read_csv(fast_run("bench_field") / "bench_field.csv")
+
+
+def test_both_fields_on_both_patches(rows):
+    assert {(r["patch"], r["field"]) for r in rows} == {(patch, field) for patch in ("bench", "scene")
+                                                        for field in ("parallel_plate", "layered")}
+    assert all(r["converged"] == "True" for r in rows)
+    for patch in ("bench", "scene"):
+        plate, layered = (next(r for r in rows if r["patch"] == patch and r["field"] == field)
+                          for field in ("parallel_plate", "layered"))
+        assert float(plate["fft_pair_ratio"]) == 1.0 and float(layered["fft_pair_ratio"]) > 1.0
+        # the layered field attracts more than the per-pixel law at the same load
+        assert float(layered["electrostatic_force_N"]) > float(plate["electrostatic_force_N"])
