@@ -115,7 +115,7 @@ def test_shipped_table_measures_the_presets_and_meets_the_bar():
     assert max(standard.errors.values()) <= STATED["standard"]
     assert max(draft.errors.values()) <= STATED["draft"]
     # the discretisation columns (studies/resolution.py --library): measured at each preset's pixel, the layered
-    # F_el under-resolved at every one (docs/guide/presets.md: 14.3, 13.9, 9.2 %), and the reference's sets the floor
+    # F_el under-resolved at every one (docs/guide/presets.md: 13.5, 13.1, 8.3 %), and the reference's sets the floor
     for entry in (draft, standard, reference):
         assert all(0 < entry.discretisation[column] < 0.3 for column in RESOLUTION_COLUMNS)
     assert draft.discretisation["fel_error"] >= standard.discretisation["fel_error"] \
