@@ -9,8 +9,9 @@ its error; :func:`choose` picks the cheapest setting whose error meets a target 
 auto --target-error 2%``), and :func:`auto_scene` puts it into a scene as ``[presets.auto]``.
 
 The columns :data:`RESOLUTION_COLUMNS`, written by ``studies/resolution.py --library`` after the table, hold the
-discretisation error of the setting's pixel (ridge period / grid × periods) against the converged pixel
-(``docs/guide/presets.md``, "Discretisation error at the presets' pixels"): ``fel_error`` of the layered attraction
+discretisation error of the setting's pixel (ridge period / grid × periods) against 0.055 µm pixels, a lower
+bound for the layered F_el, which has not settled there (``docs/guide/presets.md``, "Discretisation error at
+the presets' pixels"): ``fel_error`` of the layered attraction
 F_el at 200 V, ``deq_error`` of Eq. 25's d_eq (0 and 200 V) and ``field_deq_error`` of the field-equivalent gap
 at 200 V, each the largest magnitude of the relative error of the realisation mean over F_N = 0.5 and 2 N,
 measured on 1-D profiles of the default scene; empty (nan) for a pixel not measured. The errors of the other
@@ -132,7 +133,7 @@ def error_floor(table=None) -> tuple:
     measured_floor = max((entry.discretisation_error for entry in references), default=math.nan)
     if not math.isnan(measured_floor):
         return measured_floor, ("the reference setting's own discretisation error of F_el and the equivalent "
-                                "gaps against a converged pixel, measured on 1-D profiles")
+                                "gaps, measured on 1-D profiles against 0.055 um pixels (a lower bound)")
     if not references:
         return min(entry.error for entry in table), "the smallest error of any measured setting"
     return (min(entry.error for entry in table if entry.error > 0),
