@@ -144,7 +144,8 @@ def build_parser() -> argparse.ArgumentParser:
                      help="accuracy preset (default: the scene's study.preset); auto: the cheapest measured setting "
                           "meeting --target-error (docs/guide/presets.md)")
     run.add_argument("--target-error", metavar="ERROR", default=argparse.SUPPRESS,
-                     help="with --preset auto: the largest error accepted, e.g. 2%% or 0.02")
+                     help="with --preset auto: the largest error accepted, e.g. 10%% or 0.1; refused below the "
+                          "reference setting's own error (the floor, docs/guide/presets.md)")
     run.add_argument("--out", default=DEFAULT_RUN_OUTPUT,
                      help="results directory; created if missing, but its parent must exist")
     executors = run.add_mutually_exclusive_group()
