@@ -163,8 +163,8 @@ def auto_scene(scene: Scene, target_error: float, table=None) -> Scene:
 
 
 def describe(preset: Preset, name: str, table=None) -> str:
-    """One sentence for a run's report: the measured error and cost of ``preset`` (named ``name``), or that
-    its setting was not measured."""
+    """One paragraph for a run's report: the measured error and cost of ``preset`` (named ``name``), or that
+    its setting was not measured, and the discretisation error of its pixel where measured."""
     entry = measured(preset, table)
     if entry is None:
         return (f"The setting of preset `{name}` is not among the measured settings of `docs/guide/presets.md`: its "
@@ -172,14 +172,28 @@ def describe(preset: Preset, name: str, table=None) -> str:
     chosen = " (chosen by --preset auto)" if name == AUTO else ""
     if entry.error == 0:
         floor, reason = error_floor(table)
-        return (f"Preset `{name}`{chosen} is the reference setting of `docs/guide/presets.md`: its error against "
+        text = (f"Preset `{name}`{chosen} is the reference setting of `docs/guide/presets.md`: its error against "
                 f"itself is 0 by definition and not a measured error. Its floor is {100 * floor:.2g} %, {reason}; "
                 f"{entry.cpu_seconds:.3g} CPU seconds for the four measured points.")
-    errors = ", ".join(f"{100 * entry.errors[scene]:.2g} % on the {scene} scene" for scene in SCENES)
-    return (f"Measured error of preset `{name}`{chosen} against the reference setting (largest relative "
-            f"difference of d_eq, A_R/A0 and F_T at 200 V at F_N = 0.5, 2 N and U = 0, 200 V; `docs/guide/presets.md`): "
-            f"{errors}; {entry.cpu_seconds:.3g} CPU seconds for those four points. It holds for scenes like "
-            "these; a scene far from them may err differently.")
+    else:
+        errors = ", ".join(f"{100 * entry.errors[scene]:.2g} % on the {scene} scene" for scene in SCENES)
+        text = (f"Measured error of preset `{name}`{chosen} against the reference setting (largest relative "
+                f"difference of d_eq, A_R/A0 and F_T at 200 V at F_N = 0.5, 2 N and U = 0, 200 V; "
+                f"`docs/guide/presets.md`): {errors}; {entry.cpu_seconds:.3g} CPU seconds for those four points. It "
+                "holds for scenes like these; a scene far from them may err differently.")
+    return text + _discretisation_sentence(entry)
+
+
+def _discretisation_sentence(entry: Measurement) -> str:
+    """The discretisation error of the preset's pixel against the finest resolved profiles, where measured."""
+    error = entry.discretisation
+    if not error or all(math.isnan(error[column]) for column in RESOLUTION_COLUMNS):
+        return ""
+    return (f" Discretisation error of its pixel (1-D profiles of the default scene against 0.055 µm pixels, "
+            f"`docs/guide/presets.md`, 'Resolution near contacts'): the layered field's F_el "
+            f"{100 * error['fel_error']:.2g} % low (a lower bound: the layered solve has not converged at 0.055 µm), "
+            f"d_eq (Eq. 25) {100 * error['deq_error']:.2g} %, the field-equivalent gap "
+            f"{100 * error['field_deq_error']:.2g} %.")
 
 
 def run_scene(path=None, preset: str | None = None, target_error=None, table=None) -> Scene:
