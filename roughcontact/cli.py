@@ -17,6 +17,7 @@ import warnings
 
 from . import study
 from ._version import __version__
+from .fe import command as fingertip_fe        # FElupe itself is imported only when the command runs
 from .io.provenance import OutputPathError, output_directory, parse_arguments
 from .paper import reproduce
 
@@ -143,7 +144,8 @@ def build_parser() -> argparse.ArgumentParser:
                      help="accuracy preset (default: the scene's study.preset); auto: the cheapest measured setting "
                           "meeting --target-error (docs/guide/presets.md)")
     run.add_argument("--target-error", metavar="ERROR", default=argparse.SUPPRESS,
-                     help="with --preset auto: the largest error accepted, e.g. 2%% or 0.02")
+                     help="with --preset auto: the largest error accepted, e.g. 10%% or 0.1; refused below the "
+                          "reference setting's own error (the floor, docs/guide/presets.md)")
     run.add_argument("--out", default=DEFAULT_RUN_OUTPUT,
                      help="results directory; created if missing, but its parent must exist")
     executors = run.add_mutually_exclusive_group()
@@ -162,6 +164,12 @@ def build_parser() -> argparse.ArgumentParser:
                        help="scene TOML file (default: the embedded scene)")
     scene.add_argument("--show", action="store_true", help="print the scene as TOML")
     scene.set_defaults(run=_cmd_scene)
+    fingertip_fe.add_arguments(commands.add_parser(
+        "fingertip-fe", help="the seed's FE fingertip: L(f_T), Eq. 34, Figs. 6-7 (needs roughcontact[fe])",
+        description="Press a plane-strain hyperelastic finger section onto a plate and slide it to full slip at "
+                    "several normal forces (FElupe); write CSV + PNG (docs/guide/fe_fingertip.md).",
+        formatter_class=formatter))
+    commands.choices["fingertip-fe"].set_defaults(run=fingertip_fe.run)
     return parser
 
 

@@ -8,7 +8,7 @@ Two patches per grid size n: ``bench``, the electrostatic bar's rough patch (1 m
 heights, H = 0.8, short cut-off 8 px, E* = 1 MPa, p̄ = 1 kPa), and ``scene``, the default scene's patch (one ridge
 period with micro-roughness on the layered skin, at the apparent pressure of the first ring at 0.5 N). At each
 voltage the per-pixel law (``field="parallel_plate"``) and the layered field are solved cold at the same
-tolerance; the layered solve's time and FFT pairs (the elastic ones and the field solves' ones) are printed as
+tolerance; the layered solve's CPU time and FFT pairs (the elastic ones and the field solves' ones) are printed as
 multiples of the per-pixel solve's. Writes ``bench_field.csv`` with its provenance into ``--output``.
 """
 from __future__ import annotations
@@ -44,12 +44,14 @@ def scene_patch(n):
 
 
 def timed(solve, repeat):
-    """The result of ``solve()`` and its best wall time [s] over ``repeat`` calls (the solves are deterministic)."""
+    """The result of ``solve()`` and its best CPU time [s] over ``repeat`` calls (the solves are deterministic;
+    CPU time, not wall time, so that the ratios hold on a shared machine: run with one FFT thread,
+    ``ROUGHCONTACT_FFT_THREADS=1``)."""
     best = float("inf")
     for _ in range(repeat):
-        start = time.perf_counter()
+        start = time.process_time()
         result = solve()
-        best = min(best, time.perf_counter() - start)
+        best = min(best, time.process_time() - start)
     return result, best
 
 

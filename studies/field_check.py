@@ -38,7 +38,7 @@ from roughcontact.electrostatics.fem import field_solve_patch, field_solve_profi
 from roughcontact.electrostatics.perturbation import second_order_attraction
 from roughcontact.io import output_directory, parse_arguments, write_csv
 from roughcontact.study.apparent import apparent_scale
-from roughcontact.study.patch import patch_body, ridge_heights
+from roughcontact.study.patch import patch_body, profile_surface
 from roughcontact.study.scene import load_scene
 from surfaces import Grid, self_affine
 
@@ -96,7 +96,8 @@ def _pressed(heights, body, pressure, voltage, stack) -> tuple:
 
 
 def profiles(scene, pixel: float, rng: int) -> dict:
-    """{name: (heights (n, 1) [m], grid, body)}: (a) the synthetic cap, (b) the default scene's ridge."""
+    """{name: (heights (n, 1) [m], grid, body)}: (a) the synthetic cap, (b) one ridge period of the default
+    scene's patch across the ridges (:func:`roughcontact.study.patch.profile_surface`)."""
     def grid_of(window):
         n = int(round(window / pixel))
         return Grid((n, 1), (window, window / n), periodic=True)
@@ -106,14 +107,8 @@ def profiles(scene, pixel: float, rng: int) -> dict:
     cap = np.sqrt(np.maximum(CAP["radius"] ** 2 - x ** 2, 0.0)) - CAP["radius"]
     cap_rough = self_affine(cap_grid, CAP["hurst"], rms_height=CAP["rms_height"], long_cutoff=CAP["long_cutoff"],
                             short_cutoff=CAP["short_cutoff"], rng=rng).heights
-    ridge_grid = grid_of(scene.ridges.period)
-    ridge = ridge_heights(scene, grid=ridge_grid)
-    roughness = scene.roughness
-    ridge_rough = self_affine(ridge_grid, roughness.hurst, rms_height=roughness.rms_height,
-                              long_cutoff=min(roughness.long_cutoff, scene.ridges.period),
-                              short_cutoff=max(roughness.short_cutoff, 2 * pixel), rng=rng).heights
     return {"cap": (cap[:, None] + cap_rough, cap_grid, patch_body(scene, grid=cap_grid)),
-            "scene_ridge": (ridge + ridge_rough, ridge_grid, patch_body(scene, grid=ridge_grid))}
+            "scene_ridge": profile_surface(scene, pixel, realisation=rng)}
 
 
 def profile_rows(scene, stack, pixel: float, forces, voltages, fem_options: dict, rng: int) -> list:

@@ -153,7 +153,9 @@ def _join(kind, fields, arrays, prefix, unknown: set):
     names = {f.name for f in dataclasses.fields(kind)}
     required = {f.name for f in dataclasses.fields(kind)
                 if f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING}
-    extra, missing = sorted(set(kwargs) - names), sorted(required - set(kwargs))
+    # a class may take the fields of its former layout (``legacy_fields``) and derive its current ones from them
+    legacy = set(getattr(kind, "legacy_fields", ())) & set(kwargs)
+    extra, missing = sorted(set(kwargs) - names - legacy), [] if legacy else sorted(required - set(kwargs))
     if extra or missing:
         problems = [f"the fields {', '.join(extra)} that a {kind.__qualname__} does not have"] if extra else []
         raise ValueError(f"its {kind.__qualname__} record has " + " and ".join(

@@ -5,6 +5,7 @@ from __future__ import annotations
 import functools
 import math
 from dataclasses import MISSING, dataclass, field, fields, replace
+from typing import ClassVar
 
 import numpy as np
 
@@ -131,6 +132,9 @@ class ContactResult(SavableResult):
     interaction: Interaction = HardWall()
     control: str = ""
     requested: float = math.nan
+
+    #: the fields of the former layout that the constructor still takes (loading a file saved before the report)
+    legacy_fields: ClassVar[tuple] = _LEGACY_FIELDS
 
     def __init__(self, **values):
         """Keyword fields as declared; a file saved before the :class:`SolverReport` gives the former fields

@@ -1,12 +1,15 @@
 """The ridge and roughness scales of the study: the periodic patch (grid, ridge and roughness heights, the skin
-under it) and what is measured on its solved gap — the ridge contact fraction A_R/A0 by morphological closing,
-the weighted gap slope, the ridge-area equivalent gap d_eq,R."""
+under it), its 1-D profile across the ridges (:func:`profile_surface`, for resolution studies down to
+sub-µm pixels), and what is measured on its solved gap — the ridge contact fraction A_R/A0 by morphological
+closing, the weighted gap slope, the ridge-area equivalent gap d_eq,R."""
 from __future__ import annotations
 
 import numpy as np
 import scipy.fft
 
-from surfaces import Grid, parallel_ridges, self_affine
+from surfaces import Grid, fourier_synthesis, parallel_ridges, self_affine
+from surfaces.selfaffine import SelfAffinePSD
+from surfaces.validation import check_positive
 
 from .fingertip import skin_body
 from .scene import Scene
@@ -119,3 +122,61 @@ def ridge_equivalent_gap(stack, equivalent_gap: float, ridge_area_fraction: floa
     0 where A_R/A0 (``ridge_area_fraction``) is too small for a positive gap."""
     electrical = np.sqrt(ridge_area_fraction) * stack.electrical_thickness(equivalent_gap)
     return max(float(stack.eps_a * (electrical - stack.dielectric_offset)), 0.0)
+
+
+def profile_grid(scene: Scene, pixel: float) -> Grid:
+    """The periodic profile grid of one ridge period at ``pixel`` [m] (rounded to a whole number of pixels):
+    ``Grid((n, 1), (L, L/n))``, the ridge-normal line through the patch."""
+    pixel = check_positive("pixel", pixel)
+    period = scene.ridges.period
+    n = int(round(period / pixel))
+    if n < 8:
+        raise ValueError(f"pixel = {pixel!r} m leaves {n} pixels on the ridge period {period:g} m; valid: at most "
+                         f"{period / 8:g} m (8 pixels)")
+    return Grid((n, 1), (period, period / n), periodic=True)
+
+
+def profile_roughness_spectrum(scene: Scene, period: float):
+    """C₁(q) [m³], the line-profile PSD of the scene's isotropic roughness on a ``period`` × ``period`` patch:
+    the patch spectrum C(q) summed over the modes across the line, C₁(q_x) = (2π/L) Σ_ky C(√(q_x² + q_y²)).
+    A row of the periodic 2-D patch has exactly this spectrum, so its rms height (Σ over all modes) and short
+    cut-off (no q_x ≥ q_s) are the patch's; below the long cut-off the oblique modes leave a plateau."""
+    roughness = scene.roughness
+    surface = SelfAffinePSD(roughness.hurst, 1.0, roughness.long_cutoff, roughness.long_cutoff,
+                            roughness.short_cutoff)
+    q_y = 2 * np.pi / period * np.arange(-int(period / roughness.short_cutoff) - 1,
+                                          int(period / roughness.short_cutoff) + 2)
+
+    def line_spectrum(q):
+        q = np.asarray(q, dtype=float)
+        return 2 * np.pi / period * surface(np.hypot(q[..., None], q_y)).sum(axis=-1)
+    return line_spectrum
+
+
+def profile_surface(scene: Scene, pixel: float, realisation: int = 0, threads=None) -> tuple:
+    """``(heights (n, 1) [m], grid, body)``: one ridge period of the scene's patch as a 1-D profile across the
+    ridges at ``pixel`` [m] (:func:`profile_grid`), and the skin under it (:func:`patch_body`, plane strain).
+
+    The ridges are the patch's cross-section (pores of ``realisation`` included when enabled); the roughness
+    is a Gaussian profile with the line spectrum of the patch's 2-D spectrum (:func:`profile_roughness_spectrum`),
+    normalised to the scene's rms height, rng seed + ``realisation``. (A row of the patch varies about its own
+    mean by 1.4 % less: its k_x = 0 modes, 2.7 % of the default spectrum's variance, shift it as a whole and are
+    left out of a profile; the profile keeps the patch's rms height instead.) Its random numbers belong to
+    wavenumbers (``surfaces.fourier_synthesis``), so every pixel size samples the same band-limited profile: the
+    short cut-off is the scene's (``ValueError`` where it is under two pixels), never raised with the pixel."""
+    grid = profile_grid(scene, pixel)
+    n, period = grid.shape[0], grid.lengths[0]
+    across = Grid((1, n), (period / n, period), periodic=True)        # the patch's ridges vary along y
+    heights = ridge_heights(scene, grid=across, realisation=realisation).T
+    roughness = scene.roughness
+    if roughness.enabled:
+        if roughness.short_cutoff < 2 * grid.spacing[0]:
+            raise ValueError(f"pixel = {pixel!r} m does not resolve roughness.short_cutoff = "
+                             f"{roughness.short_cutoff!r} m; valid: pixel <= {roughness.short_cutoff / 2:g} m")
+        if roughness.long_cutoff > period:
+            raise ValueError(f"roughness.long_cutoff = {roughness.long_cutoff!r} m exceeds the ridge period "
+                             f"{period:g} m; valid range (short_cutoff, ridges.period]")
+        heights = heights + fourier_synthesis(grid, profile_roughness_spectrum(scene, period),
+                                              rng=scene.study.seed + realisation,
+                                              rms_height=roughness.rms_height).heights
+    return heights, grid, patch_body(scene, grid=grid, threads=threads)

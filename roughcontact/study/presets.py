@@ -7,17 +7,30 @@ each scene of the experiment, the largest relative difference of d_eq, A_R/A0 an
 reference setting (``docs/guide/presets.md``). :func:`measured` looks a preset up in it, so that a run's report quotes
 its error; :func:`choose` picks the cheapest setting whose error meets a target (``roughcontact run --preset
 auto --target-error 2%``), and :func:`auto_scene` puts it into a scene as ``[presets.auto]``.
+
+The columns :data:`RESOLUTION_COLUMNS`, written by ``studies/resolution.py --library`` after the table, hold the
+discretisation error of the setting's pixel (ridge period / grid × periods) against 0.055 µm pixels, a lower
+bound for the layered F_el, which has not settled there (``docs/guide/presets.md``, "Discretisation error at
+the presets' pixels"): ``fel_error`` of the layered attraction
+F_el at 200 V, ``deq_error`` of Eq. 25's d_eq (0 and 200 V) and ``field_deq_error`` of the field-equivalent gap
+at 200 V, each the largest magnitude of the relative error of the realisation mean over F_N = 0.5 and 2 N,
+measured on 1-D profiles of the default scene; empty (nan) for a pixel not measured. The errors of the other
+columns are against the reference setting, which is itself that far from converged: the reference's
+discretisation error is the floor of what ``--preset auto`` can promise (:func:`error_floor`).
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
 from surfaces.validation import check_real
 
-from ..io.provenance import read_csv, write_csv
+from ..io.provenance import read_csv, write_atomic, write_csv
 from .scene import AUTO, Preset, Scene, load_scene
 
+#: The discretisation errors of a setting's pixel (fractions; module docstring).
+RESOLUTION_COLUMNS = ("fel_error", "deq_error", "field_deq_error")
 #: The measured table (package data).
 TABLE_PATH = Path(__file__).with_name("preset_errors.csv")
 #: The Preset keys that a measured setting fixes (with ``realisations``); ``rings`` acts on the fingertip model
@@ -32,12 +45,20 @@ SCENES = ("default", "rough", "smooth")
 @dataclass(frozen=True)
 class Measurement:
     """One measured setting: ``setting`` (the :data:`SETTING_KEYS` and ``realisations``), ``cpu_seconds`` of the
-    default scene's four points, ``errors`` per scene (fractions) and ``error``, the largest of them."""
+    default scene's four points, ``errors`` per scene (fractions) and ``error``, the largest of them, against the
+    reference setting; ``discretisation``: the :data:`RESOLUTION_COLUMNS` of its pixel (nan: not measured)."""
 
     setting: dict
     cpu_seconds: float
     errors: dict
     error: float
+    discretisation: dict = None
+
+    @property
+    def discretisation_error(self) -> float:
+        """The largest of the :data:`RESOLUTION_COLUMNS` (nan when none was measured)."""
+        values = [value for value in (self.discretisation or {}).values() if not math.isnan(value)]
+        return max(values) if values else math.nan
 
     def preset(self, rings: int) -> Preset:
         """The setting as a :class:`Preset`, with ``rings`` (not measured) given."""
@@ -53,15 +74,36 @@ def read_table(path=TABLE_PATH) -> tuple:
     table = [Measurement(setting={key: _TYPES[key](row[key]) for key in (*SETTING_KEYS, "realisations")},
                          cpu_seconds=float(row["cpu_seconds"]),
                          errors={scene: float(row[f"error_{scene}"]) for scene in SCENES},
-                         error=float(row["error"])) for row in rows]
+                         error=float(row["error"]),
+                         discretisation={column: float(row.get(column) or "nan") for column in RESOLUTION_COLUMNS})
+             for row in rows]
     return tuple(sorted(table, key=lambda entry: entry.cpu_seconds))
 
 
 def write_table(entries, provenance, path=TABLE_PATH) -> Path:
     """Write the per-setting ``entries`` (dicts with the :data:`SETTING_KEYS`, ``realisations``,
-    ``cpu_seconds``, ``error_<scene>`` for each of :data:`SCENES` and ``error``) as the table ``path``."""
-    columns = (*SETTING_KEYS, "realisations", "cpu_seconds", *(f"error_{scene}" for scene in SCENES), "error")
+    ``cpu_seconds``, ``error_<scene>`` for each of :data:`SCENES` and ``error``, optionally the
+    :data:`RESOLUTION_COLUMNS`) as the table ``path``."""
+    columns = (*SETTING_KEYS, "realisations", "cpu_seconds", *(f"error_{scene}" for scene in SCENES), "error",
+               *RESOLUTION_COLUMNS)
     return write_csv(path, entries, provenance, columns)
+
+
+def add_resolution_errors(errors: dict, period: float, provenance, path=TABLE_PATH) -> Path:
+    """Fill the :data:`RESOLUTION_COLUMNS` of the table ``path`` from ``errors`` ({pixels per ridge period:
+    (fel_error, deq_error, field_deq_error)}, fractions; ``period`` [m] the ridge period), matching each row by
+    its pixel, grid / periods per period; empty for a pixel not in ``errors``. The table's provenance comment
+    is kept and ``provenance``'s added below it."""
+    with open(path) as stream:
+        comments = [line for line in stream if line.startswith("#") and "resolution.py" not in line]
+    rows = read_csv(path)
+    for row in rows:
+        measured_errors = errors.get(int(row["grid"]) / int(row["periods"]), ("",) * len(RESOLUTION_COLUMNS))
+        row.update(zip(RESOLUTION_COLUMNS, measured_errors))
+    write_table(rows, None, path)
+    with open(path) as stream:
+        body = stream.read()
+    return write_atomic(path, "".join(comments) + f"# {provenance.line}\n" + body)
 
 
 def measured(preset: Preset, table=None) -> Measurement | None:
@@ -81,16 +123,35 @@ def parse_target(text) -> float:
     return check_real("target error", value, low=0.0, high=1.0, low_open=True)
 
 
+def error_floor(table=None) -> tuple:
+    """``(floor, reason)``: the smallest error a measured setting can promise (a fraction). The reference
+    setting's error against itself is 0 by definition and promises nothing; its own error is its
+    discretisation error (the :data:`RESOLUTION_COLUMNS` of its row) where measured, else the smallest
+    non-zero error of the table (the best that a comparison with the reference resolves)."""
+    table = read_table() if table is None else table
+    references = [entry for entry in table if entry.error == 0]
+    measured_floor = max((entry.discretisation_error for entry in references), default=math.nan)
+    if not math.isnan(measured_floor):
+        return measured_floor, ("the reference setting's own discretisation error of F_el and the equivalent "
+                                "gaps, measured on 1-D profiles against 0.055 um pixels (a lower bound)")
+    if not references:
+        return min(entry.error for entry in table), "the smallest error of any measured setting"
+    return (min(entry.error for entry in table if entry.error > 0),
+            "the smallest error measured against the reference setting, whose own error is not measured")
+
+
 def choose(target_error: float, table=None) -> Measurement:
     """The cheapest measured setting whose error (the largest over the measured scenes) is at most
-    ``target_error`` (a fraction in (0, 1])."""
+    ``target_error`` (a fraction in (0, 1]); ``ValueError`` below :func:`error_floor`, which no measured
+    setting can promise."""
     target_error = check_real("target_error", target_error, low=0.0, high=1.0, low_open=True)
     table = read_table() if table is None else table
+    floor, reason = error_floor(table)
+    if target_error < floor:
+        raise ValueError(f"target error {100 * target_error:g} % cannot be promised: the most accurate measured "
+                         f"setting is the reference, whose error against itself is 0 by definition; the floor is "
+                         f"{100 * floor:.3g} %, {reason} (docs/guide/presets.md); valid: at least {100 * floor:.3g} %")
     meeting = [entry for entry in table if entry.error <= target_error]
-    if not meeting:
-        best = min(entry.error for entry in table)
-        raise ValueError(f"target error {100 * target_error:g} % is below every measured setting's error; valid: "
-                         f"at least {100 * best:.3g} % (docs/guide/presets.md)")
     return min(meeting, key=lambda entry: entry.cpu_seconds)
 
 
@@ -102,18 +163,37 @@ def auto_scene(scene: Scene, target_error: float, table=None) -> Scene:
 
 
 def describe(preset: Preset, name: str, table=None) -> str:
-    """One sentence for a run's report: the measured error and cost of ``preset`` (named ``name``), or that
-    its setting was not measured."""
+    """One paragraph for a run's report: the measured error and cost of ``preset`` (named ``name``), or that
+    its setting was not measured, and the discretisation error of its pixel where measured."""
     entry = measured(preset, table)
     if entry is None:
         return (f"The setting of preset `{name}` is not among the measured settings of `docs/guide/presets.md`: its "
                 "error against the reference setting is not known.")
-    errors = ", ".join(f"{100 * entry.errors[scene]:.2g} % on the {scene} scene" for scene in SCENES)
     chosen = " (chosen by --preset auto)" if name == AUTO else ""
-    return (f"Measured error of preset `{name}`{chosen} against the reference setting (largest relative "
-            f"difference of d_eq, A_R/A0 and F_T at 200 V at F_N = 0.5, 2 N and U = 0, 200 V; `docs/guide/presets.md`): "
-            f"{errors}; {entry.cpu_seconds:.3g} CPU seconds for those four points. It holds for scenes like "
-            "these; a scene far from them may err differently.")
+    if entry.error == 0:
+        floor, reason = error_floor(table)
+        text = (f"Preset `{name}`{chosen} is the reference setting of `docs/guide/presets.md`: its error against "
+                f"itself is 0 by definition and not a measured error. Its floor is {100 * floor:.2g} %, {reason}; "
+                f"{entry.cpu_seconds:.3g} CPU seconds for the four measured points.")
+    else:
+        errors = ", ".join(f"{100 * entry.errors[scene]:.2g} % on the {scene} scene" for scene in SCENES)
+        text = (f"Measured error of preset `{name}`{chosen} against the reference setting (largest relative "
+                f"difference of d_eq, A_R/A0 and F_T at 200 V at F_N = 0.5, 2 N and U = 0, 200 V; "
+                f"`docs/guide/presets.md`): {errors}; {entry.cpu_seconds:.3g} CPU seconds for those four points. It "
+                "holds for scenes like these; a scene far from them may err differently.")
+    return text + _discretisation_sentence(entry)
+
+
+def _discretisation_sentence(entry: Measurement) -> str:
+    """The discretisation error of the preset's pixel against the finest resolved profiles, where measured."""
+    error = entry.discretisation
+    if not error or all(math.isnan(error[column]) for column in RESOLUTION_COLUMNS):
+        return ""
+    return (f" Discretisation error of its pixel (1-D profiles of the default scene against 0.055 µm pixels, "
+            f"`docs/guide/presets.md`, 'Resolution near contacts'): the layered field's F_el "
+            f"{100 * error['fel_error']:.2g} % low (a lower bound: the layered solve has not converged at 0.055 µm), "
+            f"d_eq (Eq. 25) {100 * error['deq_error']:.2g} %, the field-equivalent gap "
+            f"{100 * error['field_deq_error']:.2g} %.")
 
 
 def run_scene(path=None, preset: str | None = None, target_error=None, table=None) -> Scene:

@@ -11,6 +11,7 @@ import importlib.util
 import numpy as np
 
 from .._version import __version__
+from ..fe.feed import fe_friction_columns
 from ..io.provenance import save_figure, write_csv
 from ..macro import LinearGap, PowerLawGap, SlidingFrictionModel
 from .friction import FRICTION_MIN_LOADS, HOLDS_WITHIN, assumption_errors, bottom_up_friction, friction_computed
@@ -42,6 +43,8 @@ def _friction_rows(result: StudyResult) -> list:
                          "seed_friction_coefficient": float(theirs.friction_coefficient),
                          "bottom_up_c2_0_friction_coefficient": float(unreduced.friction_coefficient),
                          "bottom_up_area_saturated": bool(ours.area_saturated)})
+            # hook (roughcontact.fe, numpy only): the ridge-area reduction of the FE fingertip instead of c2
+            rows[-1].update(fe_friction_columns(model, force, voltage))
     return rows
 
 
@@ -378,7 +381,9 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
         rows = _friction_rows(result)
         saturated = sum(row["bottom_up_area_saturated"] for row in rows)
         text += ["## Friction: bottom-up vs the seed's fitted model (Table 1)", "",
-                 "μ = F_T/F_N: bottom-up / bottom-up without the tangential area reduction (c₂ = 0) / seed. "
+                 "μ = F_T/F_N: bottom-up / bottom-up with the FE fingertip's area reduction instead of c₂ "
+                 "(`roughcontact.fe.feed`, docs/guide/fe_fingertip.md) / bottom-up without the tangential area "
+                 "reduction (c₂ = 0) / seed. "
                  "Where the bottom-up A_R0 is below √c₂ μ0 F_N the seed's reduction law (Eq. 43, c₂ fitted to its "
                  "own, larger ridge area) empties the ridge area and F_T = μ0 F_N (the saturation rule of "
                  f"`docs/guide/friction_model.md`): {saturated} of {len(rows)} "
@@ -388,6 +393,7 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
         for i, force in enumerate(forces):
             cells = [rows[i * len(voltages) + j] for j in range(len(voltages))]
             text.append(f"| {force:g} | " + " | ".join(f"{c['bottom_up_friction_coefficient']:.3f} / "
+                                                       f"{c['bottom_up_fe_friction_coefficient']:.3f} / "
                                                        f"{c['bottom_up_c2_0_friction_coefficient']:.3f} / "
                                                        f"{c['seed_friction_coefficient']:.3f}" for c in cells) + " |")
         text += ["", "Ridge area A_R0 [mm²] (bottom-up / seed Eq. 9):", "",

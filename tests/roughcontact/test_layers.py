@@ -9,7 +9,7 @@ lives"):
     1  fft, io, electrostatics, reference     (FFT backends, results on disk, the stack's field, analytic solutions)
     2  body, interactions                      (the elastic body, the interaction laws)
     3  solvers, macro                          (contact solvers; the seed's macroscopic model)
-    4  study, paper                            (the fingerpad study; the seed's figures)
+    4  study, paper, fe                        (the fingerpad study; the seed's figures; its FE fingertip)
     5  cli, roughcontact/__init__             (the command; the lazy public API)
 
 The checks: each module has a layer; no import goes to a higher layer; the import graph has no cycle (modules
@@ -30,7 +30,7 @@ LAYERS = {
     "roughcontact.fft": 1, "roughcontact.io": 1, "roughcontact.electrostatics": 1, "roughcontact.reference": 1,
     "roughcontact.body": 2, "roughcontact.interactions": 2,
     "roughcontact.solvers": 3, "roughcontact.macro": 3,
-    "roughcontact.study": 4, "roughcontact.paper": 4,
+    "roughcontact.study": 4, "roughcontact.paper": 4, "roughcontact.fe": 4,
     "roughcontact.cli": 5, "roughcontact": 5,
 }
 FIRST_PARTY = ("roughcontact", "surfaces")

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from roughcontact.io import Provenance
-from roughcontact.study.presets import choose, read_table, write_table
+from roughcontact.study.presets import choose, error_floor, read_table, write_table
 
 
 @pytest.fixture(scope="module")
@@ -68,7 +68,13 @@ def test_settings_table_feeds_the_choice(output, read_csv, tmp_path):
     entries = module.setting_rows(module.rows_of(type("Args", (), {"fast": True})(), path / "runs"))
     table = read_table(write_table(entries, Provenance("test", {}), tmp_path / "table.csv"))
     assert len(table) == 6
-    exact = choose(1e-9, table)                 # only the reference has error 0
-    assert (exact.setting["grid"], exact.setting["realisations"]) == (48, 2) and exact.error == 0.0
+    # without the discretisation columns the reference promises no better than the smallest error measured
+    # against it, which a cheaper setting already meets; below it the choice is refused (issue 26)
+    floor = error_floor(table)[0]
+    assert floor == min(entry.error for entry in table if entry.error > 0)
+    best = choose(floor, table)
+    assert best.error == floor and best.setting["grid"] == 32
+    with pytest.raises(ValueError, match="cannot be promised"):
+        choose(0.5 * floor, table)
     loose = choose(1.0, table)                  # every finite error meets 100 %: the cheapest such setting
     assert loose.cpu_seconds == min(entry.cpu_seconds for entry in table if np.isfinite(entry.error))

@@ -1,0 +1,135 @@
+"""The FE fingertip's validation and sensitivity runs for docs/fe_fingertip.md (a script; needs roughcontact[fe]).
+
+    python studies/fe_fingertip_checks.py hertz --output out          # 2-D Hertz check, mesh series
+    python studies/fe_fingertip_checks.py convergence --output out    # mesh and penalty at f_N = 200 N/m
+    python studies/fe_fingertip_checks.py sensitivity --output out    # L0, ξ and the exponent vs parameters
+
+``hertz``: a round section (R = 10 mm, concentric rigid core of 3 mm) of one neo-Hookean solid (μ = 10 kPa,
+ν = 0.3) pressed frictionlessly by the load P of a Hertz half-width a = R/20; the contact length L against
+2a = 2√(4PR/(πE*)) on three meshes refined by 1, 2 and 3 in every direction, and the half-width from the
+second moment of the contact force, 2√⟨x²⟩ (a for the Hertz pressure), independent of the edge estimate.
+
+``convergence``: press-and-slide at f_N = 200 N/m on the coarse, default and 1.5× refined meshes and with the
+contact penalty ×0.3 and ×3; L0, L at full slip, ξ.
+
+``sensitivity``: a sweep over f_N = 50, 100, 200 N/m on the coarse mesh (``SENSITIVITY_MESH``, travel step
+0.15 mm) for the default parameters and one parameter changed at a time (tissue moduli ×½ and ×2, the
+subcutaneous exponent α, the skin thickness, the local friction coefficient); L0, ξ at 100 N/m and the exponent
+of ξ(f_N).
+
+Each writes ``fe_fingertip_<check>.csv`` with its provenance.
+"""
+from __future__ import annotations
+
+import argparse
+from dataclasses import replace
+
+import numpy as np
+
+from roughcontact.fe.analysis import fit_eq34
+from roughcontact.fe.geometry import FingerSection, MeshResolution
+from roughcontact.fe.materials import FingerMaterials, OgdenMaterial
+from roughcontact.fe.model import FingertipModel
+from roughcontact.fe.study import run_fingertip_study
+from roughcontact.io.provenance import output_directory, parse_arguments, write_csv
+
+#: The sensitivity runs' mesh: the coarse one (a fifth of the default's cost); the convergence check measures
+#: its error.
+SENSITIVITY_MESH = MeshResolution.coarse()
+
+
+def hertz_rows():
+    radius, shear, poisson = 10e-3, 10e3, 0.3
+    materials = FingerMaterials.homogeneous(shear, poisson)
+    e_star = materials.skin.plane_strain_modulus
+    half_width = radius / 20
+    load = np.pi * e_star * half_width ** 2 / (4 * radius)          # a = √(4PR/(πE*)) inverted [N/m]
+    rows = []
+    for around, refinement, subcutaneous, skin in ((100, 0.05, 5, 2), (200, 0.05, 10, 4), (300, 0.05, 15, 6)):
+        resolution = MeshResolution(around=around, subcutaneous=subcutaneous, skin=skin,
+                                    contact_refinement=refinement, grading=2.0)
+        model = FingertipModel(section=FingerSection.circular(radius, 3e-3, 0.3e-3), materials=materials,
+                               resolution=resolution)
+        pressed = model.press(load)
+        snapshot = pressed.snapshot
+        spacing = np.diff(snapshot.x)[np.argmin(np.abs(snapshot.x[:-1]))]
+        weight = snapshot.normal / snapshot.normal.sum()
+        centre = np.sum(weight * snapshot.x)
+        moment_half_width = 2 * np.sqrt(np.sum(weight * (snapshot.x - centre) ** 2))   # Hertz: <x²> = a²/4
+        rows.append({"around": around, "half_width_per_spacing": half_width / spacing,
+                     "moment_half_width_over_hertz": moment_half_width / half_width,
+                     "length_over_hertz": snapshot.length() / (2 * half_width),
+                     "gap_length_over_hertz": snapshot.length("gap") / (2 * half_width),
+                     "carried_over_load": snapshot.normal.sum() / load})
+    return rows
+
+
+def _run_row(label, model, force=200.0):
+    run = model.slide(force)
+    fit = fit_eq34(run.tangential_force, run.length)
+    return {"case": label, "normal_force_N_per_m": force, "initial_length_m": run.initial_length,
+            "sliding_length_m": run.sliding_length, "relative_reduction": run.relative_reduction,
+            "xi_m3_per_N2": -fit.slope, "xi_error_m3_per_N2": fit.slope_error,
+            "coulomb_ratio_minus_1": run.tangential_force[-1] / (run.friction * force) - 1,
+            "full_slip": run.full_slip, "increments": len(run.travel) - 1, "seconds": round(run.seconds, 1)}
+
+
+def convergence_rows():
+    default = FingertipModel()
+    return [_run_row("mesh coarse", replace(default, resolution=MeshResolution.coarse())),
+            _run_row("default", default),
+            _run_row("mesh x1.5", replace(default, resolution=MeshResolution().refined(1.5))),
+            _run_row("penalty x0.3", replace(default, penalty=300.0)),
+            _run_row("penalty x3", replace(default, penalty=3000.0))]
+
+
+def _scaled(material: OgdenMaterial, factor: float) -> OgdenMaterial:
+    return OgdenMaterial(mu=tuple(m * factor for m in material.mu), alpha=material.alpha, bulk=material.bulk * factor)
+
+
+def _tissue(model: FingertipModel, **materials) -> FingertipModel:
+    return replace(model, materials=replace(model.materials, **materials))
+
+
+def sensitivity_rows():
+    base = FingertipModel(resolution=SENSITIVITY_MESH)
+    skin, pulp = base.materials.skin, base.materials.subcutaneous
+    cases = {"default": base,
+             "skin mu x0.5": _tissue(base, skin=_scaled(skin, 0.5)),
+             "skin mu x2": _tissue(base, skin=_scaled(skin, 2.0)),
+             "subcutaneous mu x0.5": _tissue(base, subcutaneous=_scaled(pulp, 0.5)),
+             "subcutaneous mu x2": _tissue(base, subcutaneous=_scaled(pulp, 2.0)),
+             "subcutaneous alpha 4": _tissue(base, subcutaneous=replace(pulp, alpha=(4.0,))),
+             "skin 0.7 mm": replace(base, section=replace(base.section, skin_thickness=0.7e-3)),
+             "skin 1.3 mm": replace(base, section=replace(base.section, skin_thickness=1.3e-3)),
+             "friction 0.26": replace(base, friction=0.26)}
+    rows = []
+    for label, model in cases.items():
+        study = run_fingertip_study(model, (50.0, 100.0, 200.0), travel_step=0.15e-3)
+        fits = study.eq34_fits()
+        exponent = study.exponent()
+        rows.append({"case": label, "initial_length_100_m": study.runs[1].initial_length,
+                     "reduction_100": study.runs[1].relative_reduction,
+                     "reduction_200": study.runs[2].relative_reduction,
+                     "xi_100_m3_per_N2": -fits[1].slope, "exponent": exponent.slope,
+                     "exponent_error": exponent.slope_error,
+                     "full_slip": all(run.full_slip for run in study.runs),
+                     "seconds": round(sum(run.seconds for run in study.runs))})
+        print(rows[-1], flush=True)
+    return rows
+
+
+CHECKS = {"hertz": hertz_rows, "convergence": convergence_rows, "sensitivity": sensitivity_rows}
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("check", choices=sorted(CHECKS))
+    parser.add_argument("--output", default="out")
+    args, provenance = parse_arguments(parser, argv, "python studies/fe_fingertip_checks.py")
+    output = output_directory(args.output)
+    write_csv(output / f"fe_fingertip_{args.check}.csv", CHECKS[args.check](), provenance, echo=True)
+
+
+if __name__ == "__main__":
+    main()
