@@ -246,6 +246,9 @@ def coupled_chain(scene, realisation: int, voltage_index: int, threads: int | No
     if not scene.roughness.enabled:
         raise ValueError("presets.*.scales = 'coupled' needs micro-roughness (roughness.enabled = true): without "
                          "it there is no interface law; use scales = 'resolved'")
+    if scene.roughness.topography:
+        raise ValueError("presets.*.scales = 'coupled' reduces synthetic micro-roughness to an interface law; a "
+                         "measured topography (roughness.topography) is solved with scales = 'resolved'")
     if scene.ridges.enabled and scene.ridges.pore_density > 0:
         raise ValueError(f"ridges.pore_density = {scene.ridges.pore_density!r} 1/m² with presets.*.scales = "
                          "'coupled': the coupled path has no pores; set pore_density = 0 or scales = 'resolved'")

@@ -12,7 +12,7 @@ from surfaces.selfaffine import SelfAffinePSD
 from surfaces.validation import check_positive
 
 from .fingertip import skin_body
-from .scene import Scene
+from .scene import Scene, measured_topography
 
 
 def closing_lengths(scene: Scene) -> tuple:
@@ -22,13 +22,20 @@ def closing_lengths(scene: Scene) -> tuple:
 
 
 def patch_grid(scene: Scene):
-    """The periodic patch grid: ``grid`` × ``grid`` pixels over ``periods`` ridge periods per side."""
+    """The periodic patch grid: ``grid`` × ``grid`` pixels over ``periods`` ridge periods per side; a measured
+    topography's own grid (with its boundary) instead."""
+    measured = measured_topography(scene.roughness)
+    if measured is not None:
+        return measured.grid
     side = scene.preset.periods * scene.ridges.period
     return Grid((scene.preset.grid,) * 2, (side, side), periodic=True)
 
 
 def resolved_short_cutoff(scene: Scene) -> float:
-    """The micro-roughness short cut-off in use [m]: the scene's, raised to ``pixels_per_cutoff`` pixels."""
+    """The micro-roughness short cut-off in use [m]: the scene's, raised to ``pixels_per_cutoff`` pixels (NaN for
+    a measured topography, which keeps its own pixels)."""
+    if scene.roughness.topography:
+        return float("nan")
     spacing = patch_grid(scene).spacing[0]
     cutoff = max(scene.roughness.short_cutoff, scene.preset.pixels_per_cutoff * spacing)
     if scene.roughness.enabled and cutoff >= scene.roughness.long_cutoff:
@@ -68,7 +75,10 @@ def roughness_heights(scene: Scene, realisation: int) -> np.ndarray:
 
 
 def patch_surface(scene: Scene, realisation: int) -> np.ndarray:
-    """Heights [m] of the patch of ``realisation``: ridges plus micro-roughness."""
+    """Heights [m] of the patch of ``realisation``: ridges plus micro-roughness, or the measured topography."""
+    measured = measured_topography(scene.roughness)
+    if measured is not None:
+        return measured.heights
     heights = ridge_heights(scene, realisation=realisation) + roughness_heights(scene, realisation)
     if not heights.any():
         raise ValueError("the patch is flat: enable ridges (ridges.enabled, ridges.height > 0) or roughness "
@@ -84,20 +94,27 @@ def patch_body(scene: Scene, grid=None, threads=None):
 
 
 def realisation_count(scene: Scene) -> int:
-    """Distinct patches: the preset's realisations, one when nothing in the patch is random."""
+    """Distinct patches: the preset's realisations, one when nothing in the patch is random (a measured
+    topography is one surface)."""
+    if scene.roughness.topography:
+        return 1
     pores = scene.ridges.enabled and scene.ridges.pore_density > 0
     return scene.preset.realisations if scene.roughness.enabled or pores else 1
 
 
-def ridge_area_fraction(contact: np.ndarray, spacing: float, length: float) -> float:
-    """A_R/A0 of a periodic contact mask: the fraction covered after a morphological closing (dilation, then
-    erosion) with a disc of diameter ``length`` [m] on pixels of ``spacing`` [m]; micro-contacts closer than
-    ``length`` merge into one ridge contact. A disc under one pixel radius leaves the mask as it is. Periodic
-    convolutions by FFT (counts rounded), so the cost does not grow with the disc."""
+def ridge_area_fraction(contact: np.ndarray, spacing: float, length: float, periodic=(True, True)) -> float:
+    """A_R/A0 of a contact mask: the fraction covered after a morphological closing (dilation, then erosion)
+    with a disc of diameter ``length`` [m] on pixels of ``spacing`` [m]; micro-contacts closer than ``length``
+    merge into one ridge contact. A disc under one pixel radius leaves the mask as it is. Periodic convolutions
+    by FFT (counts rounded), so the cost does not grow with the disc; a non-periodic axis (``periodic``) is
+    padded with a disc's width of no contact first, so that contacts at opposite edges do not merge."""
     contact = np.asarray(contact, dtype=float)
     radius = 0.5 * length / spacing
     if radius < 1:
         return float(np.mean(contact))
+    window = tuple(slice(0, n) for n in contact.shape)
+    pad = int(np.ceil(radius)) + 1
+    contact = np.pad(contact, [(0, 0 if wraps else 2 * pad) for wraps in periodic])
     rows, columns = (np.fft.fftfreq(n, 1 / n) for n in contact.shape)     # signed pixel offsets, wrapped
     disc = (rows[:, None] ** 2 + columns[None, :] ** 2 <= radius ** 2).astype(float)
     kernel = scipy.fft.rfft2(disc)
@@ -106,13 +123,14 @@ def ridge_area_fraction(contact: np.ndarray, spacing: float, length: float) -> f
         return scipy.fft.irfft2(scipy.fft.rfft2(mask) * kernel, s=contact.shape)
 
     dilated = (covered(contact) > 0.5).astype(float)
-    return float(np.mean(covered(dilated) > disc.sum() - 0.5))
+    return float(np.mean((covered(dilated) > disc.sum() - 0.5)[window]))
 
 
-def gap_slope(gap, weights, spacing) -> float:
-    """rms gap slope |∇g| weighted by ``weights`` (periodic central differences)."""
-    gx = (np.roll(gap, -1, 0) - np.roll(gap, 1, 0)) / (2 * spacing[0])
-    gy = (np.roll(gap, -1, 1) - np.roll(gap, 1, 1)) / (2 * spacing[1])
+def gap_slope(gap, weights, spacing, periodic=(True, True)) -> float:
+    """rms gap slope |∇g| weighted by ``weights`` (central differences, periodic or second-order one-sided at
+    a non-periodic edge)."""
+    gx, gy = ((np.roll(gap, -1, axis) - np.roll(gap, 1, axis)) / (2 * spacing[axis]) if periodic[axis]
+              else np.gradient(gap, spacing[axis], axis=axis, edge_order=2) for axis in (0, 1))
     return float(np.sqrt(np.sum(weights * (gx ** 2 + gy ** 2)) / np.sum(weights)))
 
 

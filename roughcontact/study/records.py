@@ -86,7 +86,8 @@ def patch_record(stack, field, voltage, results, lengths, spacing, solves, secon
     apparent area (gaps in float64)."""
     gaps = np.stack([np.asarray(res.gap, dtype=np.float64) for res in results])
     d_eq = stack.equivalent_gap(gaps)
-    fractions = tuple(float(np.mean([ridge_area_fraction(np.asarray(res.contact), spacing[0], length)
+    periodic = results[0].params["grid"].periodic
+    fractions = tuple(float(np.mean([ridge_area_fraction(np.asarray(res.contact), spacing[0], length, periodic)
                                      for res in results])) for length in lengths)
     offset = stack.eps_a * stack.dielectric_offset
     attraction = float(np.mean([unit_attraction(stack, field, res, voltage) for res in results]))  # rings: equal area
@@ -99,7 +100,7 @@ def patch_record(stack, field, voltage, results, lengths, spacing, solves, secon
         electrostatic_pressure=attraction * voltage ** 2,
         pixel_law_pressure=float(np.mean(stack.pressure(gaps, voltage))),
         field_ratio=field_ratio(stack, d_field, d_eq),
-        gap_slope=float(np.mean([gap_slope(g, (offset + g) ** -2.0, spacing) for g in gaps])),
+        gap_slope=float(np.mean([gap_slope(g, (offset + g) ** -2.0, spacing, periodic) for g in gaps])),
         converged=all(bool(res.converged) for res in results), iterations=int(sum(res.iterations for res in results)),
         unstable_steps=int(sum(res.unstable_steps for res in results)), solves=solves, seconds=seconds)
 

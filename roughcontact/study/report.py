@@ -7,6 +7,7 @@ with a message when missing), the CSV tables, the PNG figures and ``report.md`` 
 from __future__ import annotations
 
 import importlib.util
+from pathlib import Path
 
 import numpy as np
 
@@ -18,6 +19,7 @@ from .friction import FRICTION_MIN_LOADS, HOLDS_WITHIN, assumption_errors, botto
 from .presets import describe
 from .records import CONFIDENCE
 from .run import StudyResult
+from .scene import measured_topography
 
 MICRO = 1e6          # m -> µm in tables and figures
 MM2 = 1e6            # m² -> mm²
@@ -276,6 +278,21 @@ def _unstable_sentence(result: StudyResult) -> str:
             "equilibrium may depend on the path to it (`docs/guide/interactions.md`, \"Several equilibria\").")
 
 
+def _patch_sentence(result: StudyResult, realisations: int) -> str:
+    """What was solved: the synthetic patch (periods, pixels, realisations, cut-off) or the measured one."""
+    scene, preset = result.scene, result.scene.preset
+    roughness = scene.roughness
+    if roughness.topography:
+        grid = measured_topography(roughness).grid
+        return (f"patch the measured topography `{Path(roughness.topography).name}` ({roughness.boundary} "
+                f"boundary, {roughness.detrend} removed), {grid.shape[0]} × {grid.shape[1]} pixels over "
+                f"{grid.lengths[0] * 1e3:g} × {grid.lengths[1] * 1e3:g} mm, one realisation (a measured surface: no "
+                "interval over realisations)")
+    return (f"patch {preset.periods} ridge period(s) = {preset.periods * scene.ridges.period * 1e3:g} mm on "
+            f"{preset.grid}² pixels, {realisations} realisation(s) (seed {scene.study.seed}), micro-roughness "
+            f"short cut-off in use {result.short_cutoff * MICRO:.3g} µm")
+
+
 def report_text(result: StudyResult, nc_written: bool, seconds: float | None = None) -> str:
     """The Markdown report: what was computed, tables with intervals, and where the equivalent-gap
     assumption holds and where it fails, with numbers."""
@@ -293,15 +310,16 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
     realisations = result.array("equivalent_gap").shape[-1]
     converged = result.array("converged")
     text = ["# Multiscale fingerpad study", "",
-            f"roughcontact {__version__}, preset `{scene.study.preset}`: patch {preset.periods} ridge period(s) "
-            f"= {preset.periods * scene.ridges.period * 1e3:g} mm on {preset.grid}² pixels, {realisations} "
-            f"realisation(s) (seed {scene.study.seed}), solver tolerance {preset.tolerance:g}, micro-roughness "
-            f"short cut-off in use {result.short_cutoff * MICRO:.3g} µm. Scene: `scene.toml` in this directory. "
+            f"roughcontact {__version__}, preset `{scene.study.preset}`: " + _patch_sentence(result, realisations)
+            + f", solver tolerance {preset.tolerance:g}. Scene: `scene.toml` in this directory. "
             f"{converged.size - int(converged.sum())} of {converged.size} patch results did not converge (also "
             "from the solver's own start) and are left out of the means. " + _unstable_sentence(result)
             + (f" Run time {seconds:.0f} s ({result.computed} points computed with {result.solves} solves, "
                f"{result.array('seconds').size - result.computed} read back)." if seconds is not None else ""), "",
-            describe(preset, scene.study.preset), "",
+            describe(preset, scene.study.preset) if not scene.roughness.topography else
+            "The presets' measured errors (`docs/guide/presets.md`) are those of synthetic patches on the preset's "
+            "grid and do not apply here: the measured patch is solved on the scan's own pixels, so its resolution "
+            "is the instrument's.", "",
             f"Figures: `equivalent_gap.png`, `voltage_dependence.png`, `field_ratio.png`{friction_figure}. Tables: "
             f"`points.csv`, `realisations.csv`, `ridge_area_sensitivity.csv`{friction_table}"
             + (", all of it in `results.nc`." if nc_written else

@@ -17,12 +17,14 @@ line in the file and the valid values. Python 3.11+ reads TOML with the standard
 from __future__ import annotations
 
 import dataclasses
+import functools
 import json
 import re
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from surfaces import Grid, HeightField, read_topography
 from surfaces.ridges import ridge_fraction
 from surfaces.validation import check_integer, check_real
 
@@ -41,6 +43,8 @@ AUTO = "auto"
 #: Floating-point types of the solves (``Preset.dtype``) and the scale paths (``Preset.scales``).
 DTYPES = ("float64", "float32")
 SCALES = ("resolved", "coupled")
+#: Boundaries of a measured topography (``roughness.boundary``): mirrored periodic, declared periodic, free.
+BOUNDARIES = ("mirrored", "periodic", "free")
 
 #: The default scene: every value with its source (docs/references.md sections) or marked as an estimate.
 DEFAULT_SCENE_TOML = """\
@@ -84,6 +88,17 @@ hurst = 0.8
 rms_height = 3e-06             # m
 long_cutoff = 6e-05            # m, below the ridge width (0.27 mm) [estimate]
 short_cutoff = 1e-05           # m, raised to preset pixels_per_cutoff pixels where the grid is coarser
+# A measured surface instead (docs/surfaces.md, "Measured topographies"): topography = "scan.x3p" (any format
+# surfaces.read_topography reads, or a HeightField saved as .npz; a relative path starts at the scene file's
+# folder) is the whole patch, ridges included (set ridges.enabled = false), solved as one realisation on the
+# scan's own pixels. boundary: "mirrored" (the scan and its mirror images, periodic: the unbiased choice for a
+# window of a larger contact), "periodic" (the scan declared periodic as it is) or "free" (a free surface
+# around it: the scan is the whole footprint); detrend: "plane" (the instrument's tilt) or "mean"; missing:
+# "refuse" undefined points, or fill them by harmonic interpolation ("harmonic").
+topography = ""
+boundary = "mirrored"
+detrend = "plane"
+missing = "refuse"
 
 [skin]
 # Stiff stratum corneum layer on soft tissue (references.md §2): hydrated stratum corneum 5-30 MPa (the
@@ -198,13 +213,18 @@ class _Integer:
 
 
 @dataclass(frozen=True)
-class _Boolean:
-    valid = "true or false"
+class _Kind:
+    """A value of one TOML type ``kind`` (bool, str), described by ``valid``."""
+    kind: type
+    valid: str
 
     def __call__(self, name, value):
-        if not isinstance(value, bool):
-            raise TypeError(f"{name} must be true or false, got {value!r}")
+        if not isinstance(value, self.kind):
+            raise TypeError(f"{name} must be {self.valid}, got {value!r}")
         return value
+
+
+_BOOLEAN, _TEXT = _Kind(bool, "true or false"), _Kind(str, "a string")
 
 
 @dataclass(frozen=True)
@@ -268,7 +288,7 @@ class Fingerpad(_Section):
     area_exponent: float = _field(_Real(0.0, 1.0, low_open=True))
     radius: float = _field(_Real(0.0, low_open=True))
     E_star: float = _field(_Real(0.0, low_open=True))
-    layer: bool = _field(_Boolean())
+    layer: bool = _field(_BOOLEAN)
     layer_grid: int = _field(_Integer(16, 2048))
 
 
@@ -277,7 +297,7 @@ class Ridges(_Section):
     """Parallel ridges: ``period`` [m], crest-to-furrow ``height`` [m], ridge/furrow ``width_ratio``; sweat pores
     of ``pore_density`` [1/m²], ``pore_diameter`` and ``pore_depth`` [m] on the crests."""
     section = "ridges"
-    enabled: bool = _field(_Boolean())
+    enabled: bool = _field(_BOOLEAN)
     period: float = _field(_Real(0.0, low_open=True))
     height: float = _field(_Real(0.0))
     width_ratio: float = _field(_Real(0.43, 2.33))
@@ -295,13 +315,19 @@ class Ridges(_Section):
 
 @dataclass(frozen=True)
 class Roughness(_Section):
-    """Self-affine micro-roughness: Hurst exponent, ``rms_height`` [m], cut-off wavelengths [m]."""
+    """Self-affine micro-roughness: Hurst exponent, ``rms_height`` [m], cut-off wavelengths [m]; or a measured
+    ``topography`` (a file path, "" for none) as the whole patch, with its ``boundary`` ("mirrored", "periodic",
+    "free"), ``detrend`` ("plane", "mean") and handling of ``missing`` points ("refuse", "harmonic")."""
     section = "roughness"
-    enabled: bool = _field(_Boolean())
+    enabled: bool = _field(_BOOLEAN)
     hurst: float = _field(_Real(0.0, 1.0, low_open=True))
     rms_height: float = _field(_Real(0.0, low_open=True))
     long_cutoff: float = _field(_Real(0.0, low_open=True))
     short_cutoff: float = _field(_Real(0.0, low_open=True))
+    topography: str = _field(_TEXT)
+    boundary: str = _field(_Choice(BOUNDARIES))
+    detrend: str = _field(_Choice(("plane", "mean")))
+    missing: str = _field(_Choice(("refuse", "harmonic")))
 
     def __post_init__(self):
         super().__post_init__()
@@ -382,7 +408,7 @@ class Preset(_Section):
     rings: int = _field(_Integer(1, 64))
     pixels_per_cutoff: float = _field(_Real(2.0, 64.0))
     dtype: str = _field(_Choice(DTYPES))
-    warm_start: bool = _field(_Boolean())
+    warm_start: bool = _field(_BOOLEAN)
     scales: str = _field(_Choice(SCALES))
 
 
@@ -450,6 +476,29 @@ class Scene:
                 else:
                     flat[f"{name}.{key}"] = value
         return flat
+
+
+def measured_topography(roughness: Roughness):
+    """The scene's measured patch: ``roughness.topography`` read as a HeightField (a saved ``.npz`` field, or
+    any format of ``surfaces.read_topography``, which needs the optional SurfaceTopography), its tilt or mean
+    removed (``detrend``), then mirrored, declared periodic or left free (``boundary``); None without one."""
+    if not roughness.topography:
+        return None
+    return _measured(roughness.topography, roughness.boundary, roughness.detrend, roughness.missing)
+
+
+@functools.lru_cache(maxsize=4)
+def _measured(path: str, boundary: str, detrend: str, missing: str):
+    if path.endswith(".npz"):
+        field = HeightField.load(path).detrended(detrend)
+    else:
+        field = read_topography(path, missing=missing, detrend=detrend)
+    if field.grid.is_profile:
+        raise ValueError(f"{path} is a line scan ({field.grid.shape[0]} points); the patch needs a 2-D map")
+    if boundary == "mirrored":
+        return field.mirrored()
+    grid = Grid(field.grid.shape, field.grid.lengths, periodic=boundary == "periodic")
+    return HeightField(grid, field.heights, {"generator": f"declared {boundary}", "parts": [field.metadata]})
 
 
 def _toml_value(value) -> str:
@@ -574,4 +623,29 @@ def load_scene(path=None, *, text: str | None = None, preset: str | None = None)
         raise _error(origin, text, ("study",), "preset", 'study.preset = "auto" without a [presets.auto] table',
                      "a named preset, or [presets.auto] (roughcontact run --preset auto --target-error chooses it)")
     scene = Scene(**sections, presets=presets)
-    return scene if preset is None else scene.with_preset(preset)
+    scene = scene if preset is None else scene.with_preset(preset)
+    return _with_measured_topography(scene, path, origin, text)
+
+
+def _with_measured_topography(scene: Scene, path, origin, text) -> Scene:
+    """``scene`` with ``roughness.topography`` made absolute (from the scene file's folder) and read once, so
+    that a missing or unreadable scan, ridges on top of it or a coupled preset stop at validation."""
+    roughness = scene.roughness
+    if not roughness.topography:
+        return scene
+    location = Path(roughness.topography).expanduser()
+    if not location.is_absolute():
+        location = (Path(path).parent if path is not None else Path.cwd()) / location
+    roughness = dataclasses.replace(roughness, topography=str(location.resolve()))
+    if scene.ridges.enabled:
+        raise _error(origin, text, ("roughness",), "topography", "a measured topography is the whole patch, its "
+                     "ridges included, but ridges.enabled = true", "ridges.enabled = false with a topography")
+    if scene.preset.scales == "coupled":
+        raise _error(origin, text, ("roughness",), "topography", f"presets.{scene.study.preset}.scales = "
+                     "'coupled' reduces synthetic roughness to an interface law; a measured topography is solved "
+                     "resolved", 'scales = "resolved"')
+    try:
+        measured_topography(roughness)
+    except (ValueError, TypeError, ImportError, OSError) as error:
+        raise _error(origin, text, ("roughness",), "topography", str(error), None) from None
+    return dataclasses.replace(scene, roughness=roughness)
