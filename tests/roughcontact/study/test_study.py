@@ -17,13 +17,13 @@ from roughcontact.macro import TabulatedArea
 from roughcontact.solvers import solve_contact
 from roughcontact.study.apparent import apparent_contact, apparent_scale
 from roughcontact.study.execution import DirectoryInUse, SceneMismatch, StaleTaskWarning, TaskStore
-from roughcontact.study.friction import bottom_up_friction
+from roughcontact.study.friction import bottom_up_friction, friction_realisations
 from roughcontact.study.patch import (patch_body, patch_surface, realisation_count, ridge_area_fraction,
                                       ridge_equivalent_gap, ridge_heights)
 from roughcontact.study.records import confidence_interval
 from roughcontact.study.report import report_text
 from roughcontact.study.resolved import solve_chain
-from roughcontact.study.run import run_study
+from roughcontact.study.run import open_results, run_study
 from roughcontact.study.scene import Fingerpad, load_scene
 from study_scenes import TINY
 
@@ -261,6 +261,25 @@ def test_tabulated_area_and_bottom_up_friction(tiny_result):
     assert model.state(2.0, 0.0).friction_coefficient == pytest.approx(0.26)
 
 
+def test_friction_per_realisation(tiny_result):
+    # the recipe fed one realisation's tables carries that realisation's solved F_el (sigma_el(d_eq,R) A_R0 =
+    # its sigma_el A0, to the 5 % of the A_R interpolation in w); the spread over realisations is the interval
+    stack = tiny_result.scene.screen.stack()
+    point = tiny_result.points[1][1]
+    samples = friction_realisations(tiny_result)
+    for r in range(2):
+        state = bottom_up_friction(tiny_result, realisation=r).state(2.0, 150.0)
+        assert float(stack.pressure(state.gap, 150.0) * state.initial_area) == pytest.approx(
+            point.electrostatic_pressure[r] * point.apparent_area, rel=0.05)
+        assert samples["friction_coefficient"][1, 1, r] == state.friction_coefficient
+        assert samples["tangential_force"][1, 1, r] == state.tangential_force
+    assert np.all(samples["friction_coefficient"][:, 0] == 0.26)            # 0 V: mu0 in every realisation
+    mean, half = confidence_interval(samples["friction_coefficient"])
+    assert half[0, 1] > 0 and np.all(half[:, 0] == 0)
+    with pytest.raises(ValueError, match=r"realisation = 2; valid: an integer in \[0, 1\]"):
+        bottom_up_friction(tiny_result, realisation=2)
+
+
 def test_resume_after_interruption_recomputes_nothing_done(tiny, tmp_path, monkeypatch):
     solve = resolved.solve_contact
     calls = []
@@ -366,8 +385,22 @@ def test_run_command_end_to_end(tmp_path, capsys):
         assert data["equivalent_gap"].shape == (2, 2, 2) and data.attrs["field"] == "layered"
         for name, unit in (("field_equivalent_gap", "m"), ("pixel_law_pressure", "Pa"), ("field_ratio", "1")):
             assert data[name].attrs["units"] == unit and data[name].shape == (2, 2, 2)
+    # the finished directory gives the run's friction model back without solving: friction.csv's mu and F_T
+    # (written with 17 significant digits) are the recipe's on the study read back
+    back = open_results(out)
+    assert (back.computed, back.solves) == (0, 0)
+    model = bottom_up_friction(back)
+    for row in read_csv(out / "friction.csv"):
+        state = model.state(float(row["normal_force_N"]), float(row["voltage_V"]))
+        assert float(row["bottom_up_friction_coefficient"]) == pytest.approx(float(state.friction_coefficient), rel=1e-12)
+        assert float(row["bottom_up_tangential_force_N"]) == pytest.approx(float(state.tangential_force), rel=1e-12)
     assert main(["run", str(scene), "--preset", "draft", "--out", str(out)]) == 0
     assert "0 points computed" in capsys.readouterr().out
+    (out / "tasks" / "R001_U001.json").unlink()
+    with pytest.raises(ValueError, match=r"is not finished: 1 of 4 task files missing .*R001_U001.json"):
+        open_results(out)
+    with pytest.raises(ValueError, match="holds no scene.toml"):
+        open_results(tmp_path)
     assert main(["run", str(scene), "--preset", "standard", "--out", str(out)]) == 2
     assert "holds the results of another scene" in capsys.readouterr().err
     scene.write_text("[ridges]\nperod = 1\n")
