@@ -21,7 +21,7 @@ from roughcontact.study.friction import bottom_up_friction, friction_realisation
 from roughcontact.study.patch import (patch_body, patch_surface, realisation_count, ridge_area_fraction,
                                       ridge_equivalent_gap, ridge_heights)
 from roughcontact.study.records import confidence_interval
-from roughcontact.study.report import report_text
+from roughcontact.study.report import _range, positive_interval, report_text
 from roughcontact.study.resolved import solve_chain
 from roughcontact.study.run import open_results, run_study
 from roughcontact.study.scene import Fingerpad, load_scene
@@ -368,7 +368,10 @@ def test_run_command_end_to_end(tmp_path, capsys):
     scene.write_text(TINY)
     out = tmp_path / "results"
     assert main(["run", str(scene), "--preset", "draft", "--out", str(out), "--workers", "1"]) == 0
-    assert "4 points computed" in capsys.readouterr().out
+    printed = capsys.readouterr().out
+    assert "4 points computed" in printed
+    seconds = re.search(r"; (\d+) s\n", printed).group(1)
+    assert f"Run time {seconds} s, tables and figures included" in (out / "report.md").read_text()
     for name in ("report.md", "points.csv", "realisations.csv", "ridge_area_sensitivity.csv", "friction.csv",
                  "equivalent_gap.png", "voltage_dependence.png", "field_ratio.png", "friction.png", "scene.toml"):
         assert (out / name).is_file(), name
@@ -394,6 +397,11 @@ def test_run_command_end_to_end(tmp_path, capsys):
         state = model.state(float(row["normal_force_N"]), float(row["voltage_V"]))
         assert float(row["bottom_up_friction_coefficient"]) == pytest.approx(float(state.friction_coefficient), rel=1e-12)
         assert float(row["bottom_up_tangential_force_N"]) == pytest.approx(float(state.tangential_force), rel=1e-12)
+    # their intervals: the study's 95 % Student-t half-width of the recipe evaluated per realisation
+    half = confidence_interval(friction_realisations(back)["friction_coefficient"])[1].ravel()
+    assert [float(row["bottom_up_friction_coefficient_ci95"]) for row in read_csv(out / "friction.csv")] == \
+        pytest.approx(half, rel=1e-12, abs=1e-15)
+    assert half[1] > 0                                     # 0.5 N, 150 V: the realisations differ
     assert main(["run", str(scene), "--preset", "draft", "--out", str(out)]) == 0
     assert "0 points computed" in capsys.readouterr().out
     (out / "tasks" / "R001_U001.json").unlink()
@@ -441,3 +449,28 @@ def test_the_preset_chooses_cold_starts_and_the_dtype():
                                mean_pressure=apparent_contact(cold.fingerpad, force, 1)[1][0])
         assert record.solves == 1 and record.iterations == result.iterations
         assert record.contact_fraction == result.contact_fraction
+
+
+def test_positive_interval_is_the_log_scale_student_t_interval():
+    # two realisations 1 and 4: ln x has mean ln 2 and standard deviation ln 4/sqrt 2, t(1 dof, 97.5 %) = 12.7062;
+    # the interval exp(ln 2 -+ t ln 4/2) stays above 0 where the plain one (2.5 -+ 19.06) does not
+    low, high = positive_interval([[1.0, 4.0]])
+    t = 12.706204736174707
+    assert low[0] == pytest.approx(2 * np.exp(-t * np.log(4) / 2), rel=1e-12) and low[0] > 0
+    assert high[0] == pytest.approx(2 * np.exp(t * np.log(4) / 2), rel=1e-12)
+    mean, half = confidence_interval([[1.0, 4.0]])
+    assert mean[0] - half[0] < 0                            # what the figures drew before
+    # a zero sample (d_eq,R clipped, full contact): the Student-t interval clipped at 0
+    low, high = positive_interval([[0.0, 2.0]])
+    assert low[0] == 0 and high[0] == pytest.approx(1 + t, rel=1e-12)
+    assert np.isnan(positive_interval([[3.0]])[0][0])       # one realisation: no interval
+
+
+def test_report_sentences_do_not_degenerate(tiny_result):
+    assert _range(np.array([0.3712, 0.3749]), ".2f") == "0.37" and _range(np.array([0.2, 0.5]), ".1f") == "0.2 to 0.5"
+    report = report_text(tiny_result, False)
+    assert "at no voltage" not in report and " 0.37 to 0.37" not in report
+    assert ("at every voltage above 0 V it is off by more than 10 % at some load" in report
+            or "it stays within 10 % at every load for 150 V" in report)
+    assert "[95% confidence interval over N = 2 realisations, Student-t on the log scale" in report
+    assert "## Ridge contact fraction A_R/A0 [%]" in report and "## Real contact fraction [%]" in report
