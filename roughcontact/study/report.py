@@ -27,17 +27,29 @@ MM2 = 1e6            # m² -> mm²
 NETCDF_MODULES = ("xarray", "h5netcdf", "h5py")
 
 
-def positive_interval(samples) -> tuple:
+def positive_interval(samples, upper: float = np.inf) -> tuple:
     """``(low, high)`` of the :data:`CONFIDENCE` interval of a positive quantity over its realisations (last
-    axis): the Student-t interval of ln x mapped back, exp(mean ln x ± t s/√N), which stays above zero; where a
-    sample is 0, the Student-t interval of x clipped at 0. NaN where fewer than two samples are finite."""
+    axis): the Student-t interval of ln x mapped back, exp(mean ln x ± t s/√N), which stays above zero; for a
+    quantity bounded by ``upper`` too (a fraction: 1), that of the log-odds ln(x/(upper − x)), which stays
+    inside (0, upper). Where a sample is on a bound, the Student-t interval of x clipped to [0, upper]. NaN
+    where fewer than two samples are finite."""
     samples = np.asarray(samples, dtype=float)
+    inside = (samples > 0) & (samples < upper)
     with np.errstate(divide="ignore", invalid="ignore"):
-        log_mean, log_half = confidence_interval(np.log(np.where(samples > 0, samples, np.nan)))
+        odds = np.where(inside, samples / (upper - samples) if np.isfinite(upper) else samples, np.nan)
+        log_mean, log_half = confidence_interval(np.log(odds))
     mean, half = confidence_interval(samples)
-    zero = np.any(samples <= 0, axis=-1)
-    return (np.where(zero, np.maximum(mean - half, 0.0), np.exp(log_mean - log_half)),
-            np.where(zero, mean + half, np.exp(log_mean + log_half)))
+    bound = np.any(~inside & np.isfinite(samples), axis=-1)
+
+    def back(log_odds):
+        return np.exp(log_odds) if not np.isfinite(upper) else upper / (1 + np.exp(-log_odds))
+
+    return (np.where(bound, np.maximum(mean - half, 0.0), back(log_mean - log_half)),
+            np.where(bound, np.minimum(mean + half, upper), back(log_mean + log_half)))
+
+
+#: Fields bounded by 1 (fractions of A0): their intervals are taken on the log-odds scale.
+FRACTIONS = ("ridge_area_fractions", "contact_fraction")
 
 
 def _realisations(result: StudyResult, name: str) -> np.ndarray:
@@ -192,7 +204,7 @@ def _bars(result: StudyResult, name: str, scale: float = 1.0) -> tuple:
     the bounds of :func:`positive_interval` (each ≥ 0), both × ``scale``."""
     samples = _realisations(result, name)
     mean = confidence_interval(samples)[0]
-    low, high = positive_interval(samples)
+    low, high = positive_interval(samples, 1.0 if name in FRACTIONS else np.inf)
     below, above = (np.nan_to_num(np.maximum(d, 0.0)) for d in (mean - low, high - mean))
     return mean * scale, np.stack([below, above]) * scale
 
@@ -205,7 +217,7 @@ def bars_note(result: StudyResult) -> str:
         return "one realisation: no interval"
     return (f"bars: {CONFIDENCE:.0%} confidence interval over N = {count} realisations"
             + (" (fewer where a solve failed)" if failed else "")
-            + ", Student-t on the log scale (stays above 0)")
+            + ", Student-t on the log scale (log-odds for fractions of A0: they stay inside 0-100 %)")
 
 
 def _figures(result: StudyResult, out, provenance) -> list:
@@ -310,20 +322,22 @@ def _number(value, digits) -> str:
     return f"{np.round(value, digits) + 0.0:.{digits}f}"                  # + 0.0: no "-0.00" for a rounded zero
 
 
-def _cell(samples, scale=1.0, digits=2) -> str:
-    """The realisation mean of a positive quantity and its :func:`positive_interval`, "mean [low, high]"."""
+def _cell(samples, scale=1.0, digits=2, upper=np.inf) -> str:
+    """The realisation mean of a positive quantity (bounded by ``upper``) and its :func:`positive_interval`,
+    "mean [low, high]"."""
     mean = confidence_interval(samples)[0]
-    low, high = positive_interval(samples)
+    low, high = positive_interval(samples, upper)
     text = _number(mean * scale, digits)
     return text if not np.isfinite(low) else f"{text} [{_number(low * scale, digits)}, {_number(high * scale, digits)}]"
 
 
-def _table(result, samples, scale=1.0, digits=2, unit="") -> list:
-    """Table over loads × voltages of the positive quantity with realisations ``samples`` (… , realisations)."""
+def _table(result, samples, scale=1.0, digits=2, unit="", upper=np.inf) -> list:
+    """Table over loads × voltages of the positive quantity (bounded by ``upper``) with realisations
+    ``samples`` (… , realisations)."""
     header = "| F_N [N] | " + " | ".join(f"{v:g} V" for v in result.voltages) + " |"
     lines = [header, "|---" * (len(result.voltages) + 1) + "|"]
     for i, force in enumerate(result.normal_forces):
-        lines.append(f"| {force:g} | " + " | ".join(_cell(samples[i, j], scale, digits)
+        lines.append(f"| {force:g} | " + " | ".join(_cell(samples[i, j], scale, digits, upper)
                                                    for j in range(len(result.voltages))) + " |")
     note = f"\n({unit}; realisation mean [{bars_note(result).removeprefix('bars: ')}])"
     return lines + ([note] if unit else [])
@@ -385,8 +399,9 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
             *_table(result, _realisations(result, "field_equivalent_gap"), MICRO, 2, "µm"), "",
             *_per_pixel_section(result), "",
             "## Ridge contact fraction A_R/A0 [%]", "",
-            *_table(result, _realisations(result, "ridge_area_fractions"), 100.0, 1, "%"), "",
-            "## Real contact fraction [%]", "", *_table(result, _realisations(result, "contact_fraction"), 100.0, 2, "%"),
+            *_table(result, _realisations(result, "ridge_area_fractions"), 100.0, 1, "%", 1.0), "",
+            "## Real contact fraction [%]", "",
+            *_table(result, _realisations(result, "contact_fraction"), 100.0, 2, "%", 1.0),
             "", "## Ridge-area gap d_eq,R [µm] (fed to the friction law)", "",
             *_table(result, _realisations(result, "ridge_equivalent_gap"), MICRO, 3, "µm"),
             *_clipped_ridge_gap(result), ""]
@@ -467,34 +482,28 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
                  "own, larger ridge area) empties the ridge area and F_T = μ0 F_N (the saturation rule of "
                  f"`docs/guide/friction_model.md`): {saturated} of {len(rows)} "
                  "points.", "",
-                 "| F_N [N] | " + " | ".join(f"{v:g} V" for v in voltages) + " |",
-                 "|---" * (len(voltages) + 1) + "|"]
-        for i, force in enumerate(forces):
-            cells = [rows[i * len(voltages) + j] for j in range(len(voltages))]
-            text.append(f"| {force:g} | " + " | ".join(f"{c['bottom_up_friction_coefficient']:.3f}"
-                                                       f"{spread('friction_coefficient', i, j, 3)} / "
-                                                       f"{c['bottom_up_fe_friction_coefficient']:.3f} / "
-                                                       f"{c['bottom_up_c2_0_friction_coefficient']:.3f} / "
-                                                       f"{c['seed_friction_coefficient']:.3f}"
-                                                       for j, c in enumerate(cells)) + " |")
-        text += ["", "Friction force F_T [N] (bottom-up / seed):", "",
-                 "| F_N [N] | " + " | ".join(f"{v:g} V" for v in voltages) + " |",
-                 "|---" * (len(voltages) + 1) + "|"]
-        for i, force in enumerate(forces):
-            cells = [rows[i * len(voltages) + j] for j in range(len(voltages))]
-            text.append(f"| {force:g} | " + " | ".join(f"{c['bottom_up_tangential_force_N']:.3f}"
-                                                       f"{spread('tangential_force', i, j, 3)} / "
-                                                       f"{c['seed_tangential_force_N']:.3f}"
-                                                       for j, c in enumerate(cells)) + " |")
-        text += ["", "Ridge area A_R0 [mm²] (bottom-up / seed Eq. 9):", "",
-                 "| F_N [N] | " + " | ".join(f"{v:g} V" for v in voltages) + " |",
-                 "|---" * (len(voltages) + 1) + "|"]
-        for i, force in enumerate(forces):
-            cells = [rows[i * len(voltages) + j] for j in range(len(voltages))]
-            text.append(f"| {force:g} | " + " | ".join(f"{c['bottom_up_ridge_area_mm2']:.1f} / "
-                                                       f"{c['seed_ridge_area_mm2']:.1f}" for c in cells) + " |")
+                 *_friction_table(result, rows, lambda i, j, c: f"{c['bottom_up_friction_coefficient']:.3f}"
+                                  f"{spread('friction_coefficient', i, j, 3)} / "
+                                  f"{c['bottom_up_fe_friction_coefficient']:.3f} / "
+                                  f"{c['bottom_up_c2_0_friction_coefficient']:.3f} / "
+                                  f"{c['seed_friction_coefficient']:.3f}"),
+                 "", "Friction force F_T [N] (bottom-up / seed):", "",
+                 *_friction_table(result, rows, lambda i, j, c: f"{c['bottom_up_tangential_force_N']:.3f}"
+                                  f"{spread('tangential_force', i, j, 3)} / {c['seed_tangential_force_N']:.3f}"),
+                 "", "Ridge area A_R0 [mm²] (bottom-up / seed Eq. 9):", "",
+                 *_friction_table(result, rows, lambda i, j, c: f"{c['bottom_up_ridge_area_mm2']:.1f} / "
+                                  f"{c['seed_ridge_area_mm2']:.1f}")]
         text.append("")
     return "\n".join(text) + "\n"
+
+
+def _friction_table(result: StudyResult, rows: list, cell) -> list:
+    """A loads × voltages table of the friction ``rows`` (:func:`_friction_rows`, in their order), each entry
+    ``cell(i, j, row)``."""
+    count = len(result.voltages)
+    return (["| F_N [N] | " + " | ".join(f"{v:g} V" for v in result.voltages) + " |", "|---" * (count + 1) + "|"]
+            + [f"| {force:g} | " + " | ".join(cell(i, j, rows[i * count + j]) for j in range(count)) + " |"
+               for i, force in enumerate(result.normal_forces)])
 
 
 def _per_pixel_section(result: StudyResult) -> list:

@@ -464,6 +464,12 @@ def test_positive_interval_is_the_log_scale_student_t_interval():
     low, high = positive_interval([[0.0, 2.0]])
     assert low[0] == 0 and high[0] == pytest.approx(1 + t, rel=1e-12)
     assert np.isnan(positive_interval([[3.0]])[0][0])       # one realisation: no interval
+    # a fraction (bounded by 1), 0.2 and 0.6: the interval of the log-odds ln 0.25 and ln 1.5, inside (0, 1)
+    low, high = positive_interval([[0.2, 0.6]], upper=1.0)
+    centre, spread = np.log(np.sqrt(0.25 * 1.5)), t * np.log(1.5 / 0.25) / 2
+    assert low[0] == pytest.approx(1 / (1 + np.exp(spread - centre)), rel=1e-12)
+    assert high[0] == pytest.approx(1 / (1 + np.exp(-centre - spread)), rel=1e-12) and high[0] < 1
+    assert positive_interval([[0.2, 0.6]])[1][0] > 1        # (the log scale alone would pass 100 %)
 
 
 def test_report_sentences_do_not_degenerate(tiny_result):
