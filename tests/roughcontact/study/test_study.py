@@ -386,6 +386,7 @@ def test_run_command_end_to_end(tmp_path, capsys):
         assert data["equivalent_gap"].attrs["units"] == "m" and data.attrs["preset"] == "draft"
         assert data.attrs["scene.presets.draft.grid"] == 32 and "roughcontact_version" in data.attrs
         assert data["equivalent_gap"].shape == (2, 2, 2) and data.attrs["field"] == "layered"
+        assert data["bottom_up_friction_coefficient_ci95"].shape == (2, 2)
         for name, unit in (("field_equivalent_gap", "m"), ("pixel_law_pressure", "Pa"), ("field_ratio", "1")):
             assert data[name].attrs["units"] == unit and data[name].shape == (2, 2, 2)
     # the finished directory gives the run's friction model back without solving: friction.csv's mu and F_T
