@@ -112,7 +112,7 @@ def _cmd_run(args, provenance) -> int:
               "(pip install 'roughcontact[io]'); the CSV tables hold the results", file=sys.stderr)
     print(f"{result.computed} points computed ({result.solves} contact solves), "
           f"{len(result.points) * len(result.points[0]) - result.computed} resumed; "
-          f"{time.perf_counter() - start:.0f} s")
+          f"{written['seconds']:.0f} s")
     print(f"report, figures and tables written to {output.resolve()}")
     return 0
 

@@ -38,7 +38,10 @@ _LAZY = {
     "StaleTaskWarning": "execution",
     "StudyResult": "run",
     "run_study": "run",
+    "open_results": "run",
     "bottom_up_friction": "friction",
+    "friction_recipe": "friction",
+    "friction_realisations": "friction",
     "write_results": "report",
 }
 

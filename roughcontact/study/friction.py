@@ -1,8 +1,10 @@
 """The seed's friction law fed bottom-up from a study, and the errors of the equivalent-gap assumption.
 
-:func:`bottom_up_friction` puts the study's d_eq,R(F_N, U) (:class:`~roughcontact.macro.TabulatedGap`) and
-A_R(F_N, w) (:class:`~roughcontact.macro.TabulatedArea`) into :class:`~roughcontact.macro.SlidingFrictionModel`
-with the seed's μ0 and c₂. d_eq,R is the uniform gap whose Eq. 21 attraction over A_R equals the solved field
+:func:`friction_recipe` is the recommended bottom-up friction model (the ridge-area recipe,
+``docs/guide/friction_model.md``): d_eq,R(F_N, U) (:class:`~roughcontact.macro.TabulatedGap`) and A_R(F_N, w)
+(:class:`~roughcontact.macro.TabulatedArea`) in :class:`~roughcontact.macro.SlidingFrictionModel` with the seed's
+μ0 and c₂; :func:`bottom_up_friction` feeds it from a study (or from a finished results directory through
+:func:`~.run.open_results`), :func:`friction_realisations` evaluates it per realisation for the uncertainty. d_eq,R is the uniform gap whose Eq. 21 attraction over A_R equals the solved field
 force F_el (σ_el(d_eq,R) A_R = F_el), so the friction law's σ_el A_R is the solve's attraction whatever the field
 model. The law interpolates its tables in F_N, so it needs at least two loads (:data:`FRICTION_MIN_LOADS`).
 :func:`assumption_errors` measures what a voltage-independent gap, the arithmetic mean gap or the per-pixel
@@ -26,21 +28,61 @@ def friction_computed(result: StudyResult) -> bool:
     return len(result.normal_forces) >= FRICTION_MIN_LOADS
 
 
-def bottom_up_friction(result: StudyResult, c2: float | None = None) -> SlidingFrictionModel:
-    """The seed's friction law (μ0 and, unless ``c2`` [m⁴/N²] is given, c₂ of Table 1) with the study's mean
-    d_eq,R (σ_el(d_eq,R) A_R = the solved F_el) and A_R = (A_R/A0) A0; ``ValueError`` for a study of one load."""
-    forces, voltages = result.normal_forces, result.voltages
-    if not friction_computed(result):
-        raise ValueError(f"loads.normal_forces = {forces.tolist()}: the bottom-up friction law interpolates d_eq,R and "
-                         f"A_R in F_N and needs at least {FRICTION_MIN_LOADS} loads")
-    stack = result.scene.screen.stack()
-    gaps = result.summary("ridge_equivalent_gap")[0]
-    areas = result.summary("ridge_area_fractions")[0][:, :, 0] * result.array("apparent_area")
+def friction_recipe(normal_forces, voltages, ridge_gaps, ridge_areas, stack, c2: float | None = None
+                    ) -> SlidingFrictionModel:
+    """The recommended bottom-up friction model, the *ridge-area recipe* (``docs/guide/friction_model.md``): the
+    seed's friction law (Eqs. 41–45, μ0 and, unless ``c2`` [m⁴/N²] is given, c₂ of Table 1) applying σ_el of
+    the gap ``ridge_gaps`` d_eq,R [m] on the ridge area ``ridge_areas`` A_R [m²], both of shape
+    (len(normal_forces), len(voltages)) at ``normal_forces`` [N] (>= 2) and ``voltages`` [V] (one: voltage
+    independent). d_eq,R is the uniform gap with σ_el(d_eq,R) A_R = the solved F_el, so the law's attraction is
+    the solved one; A_R(F_N, w) replaces Eq. 9, with w = w(d_eq,R, U) of Eq. 22 (made non-decreasing in U)."""
+    forces, voltages = np.asarray(normal_forces, float), np.asarray(voltages, float)
+    gaps, areas = np.asarray(ridge_gaps, float), np.asarray(ridge_areas, float)
     works = stack.work_of_adhesion(gaps, voltages[None, :])
     seed = SlidingFrictionModel.paper_table1()
     return SlidingFrictionModel(mu0=seed.mu0, c2=seed.c2 if c2 is None else c2, stack=stack,
                                 gap_model=TabulatedGap(forces, voltages, gaps),
                                 contact=TabulatedArea(forces, np.maximum.accumulate(works, axis=1), areas))
+
+
+def bottom_up_friction(result: StudyResult, c2: float | None = None,
+                       realisation: int | None = None) -> SlidingFrictionModel:
+    """:func:`friction_recipe` fed by a study: its d_eq,R and A_R = (A_R/A0) A0, realisation means over the
+    converged solves (or those of ``realisation`` r alone); ``ValueError`` for a study of one load."""
+    forces, voltages = result.normal_forces, result.voltages
+    if not friction_computed(result):
+        raise ValueError(f"loads.normal_forces = {forces.tolist()}: the bottom-up friction law interpolates d_eq,R and "
+                         f"A_R in F_N and needs at least {FRICTION_MIN_LOADS} loads")
+    apparent = result.array("apparent_area")
+    if realisation is None:
+        gaps = result.summary("ridge_equivalent_gap")[0]
+        fractions = result.summary("ridge_area_fractions")[0][:, :, 0]
+    else:
+        count = result.array("converged").shape[-1]
+        if not (isinstance(realisation, (int, np.integer)) and 0 <= realisation < count):
+            raise ValueError(f"realisation = {realisation!r}; valid: an integer in [0, {count - 1}]")
+        gaps = result.array("ridge_equivalent_gap")[:, :, realisation]
+        fractions = result.ridge_area[:, :, realisation]
+    return friction_recipe(forces, voltages, gaps, fractions * apparent, result.scene.screen.stack(), c2)
+
+
+def friction_realisations(result: StudyResult, c2: float | None = None) -> dict:
+    """F_T [N] (``"tangential_force"``) and μ (``"friction_coefficient"``) of :func:`bottom_up_friction` of each
+    realisation at every (F_N, U) of the study, shape (loads, voltages, realisations); NaN for a realisation
+    with a solve that did not converge. Their spread is the realisation uncertainty of the recipe's F_T and μ
+    (:func:`~.records.confidence_interval` gives the study's 95 % interval, as for d_eq and A_R)."""
+    forces, voltages = result.normal_forces[:, None], result.voltages[None, :]
+    converged = result.array("converged").astype(bool)
+    samples = {"tangential_force": [], "friction_coefficient": []}
+    for r in range(converged.shape[-1]):
+        if converged[:, :, r].all():
+            state = bottom_up_friction(result, c2, realisation=r).state(forces, voltages)
+            values = {name: getattr(state, name) for name in samples}
+        else:
+            values = {name: np.full((forces.size, voltages.size), np.nan) for name in samples}
+        for name in samples:
+            samples[name].append(values[name])
+    return {name: np.stack(values, axis=-1) for name, values in samples.items()}
 
 
 def assumption_errors(result: StudyResult) -> dict:

@@ -7,6 +7,7 @@ with a message when missing), the CSV tables, the PNG figures and ``report.md`` 
 from __future__ import annotations
 
 import importlib.util
+import time
 from pathlib import Path
 
 import numpy as np
@@ -15,9 +16,10 @@ from .._version import __version__
 from ..fe.feed import fe_friction_columns
 from ..io.provenance import save_figure, write_csv
 from ..macro import LinearGap, PowerLawGap, SlidingFrictionModel
-from .friction import FRICTION_MIN_LOADS, HOLDS_WITHIN, assumption_errors, bottom_up_friction, friction_computed
+from .friction import (FRICTION_MIN_LOADS, HOLDS_WITHIN, assumption_errors, bottom_up_friction, friction_computed,
+                       friction_realisations)
 from .presets import describe
-from .records import CONFIDENCE
+from .records import CONFIDENCE, confidence_interval
 from .run import StudyResult
 from .scene import measured_topography
 
@@ -27,12 +29,45 @@ MM2 = 1e6            # m² -> mm²
 NETCDF_MODULES = ("xarray", "h5netcdf", "h5py")
 
 
+def positive_interval(samples, upper: float = np.inf) -> tuple:
+    """``(low, high)`` of the :data:`CONFIDENCE` interval of a positive quantity over its realisations (last
+    axis): the Student-t interval of ln x mapped back, exp(mean ln x ± t s/√N), which stays above zero; for a
+    quantity bounded by ``upper`` too (a fraction: 1), that of the log-odds ln(x/(upper − x)), which stays
+    inside (0, upper). Where a sample is on a bound, the Student-t interval of x clipped to [0, upper]. NaN
+    where fewer than two samples are finite."""
+    samples = np.asarray(samples, dtype=float)
+    inside = (samples > 0) & (samples < upper)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        odds = np.where(inside, samples / (upper - samples) if np.isfinite(upper) else samples, np.nan)
+        log_mean, log_half = confidence_interval(np.log(odds))
+    mean, half = confidence_interval(samples)
+    bound = np.any(~inside & np.isfinite(samples), axis=-1)
+
+    def back(log_odds):
+        return np.exp(log_odds) if not np.isfinite(upper) else upper / (1 + np.exp(-log_odds))
+
+    return (np.where(bound, np.maximum(mean - half, 0.0), back(log_mean - log_half)),
+            np.where(bound, np.minimum(mean + half, upper), back(log_mean + log_half)))
+
+
+#: Fields bounded by 1 (fractions of A0): their intervals are taken on the log-odds scale.
+FRACTIONS = ("ridge_area_fractions", "contact_fraction")
+
+
+def _realisations(result: StudyResult, name: str) -> np.ndarray:
+    """Field ``name`` per realisation, shape (loads, voltages, realisations) (A_R/A0 at the scene's ℓ for
+    ``ridge_area_fractions``), NaN where the solve did not converge."""
+    values = result.ridge_area if name == "ridge_area_fractions" else result.array(name)
+    return np.where(result.array("converged").astype(bool), values, np.nan)
+
+
 def _friction_rows(result: StudyResult) -> list:
     model, seed = bottom_up_friction(result), SlidingFrictionModel.paper_table1()
     rigid = bottom_up_friction(result, c2=0.0)
+    spread = {name: confidence_interval(values)[1] for name, values in friction_realisations(result).items()}
     rows = []
-    for force in result.normal_forces:
-        for voltage in result.voltages:
+    for i, force in enumerate(result.normal_forces):
+        for j, voltage in enumerate(result.voltages):
             ours, theirs = model.state(force, voltage), seed.state(force, voltage)
             unreduced = rigid.state(force, voltage)
             rows.append({"normal_force_N": force, "voltage_V": voltage,
@@ -40,8 +75,10 @@ def _friction_rows(result: StudyResult) -> list:
                          "bottom_up_ridge_area_mm2": float(ours.initial_area) * MM2,
                          "seed_ridge_area_mm2": float(theirs.initial_area) * MM2,
                          "bottom_up_tangential_force_N": float(ours.tangential_force),
+                         "bottom_up_tangential_force_ci95_N": float(spread["tangential_force"][i, j]),
                          "seed_tangential_force_N": float(theirs.tangential_force),
                          "bottom_up_friction_coefficient": float(ours.friction_coefficient),
+                         "bottom_up_friction_coefficient_ci95": float(spread["friction_coefficient"][i, j]),
                          "seed_friction_coefficient": float(theirs.friction_coefficient),
                          "bottom_up_c2_0_friction_coefficient": float(unreduced.friction_coefficient),
                          "bottom_up_area_saturated": bool(ours.area_saturated)})
@@ -147,8 +184,9 @@ def dataset(result: StudyResult):
     variables["apparent_area"] = (("normal_force",), result.array("apparent_area")[:, 0], {"units": "m2"})
     variables["solve_seconds"] = (("normal_force", "voltage"), result.array("seconds"), {"units": "s"})
     friction = _friction_rows(result) if friction_computed(result) else []
-    for key, unit in (("bottom_up_tangential_force_N", "N"), ("seed_tangential_force_N", "N"),
-                      ("bottom_up_friction_coefficient", "1"), ("seed_friction_coefficient", "1")):
+    for key, unit in (("bottom_up_tangential_force_N", "N"), ("bottom_up_tangential_force_ci95_N", "N"),
+                      ("seed_tangential_force_N", "N"), ("bottom_up_friction_coefficient", "1"),
+                      ("bottom_up_friction_coefficient_ci95", "1"), ("seed_friction_coefficient", "1")):
         if friction:
             values = np.array([row[key] for row in friction]).reshape(len(result.normal_forces), -1)
             variables[key.removesuffix("_N")] = (("normal_force", "voltage"), values, {"units": unit})
@@ -163,107 +201,147 @@ def dataset(result: StudyResult):
 # ---------------------------------------------------------------------------------------------------------
 # Figures
 # ---------------------------------------------------------------------------------------------------------
+def _bars(result: StudyResult, name: str, scale: float = 1.0) -> tuple:
+    """``(mean, [below, above])`` of field ``name`` for ``errorbar``: the realisation mean and the distances to
+    the bounds of :func:`positive_interval` (each ≥ 0), both × ``scale``."""
+    samples = _realisations(result, name)
+    mean = confidence_interval(samples)[0]
+    low, high = positive_interval(samples, 1.0 if name in FRACTIONS else np.inf)
+    below, above = (np.nan_to_num(np.maximum(d, 0.0)) for d in (mean - low, high - mean))
+    return mean * scale, np.stack([below, above]) * scale
+
+
+def bars_note(result: StudyResult) -> str:
+    """What every error bar and band of the figures and interval of the report is."""
+    count = result.array("converged").shape[-1]
+    failed = not result.array("converged").all()
+    if count < 2:
+        return "one realisation: no interval"
+    return (f"bars: {CONFIDENCE:.0%} confidence interval over N = {count} realisations"
+            + (" (fewer where a solve failed)" if failed else "")
+            + ", Student-t on the log scale (log-odds for fractions of A0: they stay inside 0-100 %)")
+
+
 def _figures(result: StudyResult, out, provenance) -> list:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     forces, voltages = result.normal_forces, result.voltages
-    d_mean, d_half = result.summary("equivalent_gap")
-    a_mean, a_half = result.summary("ridge_area_fractions")
+    d_mean, d_bars = _bars(result, "equivalent_gap", MICRO)
+    a_mean, a_bars = _bars(result, "ridge_area_fractions", 100.0)
+    c_mean, c_bars = _bars(result, "contact_fraction", 100.0)
     gap_mean = result.summary("mean_gap")[0]
+    note = bars_note(result)
     written = []
     line = np.linspace(forces[0], forces[-1], 50)
 
+    def finish(figure, name):
+        figure.text(0.5, 0.005, note, ha="center", va="bottom", fontsize=7, style="italic")
+        figure.tight_layout(rect=(0, 0.04, 1, 1))
+        written.append(save_figure(figure, out / name, provenance))
+        plt.close(figure)
+
     figure, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
     for j, voltage in enumerate(voltages):
-        left.errorbar(forces, d_mean[:, j] * MICRO, yerr=d_half[:, j] * MICRO, marker="o", capsize=3,
+        left.errorbar(forces, d_mean[:, j], yerr=d_bars[:, :, j], marker="o", capsize=3,
                       label=f"Eq. 25, {voltage:g} V")
-    left.plot(line, LinearGap.paper_table1()(line, 0.0) * MICRO, "k--", label="seed Eq. 46 (fit)")
-    guo = np.linspace(0.5, 4.5, 50)
-    left.plot(guo, PowerLawGap.guo2019()(guo, 0.0) * MICRO, "k:", label="Guo et al. 2019, 150 V")
+    left.plot(line, LinearGap.paper_table1()(line, 0.0) * MICRO, "k--", label="seed Eq. 46 (fit, any voltage)")
+    guo = PowerLawGap.guo2019()
+    span = np.linspace(max(forces[0], 0.5), min(forces[-1], 4.5), 50)     # its measured 0.5-4.5 N, our loads
+    if span[0] < span[-1]:
+        left.plot(span, guo(span, 0.0) * MICRO, "k:", label="Guo et al. 2019, measured at 150 V")
     left.set(xlabel="normal force F_N [N]", ylabel="equivalent air gap [µm]", title="d_eq vs load")
     left.legend(fontsize=7)
-    right.plot(forces, gap_mean[:, 0] * MICRO, "s-", label="arithmetic mean gap, 0 V")
-    right.plot(forces, d_mean[:, 0] * MICRO, "o-", label="Eq. 25, 0 V")
-    right.set(xlabel="normal force F_N [N]", ylabel="gap [µm]", title="mean gap vs Eq. 25")
+    right.plot(forces, gap_mean[:, 0] * MICRO, "s-", label=f"arithmetic mean gap, {voltages[0]:g} V")
+    right.plot(forces, d_mean[:, 0], "o-", label=f"Eq. 25, {voltages[0]:g} V")
+    right.set(xlabel="normal force F_N [N]", ylabel="gap [µm]", title="mean gap vs Eq. 25 (realisation means)")
     right.legend(fontsize=7)
-    figure.tight_layout()
-    written.append(save_figure(figure, out / "equivalent_gap.png", provenance))
-    plt.close(figure)
+    finish(figure, "equivalent_gap.png")
 
     figure, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
     for i, force in enumerate(forces):
-        left.errorbar(voltages, d_mean[i] * MICRO, yerr=d_half[i] * MICRO, marker="o", capsize=3,
-                      label=f"{force:g} N")
-        right.errorbar(voltages, a_mean[i, :, 0], yerr=a_half[i, :, 0], marker="o", capsize=3, label=f"{force:g} N")
+        left.errorbar(voltages, d_mean[i], yerr=d_bars[:, i], marker="o", capsize=3, label=f"{force:g} N")
+        right.errorbar(voltages, a_mean[i], yerr=a_bars[:, i], marker="o", capsize=3, color=f"C{i}",
+                       label=f"A_R/A0, {force:g} N")
+        right.errorbar(voltages, c_mean[i], yerr=c_bars[:, i], marker="s", ls="--", capsize=3, color=f"C{i}",
+                       label=f"real contact, {force:g} N")
     left.set(xlabel="voltage U [V]", ylabel="d_eq (Eq. 25) [µm]", title="voltage dependence of d_eq")
-    right.set(xlabel="voltage U [V]", ylabel="A_R / A0", title="ridge contact fraction vs voltage")
+    right.set(xlabel="voltage U [V]", ylabel="fraction of A0 [%]",
+              title="ridge (solid) and real (dashed) contact vs voltage")
     left.legend(fontsize=7)
-    right.legend(fontsize=7)
-    figure.tight_layout()
-    written.append(save_figure(figure, out / "voltage_dependence.png", provenance))
-    plt.close(figure)
+    right.legend(fontsize=6)
+    finish(figure, "voltage_dependence.png")
 
     figure, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
-    field_mean, field_half = result.summary("field_equivalent_gap")
-    ratio_mean, ratio_half = result.summary("field_ratio")
+    field_mean, field_bars = _bars(result, "field_equivalent_gap", MICRO)
+    ratio_mean, ratio_bars = _bars(result, "field_ratio")
     for j, voltage in enumerate(voltages):
         colour = f"C{j}"
-        left.errorbar(forces, d_mean[:, j] * MICRO, yerr=d_half[:, j] * MICRO, marker="o", capsize=3, color=colour,
+        left.errorbar(forces, d_mean[:, j], yerr=d_bars[:, :, j], marker="o", capsize=3, color=colour,
                       label=f"Eq. 25, {voltage:g} V")
-        left.errorbar(forces, field_mean[:, j] * MICRO, yerr=field_half[:, j] * MICRO, marker="s", capsize=3,
+        left.errorbar(forces, field_mean[:, j], yerr=field_bars[:, :, j], marker="s", capsize=3,
                       ls="--", color=colour, label=f"field-equivalent, {voltage:g} V")
     for i, force in enumerate(forces):
-        right.errorbar(voltages, ratio_mean[i], yerr=ratio_half[i], marker="o", capsize=3, label=f"{force:g} N")
+        right.errorbar(voltages, ratio_mean[i], yerr=ratio_bars[:, i], marker="o", capsize=3, label=f"{force:g} N")
     right.axhline(1.0, color="k", lw=0.8)
     left.set(xlabel="normal force F_N [N]", ylabel="gap [µm]", title="Eq. 25 (solid) vs field-equivalent (dashed)")
     right.set(xlabel="voltage U [V]", ylabel="F_el(field) / F_el(Eq. 21 per pixel)",
               title=f"{result.scene.screen.field} field against the per-pixel law")
     left.legend(fontsize=6)
     right.legend(fontsize=7)
-    figure.tight_layout()
-    written.append(save_figure(figure, out / "field_ratio.png", provenance))
-    plt.close(figure)
+    finish(figure, "field_ratio.png")
 
     if friction_computed(result):
         model, seed = bottom_up_friction(result), SlidingFrictionModel.paper_table1()
+        ours = model.state(forces[:, None], voltages[None, :])
+        samples = friction_realisations(result)
         figure, axes = plt.subplots(1, 3, figsize=(14, 4))
         for j, voltage in enumerate(voltages):
-            ours, theirs = model.state(line, voltage), seed.state(line, voltage)
+            theirs = seed.state(line, voltage)
             colour = f"C{j}"
-            axes[0].plot(line, ours.initial_area * MM2, color=colour, label=f"bottom-up {voltage:g} V")
+            axes[0].plot(forces, ours.initial_area[:, j] * MM2, "o-", color=colour, label=f"bottom-up {voltage:g} V")
             axes[0].plot(line, theirs.initial_area * MM2, "--", color=colour)
-            axes[1].plot(line, ours.tangential_force, color=colour, label=f"{voltage:g} V")
-            axes[1].plot(line, theirs.tangential_force, "--", color=colour)
-            axes[2].plot(line, ours.friction_coefficient, color=colour, label=f"{voltage:g} V")
-            axes[2].plot(line, theirs.friction_coefficient, "--", color=colour)
+            for axis, name in ((axes[1], "tangential_force"), (axes[2], "friction_coefficient")):
+                value = getattr(ours, name)[:, j]
+                low, high = positive_interval(samples[name][:, j])
+                bars = np.nan_to_num(np.maximum(np.stack([value - low, high - value]), 0.0))
+                axis.errorbar(forces, value, yerr=bars, marker="o", capsize=3, color=colour, label=f"{voltage:g} V")
+                axis.plot(line, getattr(theirs, name), "--", color=colour)
         axes[0].set(xlabel="F_N [N]", ylabel="ridge area A_R0 [mm²]", title="A_R (solid) vs seed Eq. 9 (dashed)")
         axes[1].set(xlabel="F_N [N]", ylabel="F_T [N]", title="friction force (dashed: seed Table 1)")
         axes[2].set(xlabel="F_N [N]", ylabel="μ = F_T/F_N", title="friction coefficient (dashed: seed)")
         for axis in axes:
             axis.legend(fontsize=7)
-        figure.tight_layout()
-        written.append(save_figure(figure, out / "friction.png", provenance))
-        plt.close(figure)
+        finish(figure, "friction.png")
     return written
 
 
 # ---------------------------------------------------------------------------------------------------------
 # report.md
 # ---------------------------------------------------------------------------------------------------------
-def _cell(mean, half, scale=1.0, digits=2) -> str:
-    text = f"{np.round(mean * scale, digits) + 0.0:.{digits}f}"           # + 0.0: no "-0.00" for a rounded zero
-    return text if not np.isfinite(half) else f"{text} ± {half * scale:.{digits}f}"
+def _number(value, digits) -> str:
+    return f"{np.round(value, digits) + 0.0:.{digits}f}"                  # + 0.0: no "-0.00" for a rounded zero
 
 
-def _table(result, mean, half, scale=1.0, digits=2, unit="") -> list:
+def _cell(samples, scale=1.0, digits=2, upper=np.inf) -> str:
+    """The realisation mean of a positive quantity (bounded by ``upper``) and its :func:`positive_interval`,
+    "mean [low, high]"."""
+    mean = confidence_interval(samples)[0]
+    low, high = positive_interval(samples, upper)
+    text = _number(mean * scale, digits)
+    return text if not np.isfinite(low) else f"{text} [{_number(low * scale, digits)}, {_number(high * scale, digits)}]"
+
+
+def _table(result, samples, scale=1.0, digits=2, unit="", upper=np.inf) -> list:
+    """Table over loads × voltages of the positive quantity (bounded by ``upper``) with realisations
+    ``samples`` (… , realisations)."""
     header = "| F_N [N] | " + " | ".join(f"{v:g} V" for v in result.voltages) + " |"
     lines = [header, "|---" * (len(result.voltages) + 1) + "|"]
     for i, force in enumerate(result.normal_forces):
-        lines.append(f"| {force:g} | " + " | ".join(_cell(mean[i, j], half[i, j], scale, digits)
+        lines.append(f"| {force:g} | " + " | ".join(_cell(samples[i, j], scale, digits, upper)
                                                    for j in range(len(result.voltages))) + " |")
-    note = f"\n({unit}; ± the {CONFIDENCE:.0%} confidence half-width over the realisations)"
+    note = f"\n({unit}; realisation mean [{bars_note(result).removeprefix('bars: ')}])"
     return lines + ([note] if unit else [])
 
 
@@ -300,11 +378,9 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
     forces, voltages = result.normal_forces, result.voltages
     friction_figure, friction_table = ((", `friction.png`", ", `friction.csv`") if friction_computed(result)
                                        else ("", ""))
-    d_mean, d_half = result.summary("equivalent_gap")
-    f_mean, f_half = result.summary("field_equivalent_gap")
-    r_mean, r_half = result.summary("ridge_equivalent_gap")
-    a_mean, a_half = result.summary("ridge_area_fractions")
-    c_mean, c_half = result.summary("contact_fraction")
+    d_mean = result.summary("equivalent_gap")[0]
+    f_mean = result.summary("field_equivalent_gap")[0]
+    a_mean = result.summary("ridge_area_fractions")[0]
     slope = result.summary("gap_slope")[0]
     errors = assumption_errors(result)
     realisations = result.array("equivalent_gap").shape[-1]
@@ -314,7 +390,8 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
             + f", solver tolerance {preset.tolerance:g}. Scene: `scene.toml` in this directory. "
             f"{converged.size - int(converged.sum())} of {converged.size} patch results did not converge (also "
             "from the solver's own start) and are left out of the means. " + _unstable_sentence(result)
-            + (f" Run time {seconds:.0f} s ({result.computed} points computed with {result.solves} solves, "
+            + (f" Run time {seconds:.0f} s, tables and figures included ({result.computed} points computed with "
+               f"{result.solves} solves, "
                f"{result.array('seconds').size - result.computed} read back)." if seconds is not None else ""), "",
             describe(preset, scene.study.preset) if not scene.roughness.topography else
             "The presets' measured errors (`docs/guide/presets.md`) are those of synthetic patches on the preset's "
@@ -334,13 +411,18 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
             "attraction over A_R is the solved F_el, σ_el(d_eq,R) A_R = σ̄_el A0: the seed's friction law (σ_el "
             "acting on A_R) is fed d_eq,R, so its electrostatic force is the solved one. "
             "Assumptions and their checks: `docs/findings/equivalent_gap.md` of the roughcontact repository.", "",
-            "## Equivalent air gap d_eq [µm] (Eq. 25)", "", *_table(result, d_mean, d_half, MICRO, 2, "µm"), "",
-            "## Field-equivalent gap d_field [µm]", "", *_table(result, f_mean, f_half, MICRO, 2, "µm"), "",
+            "## Equivalent air gap d_eq [µm] (Eq. 25)", "",
+            *_table(result, _realisations(result, "equivalent_gap"), MICRO, 2, "µm"), "",
+            "## Field-equivalent gap d_field [µm]", "",
+            *_table(result, _realisations(result, "field_equivalent_gap"), MICRO, 2, "µm"), "",
             *_per_pixel_section(result), "",
-            "## Ridge contact fraction A_R/A0", "", *_table(result, a_mean[:, :, 0], a_half[:, :, 0], 1.0, 3, "-"),
-            "", "## Real contact fraction", "", *_table(result, c_mean, c_half, 100.0, 2, "%"), "",
-            "## Ridge-area gap d_eq,R [µm] (fed to the friction law)", "",
-            *_table(result, r_mean, r_half, MICRO, 3, "µm"), *_clipped_ridge_gap(result), ""]
+            "## Ridge contact fraction A_R/A0 [%]", "",
+            *_table(result, _realisations(result, "ridge_area_fractions"), 100.0, 1, "%", 1.0), "",
+            "## Real contact fraction [%]", "",
+            *_table(result, _realisations(result, "contact_fraction"), 100.0, 2, "%", 1.0),
+            "", "## Ridge-area gap d_eq,R [µm] (fed to the friction law)", "",
+            *_table(result, _realisations(result, "ridge_equivalent_gap"), MICRO, 3, "µm"),
+            *_clipped_ridge_gap(result), ""]
 
     text += ["## Where the equivalent-gap assumption holds and where it fails", ""]
     low = f"{voltages[0]:g} V"                       # the reference voltage of the comparisons (0 V by default)
@@ -349,26 +431,28 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
         on = np.arange(len(voltages)) > 0
         worst = np.nanmax(np.abs(constant))
         held = [f"{v:g} V" for j, v in enumerate(voltages) if on[j] and np.all(np.abs(constant[:, j]) <= HOLDS_WITHIN)]
-        change = (d_mean[:, 0] - d_mean[:, -1]) / d_mean[:, 0]
+        change = d_mean[:, -1] / d_mean[:, 0] - 1
+        within = f"{100 * HOLDS_WITHIN:.0f} %"
         text += [f"* **Voltage independence** (seed: d_eq depends on F_N only). From {low} to {voltages[-1]:g} V d_eq "
-                 "falls by " + ", ".join(f"{100 * c:.0f} % at {f:g} N" for c, f in zip(change, forces)) + ". "
+                 "changes by " + ", ".join(f"{100 * c:+.0f} % at {f:g} N" for c, f in zip(change, forces)) + ". "
                  f"Using the field-equivalent gap of {low} at voltage U misjudges the solved electrostatic force by "
-                 f"up to {100 * worst:.0f} % (table below); it stays within {100 * HOLDS_WITHIN:.0f} % at every load "
-                 + (f"for {', '.join(held)}" if held else "at no voltage") + ".", "",
+                 f"up to {100 * worst:.0f} % (table below); "
+                 + (f"it stays within {within} at every load for {', '.join(held)}." if held else
+                    f"at every voltage above {low} it is off by more than {within} at some load."), "",
                  f"  Force error of the voltage-independent gap, σ_el(d_field({low}), U)/σ̄_el(U) − 1 [%]:",
                  "", *_error_table(forces, voltages[on], 100 * constant[:, on]), ""]
         naive = errors["mean_gap"]
         text += ["* **Arithmetic mean gap instead of Eq. 25**: the mean gap is "
                  + ", ".join(f"{m * MICRO:.1f} µm" for m in result.summary("mean_gap")[0][:, 0])
                  + f" at {low} against d_eq = " + ", ".join(f"{d * MICRO:.2f} µm" for d in d_mean[:, 0])
-                 + f"; σ_el at the mean gap changes the electrostatic force by {100 * np.nanmin(naive):+.0f} % to "
-                 f"{100 * np.nanmax(naive):+.0f} %.", ""]
+                 + f"; σ_el at the mean gap changes the electrostatic force by {_range(100 * naive, '+.0f')} %.", ""]
     else:
         text += [f"* One voltage ({low}) in the scene: its dependence on the voltage is not tested.", ""]
     seed_gap = LinearGap.paper_table1()(forces, 0.0)
     guo = PowerLawGap.guo2019()(forces, 0.0)
-    inside = [f"{f:g} N" for f, d, h, fit in zip(forces, d_mean[:, 0], d_half[:, 0], seed_gap)
-              if abs(d - fit) <= (h if np.isfinite(h) else 0.0)]
+    d_low, d_high = positive_interval(_realisations(result, "equivalent_gap")[:, 0])
+    inside = [f"{f:g} N" for f, low_bound, high_bound, fit in zip(forces, d_low, d_high, seed_gap)
+              if low_bound <= fit <= high_bound]
     text += [f"* **Against the seed's fit (Eq. 46)**: at {low} d_eq = "
              + ", ".join(f"{d * MICRO:.2f} µm" for d in d_mean[:, 0]) + " against Eq. 46's "
              + ", ".join(f"{d * MICRO:.2f}" for d in seed_gap) + " µm and Guo et al.'s power law "
@@ -381,12 +465,12 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
              f"* **Parallel-plate field per pixel** (Eq. 21 pixel by pixel, the assumption behind Eq. 25): on the "
              f"solved gaps it misjudges the solved attraction by {_range(100 * errors['per_pixel'], '+.0f')} % "
              f"({scene.screen.field} field; table above); the (c + g)⁻²-weighted rms gap slope is "
-             f"{np.min(slope):.2f} to {np.max(slope):.2f}.", ""]
+             f"{_range(slope, '.2f')}.", ""]
     lengths = result.coarse_graining
     if len(lengths) > 1:
         ratio = a_mean[:, :, 1:] / a_mean[:, :, :1]
         text += ["* **A_R depends on its coarse-graining length**: closing at "
-                 + ", ".join(f"{l * MICRO:g} µm gives {np.min(ratio[:, :, k]):.2f}–{np.max(ratio[:, :, k]):.2f} ×"
+                 + ", ".join(f"{l * MICRO:g} µm gives {_range(ratio[:, :, k], '.2f', '–')} ×"
                              for k, l in enumerate(lengths[1:]))
                  + f" the A_R at {lengths[0] * MICRO:g} µm (`ridge_area_sensitivity.csv`). d_eq does not depend "
                  "on it; the friction law's F_el = σ_el(d_eq,R) A_R = σ̄_el A0 does not either, only the "
@@ -398,7 +482,17 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
     else:
         rows = _friction_rows(result)
         saturated = sum(row["bottom_up_area_saturated"] for row in rows)
-        text += ["## Friction: bottom-up vs the seed's fitted model (Table 1)", "",
+        bounds = {name: positive_interval(values) for name, values in friction_realisations(result).items()}
+
+        def spread(name, i, j, digits):
+            low, high = (_number(bound[i, j], digits) for bound in bounds[name])
+            return "" if low == high or "nan" in low else f" [{low}, {high}]"        # none: no spread
+
+        text += ["## Friction: bottom-up (the ridge-area recipe) vs the seed's fitted model (Table 1)", "",
+                 "The seed's friction law fed d_eq,R on A_R (`roughcontact.study.friction_recipe`, "
+                 "docs/guide/friction_model.md); the bottom-up μ and F_T are the recipe on the realisation means, "
+                 f"in brackets the recipe evaluated per realisation [{bars_note(result).removeprefix('bars: ')}].",
+                 "",
                  "μ = F_T/F_N: bottom-up / bottom-up with the FE fingertip's area reduction instead of c₂ "
                  "(`roughcontact.fe.feed`, docs/guide/fe_fingertip.md) / bottom-up without the tangential area "
                  "reduction (c₂ = 0) / seed. "
@@ -406,45 +500,49 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
                  "own, larger ridge area) empties the ridge area and F_T = μ0 F_N (the saturation rule of "
                  f"`docs/guide/friction_model.md`): {saturated} of {len(rows)} "
                  "points.", "",
-                 "| F_N [N] | " + " | ".join(f"{v:g} V" for v in voltages) + " |",
-                 "|---" * (len(voltages) + 1) + "|"]
-        for i, force in enumerate(forces):
-            cells = [rows[i * len(voltages) + j] for j in range(len(voltages))]
-            text.append(f"| {force:g} | " + " | ".join(f"{c['bottom_up_friction_coefficient']:.3f} / "
-                                                       f"{c['bottom_up_fe_friction_coefficient']:.3f} / "
-                                                       f"{c['bottom_up_c2_0_friction_coefficient']:.3f} / "
-                                                       f"{c['seed_friction_coefficient']:.3f}" for c in cells) + " |")
-        text += ["", "Ridge area A_R0 [mm²] (bottom-up / seed Eq. 9):", "",
-                 "| F_N [N] | " + " | ".join(f"{v:g} V" for v in voltages) + " |",
-                 "|---" * (len(voltages) + 1) + "|"]
-        for i, force in enumerate(forces):
-            cells = [rows[i * len(voltages) + j] for j in range(len(voltages))]
-            text.append(f"| {force:g} | " + " | ".join(f"{c['bottom_up_ridge_area_mm2']:.1f} / "
-                                                       f"{c['seed_ridge_area_mm2']:.1f}" for c in cells) + " |")
+                 *_friction_table(result, rows, lambda i, j, c: f"{c['bottom_up_friction_coefficient']:.3f}"
+                                  f"{spread('friction_coefficient', i, j, 3)} / "
+                                  f"{c['bottom_up_fe_friction_coefficient']:.3f} / "
+                                  f"{c['bottom_up_c2_0_friction_coefficient']:.3f} / "
+                                  f"{c['seed_friction_coefficient']:.3f}"),
+                 "", "Friction force F_T [N] (bottom-up / seed):", "",
+                 *_friction_table(result, rows, lambda i, j, c: f"{c['bottom_up_tangential_force_N']:.3f}"
+                                  f"{spread('tangential_force', i, j, 3)} / {c['seed_tangential_force_N']:.3f}"),
+                 "", "Ridge area A_R0 [mm²] (bottom-up / seed Eq. 9):", "",
+                 *_friction_table(result, rows, lambda i, j, c: f"{c['bottom_up_ridge_area_mm2']:.1f} / "
+                                  f"{c['seed_ridge_area_mm2']:.1f}")]
         text.append("")
     return "\n".join(text) + "\n"
+
+
+def _friction_table(result: StudyResult, rows: list, cell) -> list:
+    """A loads × voltages table of the friction ``rows`` (:func:`_friction_rows`, in their order), each entry
+    ``cell(i, j, row)``."""
+    count = len(result.voltages)
+    return (["| F_N [N] | " + " | ".join(f"{v:g} V" for v in result.voltages) + " |", "|---" * (count + 1) + "|"]
+            + [f"| {force:g} | " + " | ".join(cell(i, j, rows[i * count + j]) for j in range(count)) + " |"
+               for i, force in enumerate(result.normal_forces)])
 
 
 def _per_pixel_section(result: StudyResult) -> list:
     """The table "how wrong is the per-pixel assumption": F_el of the solve's field and of Eq. 21 pixel by pixel
     on the same solved gap [N], and their ratio with its interval over the realisations."""
-    area = result.array("apparent_area")                  # one per point: the intervals scale with it
-    field_mean, field_half = (area * value for value in result.summary("electrostatic_pressure"))
-    pixel_mean, pixel_half = (area * value for value in result.summary("pixel_law_pressure"))
-    ratio_mean, ratio_half = result.summary("field_ratio")
+    area = result.array("apparent_area")[:, :, None]      # one per point
+    field = area * _realisations(result, "electrostatic_pressure")
+    pixel = area * _realisations(result, "pixel_law_pressure")
+    ratio = _realisations(result, "field_ratio")
     voltages = result.voltages
     lines = ["## How wrong is the per-pixel field assumption", "",
              f"F_el [N] of the solve's `{result.scene.screen.field}` field / F_el [N] of Eq. 21 pixel by pixel on "
-             "the same solved gap (what Eq. 25 assumes) / their ratio, each ± the "
-             f"{CONFIDENCE:.0%} confidence half-width over the realisations (0 V: no force, –; the ratio is the "
+             "the same solved gap (what Eq. 25 assumes) / their ratio, each the realisation mean "
+             f"[{bars_note(result).removeprefix('bars: ')}] (0 V: no force, –; the ratio is the "
              "small-voltage limit on the hard-wall gap):", "",
              "| F_N [N] | " + " | ".join(f"{v:g} V" for v in voltages) + " |", "|---" * (len(voltages) + 1) + "|"]
     for i, force in enumerate(result.normal_forces):
         cells = []
         for j, voltage in enumerate(voltages):
-            forces = (f"{_cell(field_mean[i, j], field_half[i, j], 1.0, 3)} / "
-                      f"{_cell(pixel_mean[i, j], pixel_half[i, j], 1.0, 3)}" if voltage > 0 else "– / –")
-            cells.append(f"{forces} / {_cell(ratio_mean[i, j], ratio_half[i, j], 1.0, 2)}")
+            forces = (f"{_cell(field[i, j], 1.0, 3)} / {_cell(pixel[i, j], 1.0, 3)}" if voltage > 0 else "– / –")
+            cells.append(f"{forces} / {_cell(ratio[i, j], 1.0, 2)}")
         lines.append(f"| {force:g} | " + " | ".join(cells) + " |")
     return lines
 
@@ -459,11 +557,13 @@ def _clipped_ridge_gap(result: StudyResult) -> list:
             "law's electrostatic force falls short of the solved one."]
 
 
-def _range(values, spec) -> str:
+def _range(values, spec, joint=" to ") -> str:
+    """"low to high" of the finite ``values`` formatted with ``spec``; one number where both read the same."""
     finite = np.round(np.asarray(values)[np.isfinite(values)], 12) + 0.0      # + 0.0: no "-0" for a zero error
     if finite.size == 0:
         return "n/a (no voltage above 0 V)"
-    return f"{format(np.min(finite), spec)} to {format(np.max(finite), spec)}"
+    low, high = format(np.min(finite), spec), format(np.max(finite), spec)
+    return low if low == high else f"{low}{joint}{high}"
 
 
 def _yes(condition) -> str:
@@ -480,7 +580,10 @@ def _error_table(forces, voltages, values) -> list:
 
 def write_results(result: StudyResult, out, provenance, seconds: float | None = None) -> dict:
     """Write ``results.nc`` (when xarray and h5netcdf are installed), the CSV tables, the figures and
-    ``report.md`` into the directory ``out``; returns ``{"netcdf": written?, "files": [paths]}``."""
+    ``report.md`` into the directory ``out``; ``seconds`` the run time so far (the study's). Returns
+    ``{"netcdf": written?, "files": [paths], "seconds": the run time the report states}``, the writing
+    included, so that a command can print the report's number."""
+    start = time.perf_counter()
     files = [write_csv(out / "points.csv", _point_rows(result), provenance),
              write_csv(out / "realisations.csv", _realisation_rows(result), provenance),
              write_csv(out / "ridge_area_sensitivity.csv", _sensitivity_rows(result), provenance)]
@@ -494,5 +597,7 @@ def write_results(result: StudyResult, out, provenance, seconds: float | None = 
         data.to_netcdf(out / "results.nc", engine="h5netcdf")
         files.append(out / "results.nc")
     report = out / "report.md"
+    if seconds is not None:
+        seconds += time.perf_counter() - start
     report.write_text(report_text(result, netcdf, seconds))
-    return {"netcdf": netcdf, "files": files + [report]}
+    return {"netcdf": netcdf, "files": files + [report], "seconds": seconds}

@@ -38,6 +38,7 @@ from __future__ import annotations
 import dataclasses
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -48,7 +49,7 @@ from .execution import InProcess, TaskStore, check_executor, make_executor
 from .patch import closing_lengths, realisation_count, resolved_short_cutoff
 from .records import _PER_REALISATION, PointResult, confidence_interval, point_result
 from .resolved import solve_chain
-from .scene import Scene
+from .scene import Scene, load_scene
 
 
 #: The fields of a point with one value per realisation (per closing length and realisation for the A_R).
@@ -125,7 +126,6 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
     store = None if directory is None else TaskStore(output_directory(directory), scene)
     forces, voltages = scene.loads.normal_forces, scene.loads.voltages
     count = realisation_count(scene)
-    cutoff = resolved_short_cutoff(scene) if scene.roughness.enabled else float("nan")
     order = [(r, j) for j in range(len(voltages)) for r in range(count)]
     records = {}
     if store is not None:
@@ -162,8 +162,43 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
             bar.close()
         if store is not None:
             store.release()
+    return _study_result(scene, records, apparent, todo)
+
+
+def _study_result(scene: Scene, records: dict, apparent, todo) -> StudyResult:
+    """The :class:`StudyResult` of every task's ``records`` ({(r, j): records per load}); ``todo`` the tasks
+    solved in this run."""
+    forces, voltages = scene.loads.normal_forces, scene.loads.voltages
+    count = realisation_count(scene)
+    cutoff = resolved_short_cutoff(scene) if scene.roughness.enabled else float("nan")
     table = tuple(tuple(point_result(force, voltage, *apparent[i], [records[(r, j)][i] for r in range(count)])
                         for j, voltage in enumerate(voltages)) for i, force in enumerate(forces))
     return StudyResult(scene=scene, points=table, coarse_graining=closing_lengths(scene), short_cutoff=cutoff,
                        computed=len({j for _, j in todo}) * len(forces),
                        solves=sum(record.solves for key in todo for record in records[key]))
+
+
+def open_results(directory) -> StudyResult:
+    """The :class:`StudyResult` of a finished results directory (``roughcontact run --out DIR`` or
+    ``run_study(scene, DIR)``), read from its ``scene.toml`` and ``tasks/`` without solving anything
+    (``computed`` and ``solves`` are 0). ``roughcontact.study.bottom_up_friction(open_results(DIR))`` is the
+    friction model of that run. ``ValueError`` naming the directory when it holds no scene or misses tasks (the
+    same ``roughcontact run`` command resumes it)."""
+    path = Path(directory)
+    stored = path / "scene.toml"
+    if not stored.is_file():
+        raise ValueError(f"directory = {str(path)!r} holds no scene.toml: not a results directory of "
+                         "'roughcontact run --out' or run_study(scene, directory)")
+    scene = load_scene(stored)
+    store = TaskStore(path, scene)
+    try:
+        order = [(r, j) for j in range(len(scene.loads.voltages)) for r in range(realisation_count(scene))]
+        records = {key: done for key in order if (done := store.load(*key)) is not None}
+    finally:
+        store.release()
+    missing = [store._path(*key).name for key in order if key not in records]
+    if missing:
+        raise ValueError(f"directory = {str(path)!r} is not finished: {len(missing)} of {len(order)} task files "
+                         f"missing or unusable in {store.tasks} ({', '.join(missing[:3])}"
+                         f"{', ...' if len(missing) > 3 else ''}); the same 'roughcontact run' command resumes it")
+    return _study_result(scene, records, apparent_scale(scene), [])

@@ -17,13 +17,13 @@ from roughcontact.macro import TabulatedArea
 from roughcontact.solvers import solve_contact
 from roughcontact.study.apparent import apparent_contact, apparent_scale
 from roughcontact.study.execution import DirectoryInUse, SceneMismatch, StaleTaskWarning, TaskStore
-from roughcontact.study.friction import bottom_up_friction
+from roughcontact.study.friction import bottom_up_friction, friction_realisations
 from roughcontact.study.patch import (patch_body, patch_surface, realisation_count, ridge_area_fraction,
                                       ridge_equivalent_gap, ridge_heights)
 from roughcontact.study.records import confidence_interval
-from roughcontact.study.report import report_text
+from roughcontact.study.report import _range, positive_interval, report_text
 from roughcontact.study.resolved import solve_chain
-from roughcontact.study.run import run_study
+from roughcontact.study.run import open_results, run_study
 from roughcontact.study.scene import Fingerpad, load_scene
 from study_scenes import TINY
 
@@ -261,6 +261,25 @@ def test_tabulated_area_and_bottom_up_friction(tiny_result):
     assert model.state(2.0, 0.0).friction_coefficient == pytest.approx(0.26)
 
 
+def test_friction_per_realisation(tiny_result):
+    # the recipe fed one realisation's tables carries that realisation's solved F_el (sigma_el(d_eq,R) A_R0 =
+    # its sigma_el A0, to the 5 % of the A_R interpolation in w); the spread over realisations is the interval
+    stack = tiny_result.scene.screen.stack()
+    point = tiny_result.points[1][1]
+    samples = friction_realisations(tiny_result)
+    for r in range(2):
+        state = bottom_up_friction(tiny_result, realisation=r).state(2.0, 150.0)
+        assert float(stack.pressure(state.gap, 150.0) * state.initial_area) == pytest.approx(
+            point.electrostatic_pressure[r] * point.apparent_area, rel=0.05)
+        assert samples["friction_coefficient"][1, 1, r] == state.friction_coefficient
+        assert samples["tangential_force"][1, 1, r] == state.tangential_force
+    assert np.all(samples["friction_coefficient"][:, 0] == 0.26)            # 0 V: mu0 in every realisation
+    mean, half = confidence_interval(samples["friction_coefficient"])
+    assert half[0, 1] > 0 and np.all(half[:, 0] == 0)
+    with pytest.raises(ValueError, match=r"realisation = 2; valid: an integer in \[0, 1\]"):
+        bottom_up_friction(tiny_result, realisation=2)
+
+
 def test_resume_after_interruption_recomputes_nothing_done(tiny, tmp_path, monkeypatch):
     solve = resolved.solve_contact
     calls = []
@@ -349,7 +368,10 @@ def test_run_command_end_to_end(tmp_path, capsys):
     scene.write_text(TINY)
     out = tmp_path / "results"
     assert main(["run", str(scene), "--preset", "draft", "--out", str(out), "--workers", "1"]) == 0
-    assert "4 points computed" in capsys.readouterr().out
+    printed = capsys.readouterr().out
+    assert "4 points computed" in printed
+    seconds = re.search(r"; (\d+) s\n", printed).group(1)
+    assert f"Run time {seconds} s, tables and figures included" in (out / "report.md").read_text()
     for name in ("report.md", "points.csv", "realisations.csv", "ridge_area_sensitivity.csv", "friction.csv",
                  "equivalent_gap.png", "voltage_dependence.png", "field_ratio.png", "friction.png", "scene.toml"):
         assert (out / name).is_file(), name
@@ -364,10 +386,30 @@ def test_run_command_end_to_end(tmp_path, capsys):
         assert data["equivalent_gap"].attrs["units"] == "m" and data.attrs["preset"] == "draft"
         assert data.attrs["scene.presets.draft.grid"] == 32 and "roughcontact_version" in data.attrs
         assert data["equivalent_gap"].shape == (2, 2, 2) and data.attrs["field"] == "layered"
+        assert data["bottom_up_friction_coefficient_ci95"].shape == (2, 2)
         for name, unit in (("field_equivalent_gap", "m"), ("pixel_law_pressure", "Pa"), ("field_ratio", "1")):
             assert data[name].attrs["units"] == unit and data[name].shape == (2, 2, 2)
+    # the finished directory gives the run's friction model back without solving: friction.csv's mu and F_T
+    # (written with 17 significant digits) are the recipe's on the study read back
+    back = open_results(out)
+    assert (back.computed, back.solves) == (0, 0)
+    model = bottom_up_friction(back)
+    for row in read_csv(out / "friction.csv"):
+        state = model.state(float(row["normal_force_N"]), float(row["voltage_V"]))
+        assert float(row["bottom_up_friction_coefficient"]) == pytest.approx(float(state.friction_coefficient), rel=1e-12)
+        assert float(row["bottom_up_tangential_force_N"]) == pytest.approx(float(state.tangential_force), rel=1e-12)
+    # their intervals: the study's 95 % Student-t half-width of the recipe evaluated per realisation
+    half = confidence_interval(friction_realisations(back)["friction_coefficient"])[1].ravel()
+    assert [float(row["bottom_up_friction_coefficient_ci95"]) for row in read_csv(out / "friction.csv")] == \
+        pytest.approx(half, rel=1e-12, abs=1e-15)
+    assert half[1] > 0                                     # 0.5 N, 150 V: the realisations differ
     assert main(["run", str(scene), "--preset", "draft", "--out", str(out)]) == 0
     assert "0 points computed" in capsys.readouterr().out
+    (out / "tasks" / "R001_U001.json").unlink()
+    with pytest.raises(ValueError, match=r"is not finished: 1 of 4 task files missing .*R001_U001.json"):
+        open_results(out)
+    with pytest.raises(ValueError, match="holds no scene.toml"):
+        open_results(tmp_path)
     assert main(["run", str(scene), "--preset", "standard", "--out", str(out)]) == 2
     assert "holds the results of another scene" in capsys.readouterr().err
     scene.write_text("[ridges]\nperod = 1\n")
@@ -408,3 +450,34 @@ def test_the_preset_chooses_cold_starts_and_the_dtype():
                                mean_pressure=apparent_contact(cold.fingerpad, force, 1)[1][0])
         assert record.solves == 1 and record.iterations == result.iterations
         assert record.contact_fraction == result.contact_fraction
+
+
+def test_positive_interval_is_the_log_scale_student_t_interval():
+    # two realisations 1 and 4: ln x has mean ln 2 and standard deviation ln 4/sqrt 2, t(1 dof, 97.5 %) = 12.7062;
+    # the interval exp(ln 2 -+ t ln 4/2) stays above 0 where the plain one (2.5 -+ 19.06) does not
+    low, high = positive_interval([[1.0, 4.0]])
+    t = 12.706204736174707
+    assert low[0] == pytest.approx(2 * np.exp(-t * np.log(4) / 2), rel=1e-12) and low[0] > 0
+    assert high[0] == pytest.approx(2 * np.exp(t * np.log(4) / 2), rel=1e-12)
+    mean, half = confidence_interval([[1.0, 4.0]])
+    assert mean[0] - half[0] < 0                            # what the figures drew before
+    # a zero sample (d_eq,R clipped, full contact): the Student-t interval clipped at 0
+    low, high = positive_interval([[0.0, 2.0]])
+    assert low[0] == 0 and high[0] == pytest.approx(1 + t, rel=1e-12)
+    assert np.isnan(positive_interval([[3.0]])[0][0])       # one realisation: no interval
+    # a fraction (bounded by 1), 0.2 and 0.6: the interval of the log-odds ln 0.25 and ln 1.5, inside (0, 1)
+    low, high = positive_interval([[0.2, 0.6]], upper=1.0)
+    centre, spread = np.log(np.sqrt(0.25 * 1.5)), t * np.log(1.5 / 0.25) / 2
+    assert low[0] == pytest.approx(1 / (1 + np.exp(spread - centre)), rel=1e-12)
+    assert high[0] == pytest.approx(1 / (1 + np.exp(-centre - spread)), rel=1e-12) and high[0] < 1
+    assert positive_interval([[0.2, 0.6]])[1][0] > 1        # (the log scale alone would pass 100 %)
+
+
+def test_report_sentences_do_not_degenerate(tiny_result):
+    assert _range(np.array([0.3712, 0.3749]), ".2f") == "0.37" and _range(np.array([0.2, 0.5]), ".1f") == "0.2 to 0.5"
+    report = report_text(tiny_result, False)
+    assert "at no voltage" not in report and " 0.37 to 0.37" not in report
+    assert ("at every voltage above 0 V it is off by more than 10 % at some load" in report
+            or "it stays within 10 % at every load for 150 V" in report)
+    assert "[95% confidence interval over N = 2 realisations, Student-t on the log scale" in report
+    assert "## Ridge contact fraction A_R/A0 [%]" in report and "## Real contact fraction [%]" in report
