@@ -475,44 +475,47 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
                  + f" the A_R at {lengths[0] * MICRO:g} µm (`ridge_area_sensitivity.csv`). d_eq does not depend "
                  "on it; the friction law's F_el = σ_el(d_eq,R) A_R = σ̄_el A0 does not either, only the "
                  "tangential area reduction (Eq. 44, η = c₂/A_R0) does.", ""]
-    if not friction_computed(result):
-        text += ["## Friction", "", f"Not computed: the bottom-up friction law interpolates d_eq,R and A_R in F_N "
-                 f"and needs at least {FRICTION_MIN_LOADS} loads; the scene has one (`loads.normal_forces`), so "
-                 "`friction.csv` and `friction.png` are not written.", ""]
-    else:
-        rows = _friction_rows(result)
-        saturated = sum(row["bottom_up_area_saturated"] for row in rows)
-        bounds = {name: positive_interval(values) for name, values in friction_realisations(result).items()}
-
-        def spread(name, i, j, digits):
-            low, high = (_number(bound[i, j], digits) for bound in bounds[name])
-            return "" if low == high or "nan" in low else f" [{low}, {high}]"        # none: no spread
-
-        text += ["## Friction: bottom-up (the ridge-area recipe) vs the seed's fitted model (Table 1)", "",
-                 "The seed's friction law fed d_eq,R on A_R (`roughcontact.study.friction_recipe`, "
-                 "docs/guide/friction_model.md); the bottom-up μ and F_T are the recipe on the realisation means, "
-                 f"in brackets the recipe evaluated per realisation [{bars_note(result).removeprefix('bars: ')}].",
-                 "",
-                 "μ = F_T/F_N: bottom-up / bottom-up with the FE fingertip's area reduction instead of c₂ "
-                 "(`roughcontact.fe.feed`, docs/guide/fe_fingertip.md) / bottom-up without the tangential area "
-                 "reduction (c₂ = 0) / seed. "
-                 "Where the bottom-up A_R0 is below √c₂ μ0 F_N the seed's reduction law (Eq. 43, c₂ fitted to its "
-                 "own, larger ridge area) empties the ridge area and F_T = μ0 F_N (the saturation rule of "
-                 f"`docs/guide/friction_model.md`): {saturated} of {len(rows)} "
-                 "points.", "",
-                 *_friction_table(result, rows, lambda i, j, c: f"{c['bottom_up_friction_coefficient']:.3f}"
-                                  f"{spread('friction_coefficient', i, j, 3)} / "
-                                  f"{c['bottom_up_fe_friction_coefficient']:.3f} / "
-                                  f"{c['bottom_up_c2_0_friction_coefficient']:.3f} / "
-                                  f"{c['seed_friction_coefficient']:.3f}"),
-                 "", "Friction force F_T [N] (bottom-up / seed):", "",
-                 *_friction_table(result, rows, lambda i, j, c: f"{c['bottom_up_tangential_force_N']:.3f}"
-                                  f"{spread('tangential_force', i, j, 3)} / {c['seed_tangential_force_N']:.3f}"),
-                 "", "Ridge area A_R0 [mm²] (bottom-up / seed Eq. 9):", "",
-                 *_friction_table(result, rows, lambda i, j, c: f"{c['bottom_up_ridge_area_mm2']:.1f} / "
-                                  f"{c['seed_ridge_area_mm2']:.1f}")]
-        text.append("")
+    text += _friction_section(result)
     return "\n".join(text) + "\n"
+
+
+def _friction_section(result: StudyResult) -> list:
+    """The report's friction section: the recipe's μ, F_T and A_R0 beside the seed's (or why it is missing)."""
+    if not friction_computed(result):
+        return ["## Friction", "", f"Not computed: the bottom-up friction law interpolates d_eq,R and A_R in F_N "
+                f"and needs at least {FRICTION_MIN_LOADS} loads; the scene has one (`loads.normal_forces`), so "
+                "`friction.csv` and `friction.png` are not written.", ""]
+    rows = _friction_rows(result)
+    saturated = sum(row["bottom_up_area_saturated"] for row in rows)
+    bounds = {name: positive_interval(values) for name, values in friction_realisations(result).items()}
+
+    def spread(name, i, j, digits):
+        low, high = (_number(bound[i, j], digits) for bound in bounds[name])
+        return "" if low == high or "nan" in low else f" [{low}, {high}]"        # none: no spread
+
+    return ["## Friction: bottom-up (the ridge-area recipe) vs the seed's fitted model (Table 1)", "",
+            "The seed's friction law fed d_eq,R on A_R (`roughcontact.study.friction_recipe`, "
+            "docs/guide/friction_model.md); the bottom-up μ and F_T are the recipe on the realisation means, "
+            f"in brackets the recipe evaluated per realisation [{bars_note(result).removeprefix('bars: ')}].",
+            "",
+            "μ = F_T/F_N: bottom-up / bottom-up with the FE fingertip's area reduction instead of c₂ "
+            "(`roughcontact.fe.feed`, docs/guide/fe_fingertip.md) / bottom-up without the tangential area "
+            "reduction (c₂ = 0) / seed. "
+            "Where the bottom-up A_R0 is below √c₂ μ0 F_N the seed's reduction law (Eq. 43, c₂ fitted to its "
+            "own, larger ridge area) empties the ridge area and F_T = μ0 F_N (the saturation rule of "
+            f"`docs/guide/friction_model.md`): {saturated} of {len(rows)} "
+            "points.", "",
+            *_friction_table(result, rows, lambda i, j, c: f"{c['bottom_up_friction_coefficient']:.3f}"
+                             f"{spread('friction_coefficient', i, j, 3)} / "
+                             f"{c['bottom_up_fe_friction_coefficient']:.3f} / "
+                             f"{c['bottom_up_c2_0_friction_coefficient']:.3f} / "
+                             f"{c['seed_friction_coefficient']:.3f}"),
+            "", "Friction force F_T [N] (bottom-up / seed):", "",
+            *_friction_table(result, rows, lambda i, j, c: f"{c['bottom_up_tangential_force_N']:.3f}"
+                             f"{spread('tangential_force', i, j, 3)} / {c['seed_tangential_force_N']:.3f}"),
+            "", "Ridge area A_R0 [mm²] (bottom-up / seed Eq. 9):", "",
+            *_friction_table(result, rows, lambda i, j, c: f"{c['bottom_up_ridge_area_mm2']:.1f} / "
+                             f"{c['seed_ridge_area_mm2']:.1f}"), ""]
 
 
 def _friction_table(result: StudyResult, rows: list, cell) -> list:
