@@ -8,8 +8,9 @@ Two patches per grid size n: ``bench``, the electrostatic bar's rough patch (1 m
 heights, H = 0.8, short cut-off 8 px, E* = 1 MPa, p̄ = 1 kPa), and ``scene``, the default scene's patch (one ridge
 period with micro-roughness on the layered skin, at the apparent pressure of the first ring at 0.5 N). At each
 voltage the per-pixel law (``field="parallel_plate"``) and the layered field are solved cold at the same
-tolerance; the layered solve's CPU time and FFT pairs (the elastic ones and the field solves' ones) are printed as
-multiples of the per-pixel solve's. Writes ``bench_field.csv`` with its provenance into ``--output``.
+tolerance; the layered solve's CPU time (best of ``--repeat``; CPU, not wall time, so that the ratios hold on a
+shared machine: run with one FFT thread) and FFT pairs (the elastic ones and the field solves' ones) are
+printed as multiples of the per-pixel solve's. Writes ``bench_field.csv`` with its provenance into ``--output``.
 """
 from __future__ import annotations
 
@@ -19,7 +20,7 @@ import time
 from surfaces import Grid, self_affine
 from roughcontact import ElasticHalfSpace, ElectrostaticInteraction, solve_contact
 from roughcontact.electrostatics import DielectricStack
-from roughcontact.io import output_directory, parse_arguments, write_csv
+from roughcontact.io import best_of, count_argument, output_directory, parse_arguments, write_csv
 
 COLUMNS = ("patch", "n", "voltage_V", "field", "time_s", "time_ratio", "iterations", "fft_pairs",
            "fft_pair_ratio", "contact_fraction", "electrostatic_force_N", "field_equivalent_gap_m",
@@ -43,17 +44,6 @@ def scene_patch(n):
     return patch_surface(scene, 0), patch_body(scene), pressure, scene.screen.stack()
 
 
-def timed(solve, repeat):
-    """The result of ``solve()`` and its best CPU time [s] over ``repeat`` calls (the solves are deterministic;
-    CPU time, not wall time, so that the ratios hold on a shared machine: run with one FFT thread,
-    ``ROUGHCONTACT_FFT_THREADS=1``)."""
-    best = float("inf")
-    for _ in range(repeat):
-        start = time.process_time()
-        result = solve()
-        best = min(best, time.process_time() - start)
-    return result, best
-
 
 def rows_for(name, n, args):
     surface, body, pressure, stack = {"bench": bench_patch, "scene": scene_patch}[name](n)
@@ -63,8 +53,9 @@ def rows_for(name, n, args):
         for field in ("parallel_plate", "layered"):
             law = ElectrostaticInteraction(stack, voltage, field=field)
             solve_contact(surface, body, mean_pressure=pressure, tol=args.tol, interaction=law, warn=False)  # warm
-            result, seconds = timed(lambda: solve_contact(surface, body, mean_pressure=pressure, tol=args.tol,
-                                                          interaction=law, warn=False), args.repeat)
+            result, seconds = best_of(lambda: solve_contact(surface, body, mean_pressure=pressure, tol=args.tol,
+                                                            interaction=law, warn=False),
+                                      args.repeat, clock=time.process_time)
             reference = reference or (seconds, result.params["fft_pairs"])
             rows.append(dict(patch=name, n=n, voltage_V=voltage, field=field, time_s=seconds,
                              time_ratio=seconds / reference[0], iterations=result.iterations,
@@ -80,12 +71,6 @@ def rows_for(name, n, args):
     return rows
 
 
-def _at_least_one(text):
-    value = int(text)
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"must be at least 1, got {value}")
-    return value
-
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0],
@@ -94,7 +79,7 @@ def main(argv=None):
     parser.add_argument("--voltages", type=float, nargs="+", default=[30.0, 100.0, 200.0], help="voltages U [V]")
     parser.add_argument("--patches", nargs="+", choices=("bench", "scene"), default=["bench", "scene"])
     parser.add_argument("--tol", type=float, default=1e-8, help="relative tolerance of both solves")
-    parser.add_argument("--repeat", type=_at_least_one, default=1, help="timings per solve; the best is kept")
+    parser.add_argument("--repeat", type=count_argument, default=1, help="timings per solve; the best is kept")
     parser.add_argument("--fast", action="store_true", help="64² and one voltage: a test that the script runs")
     parser.add_argument("--output", default="out", help="directory for bench_field.csv")
     args, provenance = parse_arguments(parser, argv, "studies/bench_field.py")

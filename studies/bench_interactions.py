@@ -24,7 +24,7 @@ import numpy as np
 from surfaces import Grid, self_affine
 from roughcontact import ElasticHalfSpace, ElectrostaticInteraction, solve_contact
 from roughcontact.electrostatics import DielectricStack
-from roughcontact.io import output_directory, parse_arguments, write_csv
+from roughcontact.io import best_of, count_argument, output_directory, parse_arguments, write_csv
 
 COLUMNS = ("section", "n", "voltage_V", "time_s", "time_ratio", "iterations", "fft_pairs", "fft_pair_ratio",
            "contact_fraction", "equivalent_gap_m", "converged", "relative_difference", "note")
@@ -36,22 +36,13 @@ def patch(n, E_star):
     return surface, ElasticHalfSpace(grid, E_star=E_star, planner_effort="FFTW_MEASURE")
 
 
-def timed(solve, repeat=1):
-    """The result of ``solve()`` and its best wall time [s] over ``repeat`` calls (the solves are deterministic)."""
-    best = float("inf")
-    for _ in range(repeat):
-        start = time.perf_counter()
-        result = solve()
-        best = min(best, time.perf_counter() - start)
-    return result, best
-
 
 def rows_for(n, args):
     surface, half = patch(n, args.E_star)
     stack = DielectricStack()
     solve_contact(surface, half, mean_pressure=args.pressure, tol=args.tol)              # JIT and plans warm
-    hard, hard_time = timed(lambda: solve_contact(surface, half, mean_pressure=args.pressure, tol=args.tol),
-                            args.repeat)
+    hard, hard_time = best_of(lambda: solve_contact(surface, half, mean_pressure=args.pressure, tol=args.tol),
+                              args.repeat)
     rows = [dict(section="hard_wall", n=n, voltage_V=0.0, time_s=hard_time, time_ratio=1.0,
                  iterations=hard.iterations, fft_pairs=hard.solver.fft_pairs, fft_pair_ratio=1.0,
                  contact_fraction=hard.contact_fraction, equivalent_gap_m=stack.equivalent_gap(hard.gap),
@@ -62,8 +53,8 @@ def rows_for(n, args):
         law = ElectrostaticInteraction(stack, voltage, field="parallel_plate")
         for kind in ("cold", "continuation"):
             x0 = previous if kind == "continuation" and previous is not None and voltage > 0 else None
-            res, seconds = timed(lambda: solve_contact(surface, half, mean_pressure=args.pressure, tol=args.tol,
-                                                       interaction=law, x0=x0, warn=False), args.repeat)
+            res, seconds = best_of(lambda: solve_contact(surface, half, mean_pressure=args.pressure, tol=args.tol,
+                                                         interaction=law, x0=x0, warn=False), args.repeat)
             sweeps[kind] += seconds
             rows.append(dict(section=f"electrostatic_{kind}", n=n, voltage_V=voltage, time_s=seconds,
                              time_ratio=seconds / hard_time, iterations=res.iterations,
@@ -146,8 +137,8 @@ def peer_rows(n, args):
     for voltage in args.peer_voltages:
         law = ElectrostaticInteraction(DielectricStack(), voltage, field="parallel_plate")
         operating = solve_contact(surface, half, mean_pressure=args.pressure, tol=args.tol, interaction=law)
-        ours, ours_time = timed(lambda: solve_contact(surface, half, penetration=operating.penetration,
-                                                      tol=args.tol, interaction=law))
+        ours, ours_time = best_of(lambda: solve_contact(surface, half, penetration=operating.penetration,
+                                                        tol=args.tol, interaction=law))
         seconds, pressure, _ = tamaas_electrostatic(surface, args.E_star, law, ours.mean_gap, args.tol)
         rows.append(dict(section="peer_tamaas", n=n, voltage_V=voltage, time_s=seconds, time_ratio=seconds / ours_time,
                          relative_difference=abs(pressure / ours.mean_pressure - 1), iterations=ours.iterations,
@@ -155,20 +146,14 @@ def peer_rows(n, args):
                          note="at our mean gap; relative difference of the mean pressure"))
         seconds, pressure, mean_gap, fraction = contactmechanics_electrostatic(
             surface, args.E_star, law, operating.flat_position, args.gtol)
-        ours, ours_time = timed(lambda: solve_contact(surface, half, mean_pressure=pressure, tol=args.tol,
-                                                      interaction=law))
+        ours, ours_time = best_of(lambda: solve_contact(surface, half, mean_pressure=pressure, tol=args.tol,
+                                                        interaction=law))
         rows.append(dict(section="peer_contactmechanics", n=n, voltage_V=voltage, time_s=seconds,
                          time_ratio=seconds / ours_time, relative_difference=abs(mean_gap / ours.mean_gap - 1),
                          iterations=ours.iterations, contact_fraction=fraction, converged=ours.converged,
                          note="ours at their load; relative difference of the mean gap"))
     return rows
 
-
-def _at_least_one(text):
-    value = int(text)
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"must be at least 1, got {value}")
-    return value
 
 
 def main(argv=None):
@@ -180,7 +165,7 @@ def main(argv=None):
     parser.add_argument("--E-star", type=float, default=1e6, help="contact modulus E* [Pa]")
     parser.add_argument("--pressure", type=float, default=1e3, help="external load p̄ [Pa]")
     parser.add_argument("--tol", type=float, default=1e-8, help="relative tolerance of both solvers")
-    parser.add_argument("--repeat", type=_at_least_one, default=1,
+    parser.add_argument("--repeat", type=count_argument, default=1,
                         help="solves per timing; the best time is kept (the machine's other load only adds)")
     parser.add_argument("--peers", action="store_true", help="also Tamaas and ContactMechanics + Adhesion")
     parser.add_argument("--peer-voltages", type=float, nargs="+", default=[3.0, 10.0],

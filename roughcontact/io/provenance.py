@@ -16,11 +16,13 @@ last level of the path (a missing parent is a typo more often than a wish) and r
 """
 from __future__ import annotations
 
+import argparse
 import csv
 import json
 import os
 import shlex
 import sys
+import time
 from dataclasses import dataclass, field
 from datetime import datetime, timezone
 from pathlib import Path
@@ -73,6 +75,25 @@ def parse_arguments(parser, argv, program: str) -> tuple:
     args = parser.parse_args(argv)
     parameters = {key: value for key, value in vars(args).items() if not callable(value)}
     return args, Provenance.of_command(program, argv, parameters)
+
+
+def count_argument(text) -> int:
+    """An ``argparse`` type: a whole number of at least 1 (a study's ``--repeat``)."""
+    value = int(text)
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be at least 1, got {value}")
+    return value
+
+
+def best_of(solve, repeat: int = 1, clock=time.perf_counter) -> tuple:
+    """The result of ``solve()`` and its shortest time [s] by ``clock`` over ``repeat`` calls (for deterministic
+    solves: the least-disturbed timing)."""
+    best = float("inf")
+    for _ in range(repeat):
+        start = clock()
+        result = solve()
+        best = min(best, clock() - start)
+    return result, best
 
 
 def output_directory(path) -> Path:
