@@ -77,17 +77,6 @@ def test_zero_voltage_is_the_hard_wall_bit_for_bit():
     assert res.electrostatic_force == 0.0
 
 
-def test_load_and_position_control_agree():
-    surface, half = rough_patch()
-    law = layered(30.0)
-    by_load = solve_contact(surface, half, mean_pressure=1e3, interaction=law, tol=1e-10)
-    by_position = solve_contact(surface, half, penetration=by_load.penetration, interaction=law, tol=1e-10,
-                                x0=by_load)
-    assert by_load.converged and by_position.converged
-    assert by_position.mean_pressure == pytest.approx(1e3, rel=1e-5)
-    np.testing.assert_allclose(by_position.gap, by_load.gap, atol=1e-6 * 3e-6)          # 1e-6 of the rms height
-
-
 def test_equilibrium_check_fails_on_an_unconverged_solve():
     surface, half = rough_patch()
     res = solve_contact(surface, half, mean_pressure=1e3, interaction=layered(30.0), maxiter=3, warn=False)

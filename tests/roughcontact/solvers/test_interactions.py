@@ -269,9 +269,10 @@ def test_equivalent_gap_falls_with_load():
                                   {"thickness": 2e-4, "poisson": 0.45, "bottom": "frictionless"},
                                   {"thickness": 2e-5, "poisson": 0.45, "substrate_E_star": 5e5,
                                    "substrate_poisson": 0.49}])
-def test_load_and_position_control_agree(body):
+@pytest.mark.parametrize("field", ["layered", "parallel_plate"])
+def test_load_and_position_control_agree(body, field):
     surface, half = rough_patch(**body)
-    law = ElectrostaticInteraction(STACK, 30.0)
+    law = ElectrostaticInteraction(STACK, 30.0, field=field)
     by_load = solve_contact(surface, half, mean_pressure=1e3, interaction=law, tol=1e-10)
     # started from the load-controlled answer (a non-convex problem has several equilibria; each start finds one)
     by_position = solve_contact(surface, half, penetration=by_load.penetration, interaction=law, tol=1e-10,
