@@ -7,6 +7,8 @@ iterations — the realistic use and the hard case for the solver. Results depen
 """
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
 import surfaces
@@ -23,12 +25,17 @@ HURST, RMS_SLOPE, CUTOFF_PIXELS = 0.8, 0.1, 4
 SWEEP_STEPS = 20
 
 
-def rough_surface(n: int, seed: int = 0, periodic: bool = True) -> surfaces.HeightField:
-    """The benchmark surface on an n² grid (seed 0: the one of docs/dev/benchmarks.md); ``periodic=False``: the same
-    heights on a free-surface (non-periodic) grid."""
+def rough_surface(n: int, rng=0, periodic: bool = True, *, seed=None) -> surfaces.HeightField:
+    """The benchmark surface on an n² grid (``rng`` 0: the one of docs/dev/benchmarks.md); ``periodic=False``: the
+    same heights on a free-surface (non-periodic) grid. ``seed``, the former name of ``rng``, is accepted with a
+    ``DeprecationWarning`` for one release."""
+    if seed is not None:
+        warnings.warn("rough_surface(seed=) is now rng=, as everywhere in surfaces and roughcontact", DeprecationWarning,
+                      stacklevel=2)
+        rng = seed
     grid = surfaces.Grid((n, n), (LENGTH, LENGTH), periodic=True)
     field = surfaces.self_affine(grid, hurst=HURST, rms_slope=RMS_SLOPE, short_cutoff=CUTOFF_PIXELS * LENGTH / n,
-                                 rng=seed)
+                                 rng=rng)
     if periodic:
         return field
     return surfaces.HeightField(surfaces.Grid((n, n), (LENGTH, LENGTH), periodic=False), field.heights)

@@ -6,10 +6,10 @@ from roughcontact.reference.benchmark import CUTOFF_PIXELS, LENGTH, contact_patc
 
 
 def test_rough_surface_is_seeded_and_keeps_its_heights_on_a_free_grid():
-    periodic, free = rough_surface(32, seed=3), rough_surface(32, seed=3, periodic=False)
+    periodic, free = rough_surface(32, rng=3), rough_surface(32, rng=3, periodic=False)
     assert all(periodic.grid.periodic) and not any(free.grid.periodic)
     np.testing.assert_array_equal(periodic.heights, free.heights)
-    assert not np.array_equal(periodic.heights, rough_surface(32, seed=4).heights)
+    assert not np.array_equal(periodic.heights, rough_surface(32, rng=4).heights)
     assert periodic.grid.lengths == (LENGTH, LENGTH) and CUTOFF_PIXELS == 4
 
 
@@ -23,3 +23,9 @@ def test_contact_patches(periodic, expected):
     contact[2:4, 2:5] = True                                      # a 2×3 block
     contact[0, 0] = contact[-1, 0] = contact[0, -1] = True         # three pixels joined across the periodic edges
     assert contact_patches(contact, periodic=periodic) == expected
+
+
+def test_seed_is_the_former_name_of_rng():
+    with pytest.warns(DeprecationWarning, match="rng"):
+        former = rough_surface(16, seed=5)
+    assert np.array_equal(former.heights, rough_surface(16, rng=5).heights)
