@@ -103,6 +103,7 @@ def _result_types() -> dict:
     while pending:
         kind = pending.pop()
         found[kind.__qualname__] = kind
+        found.update(dict.fromkeys(getattr(kind, "former_names", ()), kind))   # a renamed class's saved files
         pending.extend(kind.__subclasses__())
     return found
 
@@ -214,7 +215,7 @@ class SavableResult:
     @classmethod
     def load(cls, path):
         arrays, metadata = _read(path)
-        if metadata.get("kind") != cls.__qualname__:
+        if metadata.get("kind") not in (cls.__qualname__, *getattr(cls, "former_names", ())):
             raise ValueError(f"{path} holds a {metadata.get('kind')!r}, not a {cls.__qualname__}")
         unknown = set()
         try:

@@ -7,13 +7,13 @@ Inside, imports run one way: :mod:`.inputs` and :mod:`.result` (what every solve
 """
 from __future__ import annotations
 
-from .continuation import JUMP_AREA, LoadPath, PullOff, load_cycle, pull_off
+from .continuation import JUMP_AREA, LoadCycle, LoadPath, PullOff, load_cycle, pull_off
 from .dispatch import solve_contact
 from .inputs import default_tolerance
 from .problem import ContactProblem
 from .result import PERIMETER_CORRECTION, ContactResult, SolverReport, SolverState, boundary_edges
 from .sweep import PREDICTORS, load_path
 
-__all__ = ["ContactProblem", "ContactResult", "JUMP_AREA", "LoadPath", "PERIMETER_CORRECTION", "PREDICTORS",
+__all__ = ["ContactProblem", "ContactResult", "JUMP_AREA", "LoadCycle", "LoadPath", "PERIMETER_CORRECTION", "PREDICTORS",
            "PullOff", "SolverReport", "SolverState", "boundary_edges", "default_tolerance", "load_cycle", "load_path", "pull_off",
            "solve_contact"]

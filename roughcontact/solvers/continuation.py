@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import warnings
 from dataclasses import dataclass, field
+from typing import ClassVar
 
 import numpy as np
 
@@ -26,8 +27,10 @@ JUMP_AREA = 0.02
 
 
 @dataclass(frozen=True, eq=False)
-class LoadPath(SavableResult):
-    """The equilibria along a sequence of external loads ``loads`` [Pa] (mean pressures), in order.
+class LoadCycle(SavableResult):
+    """The equilibria of :func:`load_cycle` along a sequence of external loads ``loads`` [Pa] (mean pressures),
+    in order (named ``LoadPath`` before; files saved under that name load, and the name stays an alias for one
+    release).
 
     Per step: ``contact_fraction``, ``mean_gap`` [m], ``flat_position`` s [m], ``converged``, ``detached``
     (a tensile load beyond pull-off: no equilibrium) and ``unstable_steps`` (the solve's steps along which the
@@ -48,6 +51,9 @@ class LoadPath(SavableResult):
     jump_area: float
     results: tuple = field(default=(), repr=False)
 
+    #: the class's former name, under which files were saved (they load as a LoadCycle)
+    former_names: ClassVar[tuple] = ("LoadPath",)
+
 
 def _jump(previous: ContactResult, current: ContactResult, jump_area: float):
     """The kind of jump between two consecutive equilibria, or None."""
@@ -64,7 +70,7 @@ def _jump(previous: ContactResult, current: ContactResult, jump_area: float):
 
 
 def load_cycle(problem: ContactProblem, loads, x0: ContactResult | None = None, jump_area=JUMP_AREA,
-               keep_results=False, progress=False, **solver_options) -> LoadPath:
+               keep_results=False, progress=False, **solver_options) -> LoadCycle:
     """Solve ``problem`` at each of the external ``loads`` [Pa] in order, each step started from the previous
     equilibrium (the first from ``x0`` or cold), and flag the jumps (module docstring). A detachment ends the
     path (nothing is left to continue from). ``solver_options`` go to ``problem.solve``."""
@@ -85,7 +91,7 @@ def load_cycle(problem: ContactProblem, loads, x0: ContactResult | None = None, 
         if result.detached:
             break
         previous = result
-    return LoadPath(
+    return LoadCycle(
         loads=loads[:len(results)], contact_fraction=np.array([r.contact_fraction for r in results]),
         mean_gap=np.array([r.mean_gap for r in results]), flat_position=np.array([r.flat_position for r in results]),
         converged=np.array([r.converged for r in results]),
@@ -155,4 +161,7 @@ def pull_off(problem: ContactProblem, start: ContactResult, step, tol=1e-3, max_
                    bracket=(attached.mean_pressure, detached_load), last_attached=attached, solves=solves)
 
 
-__all__ = ["LoadPath", "PullOff", "load_cycle", "pull_off", "JUMP_AREA"]
+#: The former name of :class:`LoadCycle` (one release).
+LoadPath = LoadCycle
+
+__all__ = ["LoadCycle", "LoadPath", "PullOff", "load_cycle", "pull_off", "JUMP_AREA"]

@@ -416,14 +416,14 @@ def test_float32_on_the_layered_skin_at_200_volts():
 
 
 def test_paths_save_and_load_with_their_results(tmp_path):
-    # a LoadPath keeps its ContactResults and a PullOff its last attached equilibrium: both round-trip whole
-    from roughcontact.solvers import LoadPath, PullOff, load_cycle, pull_off
+    # a LoadCycle keeps its ContactResults and a PullOff its last attached equilibrium: both round-trip whole
+    from roughcontact.solvers import LoadCycle, PullOff, load_cycle, pull_off
 
     n = 256
     surface, half = sinusoid(n)
     problem = ContactProblem(surface, half, johnson_law(0.2, 0.05))
     path = load_cycle(problem, [0.1, 0.3], keep_results=True)
-    loaded = LoadPath.load(path.save(tmp_path / "path.npz"))
+    loaded = LoadCycle.load(path.save(tmp_path / "path.npz"))
     assert loaded.jumps == path.jumps and isinstance(loaded.results[1], ContactResult)
     np.testing.assert_array_equal(loaded.results[1].gap, path.results[1].gap)
     np.testing.assert_array_equal(loaded.contact_fraction, path.contact_fraction)
@@ -435,3 +435,20 @@ def test_paths_save_and_load_with_their_results(tmp_path):
     assert again.last_attached.interaction == found.last_attached.interaction
     np.testing.assert_array_equal(again.last_attached.pressure, found.last_attached.pressure)
     assert not again.last_attached.pressure.flags.writeable
+
+
+def test_a_load_cycle_saved_under_its_former_name_loads(tmp_path):
+    # LoadCycle was LoadPath: a file whose record names the former class loads as a LoadCycle, the old name is an
+    # alias for one release, and a file of another result class is still refused
+    from roughcontact.solvers import LoadCycle, LoadPath, load_cycle
+    from surfaces.io import load_npz, save_npz
+    surface, half = rough_patch(32)
+    cycle = load_cycle(ContactProblem(surface, half, ElectrostaticInteraction(STACK, 30.0)), [1e3, 0.0])
+    arrays, metadata = load_npz(cycle.save(tmp_path / "cycle.npz"))
+    assert metadata["kind"] == "LoadCycle"
+    renamed = save_npz(tmp_path / "former.npz", arrays, {**metadata, "kind": "LoadPath"})
+    loaded = LoadCycle.load(renamed)
+    assert LoadPath is LoadCycle and isinstance(loaded, LoadCycle)
+    np.testing.assert_array_equal(loaded.contact_fraction, cycle.contact_fraction)
+    with pytest.raises(ValueError, match="not a ContactResult"):
+        ContactResult.load(renamed)
