@@ -20,6 +20,7 @@ discretisation error is the floor of what ``--preset auto`` can promise (:func:`
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -182,6 +183,30 @@ def describe(preset: Preset, name: str, table=None) -> str:
                 f"`docs/guide/presets.md`): {errors}; {entry.cpu_seconds:.3g} CPU seconds for those four points. It "
                 "holds for scenes like these; a scene far from them may err differently.")
     return text + _discretisation_sentence(entry)
+
+
+#: The sections of a scene whose physics the measured errors depend on, and the range of the one key the measured
+#: scenes vary (the default scene, and it with 5 and 1 µm rms roughness: ``studies/preset_pareto.py``).
+_PHYSICS_SECTIONS = ("fingerpad", "ridges", "roughness", "skin", "screen", "ridge_area")
+_MEASURED_RMS_HEIGHT = (1e-6, 5e-6)
+
+
+def applicability(scene: Scene) -> str:
+    """For the report beside :func:`describe`: nothing where ``scene``'s physics lies within the measured scenes'
+    (the default scene with a roughness rms height of 1–5 µm), otherwise a sentence naming the keys by which it
+    differs."""
+    default = load_scene()
+    differing = [f"{section}.{f.name}" for section in _PHYSICS_SECTIONS
+                 for f in dataclasses.fields(getattr(scene, section))
+                 if not (section == "roughness" and f.name == "rms_height")
+                 and getattr(getattr(scene, section), f.name) != getattr(getattr(default, section), f.name)]
+    rms = scene.roughness.rms_height
+    if not _MEASURED_RMS_HEIGHT[0] <= rms <= _MEASURED_RMS_HEIGHT[1]:
+        differing.append(f"roughness.rms_height = {rms:g} m (measured: 1–5 µm)")
+    if not differing:
+        return ""
+    return (" These errors were measured on the default scene with 1, 3 and 5 µm rms roughness; this scene differs "
+            f"in {', '.join(differing)}, so its errors may differ and are not known.")
 
 
 def _discretisation_sentence(entry: Measurement) -> str:

@@ -18,7 +18,7 @@ from ..io.provenance import save_figure, write_csv
 from ..macro import LinearGap, PowerLawGap, SlidingFrictionModel
 from .friction import (FRICTION_MIN_LOADS, HOLDS_WITHIN, assumption_errors, bottom_up_friction, friction_computed,
                        friction_realisations)
-from .presets import describe
+from .presets import applicability, describe
 from .records import CONFIDENCE, confidence_interval
 from .run import StudyResult
 from .scene import measured_topography
@@ -393,7 +393,7 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
             + (f" Run time {seconds:.0f} s, tables and figures included ({result.computed} points computed with "
                f"{result.solves} solves, "
                f"{result.array('seconds').size - result.computed} read back)." if seconds is not None else ""), "",
-            describe(preset, scene.study.preset) if not scene.roughness.topography else
+            describe(preset, scene.study.preset) + applicability(scene) if not scene.roughness.topography else
             "The presets' measured errors (`docs/guide/presets.md`) are those of synthetic patches on the preset's "
             "grid and do not apply here: the measured patch is solved on the scan's own pixels, so its resolution "
             "is the instrument's.", "",

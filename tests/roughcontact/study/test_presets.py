@@ -164,3 +164,15 @@ def test_reports_state_the_discretisation_error_of_the_presets_pixel():
     assert "Discretisation error" in text
     assert f"{100 * entry.discretisation['fel_error']:.2g} % low" in text
     assert 0.05 < entry.discretisation["fel_error"] < 0.3
+
+
+def test_the_report_says_where_the_measured_errors_do_not_apply():
+    # issue 26 §3: the measured errors hold for the default scene with 1-5 µm rms roughness; a steeper surface
+    # (another Hurst exponent), a 10 µm rms or another skin is named as outside them
+    from roughcontact.study.presets import applicability
+    from roughcontact.study.scene import load_scene
+    assert applicability(load_scene()) == ""
+    assert applicability(load_scene(text="[roughness]\nrms_height = 5e-6\n")) == ""
+    steep = applicability(load_scene(text="[roughness]\nhurst = 0.3\n[skin]\nE_star = 2e5\n"))
+    assert "roughness.hurst" in steep and "skin.E_star" in steep and "may differ" in steep
+    assert "rms_height = 1e-05" in applicability(load_scene(text="[roughness]\nrms_height = 1e-5\n"))
