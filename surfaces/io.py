@@ -32,8 +32,11 @@ def _jsonable(value):
 
 
 def save_npz(path, arrays: dict, metadata: dict) -> Path:
-    """Write ``arrays`` and the JSON-serialisable ``metadata`` to a compressed ``.npz`` file; return its path."""
+    """Write ``arrays`` and the JSON-serialisable ``metadata`` to a compressed ``.npz`` file; return its path
+    (``.npz`` is appended to a path without it). A path that is a directory is refused (``IsADirectoryError``)."""
     path = Path(path)
+    if path.is_dir():
+        raise IsADirectoryError(f"{path} is a directory; give the file to write, e.g. {path / 'result.npz'}")
     if path.suffix != ".npz":
         path = path.with_suffix(path.suffix + ".npz") if path.suffix else path.with_suffix(".npz")
     if _METADATA_KEY in arrays:

@@ -146,6 +146,12 @@ class TabulatedGap:
             value.flags.writeable = False
             object.__setattr__(self, name, value)
 
+    def __setstate__(self, state):
+        """Unpickling: the table checked again and its arrays read-only, as when it was made."""
+        for name, value in state.items():
+            object.__setattr__(self, name, value)
+        self.__post_init__()
+
     def __eq__(self, other):
         return type(other) is type(self) and all(
             np.array_equal(getattr(self, k), getattr(other, k)) for k in ("normal_forces", "voltages", "gaps"))

@@ -397,3 +397,10 @@ def test_mirrored_window_is_periodic_without_edge_steps():
     assert profile.grid.shape == (8, 1) and profile.heights[:, 0].tolist() == [0, 1e-6, 2e-6, 3e-6, 3e-6, 2e-6, 1e-6, 0]
     with pytest.raises(ValueError, match="already periodic"):
         mirrored.mirrored()
+
+
+def test_saving_onto_a_directory_is_refused(tmp_path):
+    # a directory given as the file to write used to write "<directory>.npz" beside it without a word
+    with pytest.raises(IsADirectoryError, match="is a directory"):
+        surfaces.io.save_npz(tmp_path, {"x": np.zeros(2)}, {"kind": "Something"})
+    assert not tmp_path.with_suffix(".npz").exists()

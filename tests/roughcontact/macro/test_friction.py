@@ -187,3 +187,12 @@ def test_pickle_and_save_round_trip(tmp_path):
     for copy in (pickle.loads(pickle.dumps(state)), SlidingState.load(state.save(tmp_path / "state.npz"))):
         for name in state.__dataclass_fields__:
             np.testing.assert_array_equal(getattr(copy, name), getattr(state, name))
+
+
+def test_a_pickled_tabulated_gap_is_read_only_again():
+    import pickle
+    gap = TabulatedGap(np.array([0.5, 2.0]), np.array([0.0, 100.0]), np.array([[3e-6, 2e-6], [2e-6, 1e-6]]))
+    copy = pickle.loads(pickle.dumps(gap))
+    assert copy == gap and not copy.gaps.flags.writeable and not copy.normal_forces.flags.writeable
+    with pytest.raises(ValueError, match="read-only"):
+        copy.gaps[0, 0] = 0.0
