@@ -405,12 +405,9 @@ class FieldLaw:
     parallel plate).
     """
 
-    def __init__(self, stack: DielectricStack, voltage: float, grid: Grid, model: str = "layered",
-                 tol: float = DEFAULT_TOL, backend: str = "pyfftw", threads=None):
-        if model != "layered":
-            raise ValueError(f"model = {model!r}: FieldLaw is the layered field's law (the parallel plate is a "
-                             "local law the solver evaluates pixel by pixel)")
-        self.field = StackField(stack, grid, model=model, backend=backend, threads=threads)
+    def __init__(self, stack: DielectricStack, voltage: float, grid: Grid, tol: float = DEFAULT_TOL,
+                 backend: str = "pyfftw", threads=None):
+        self.field = StackField(stack, grid, model="layered", backend=backend, threads=threads)
         self.voltage, self.tol = float(voltage), tol
         self._work = tuple(np.zeros(grid.shape) for _ in range(4))   # factor, R, 1/(M_ii + R_ii), D₁
         self.fft_pairs = 0                     # over all evaluations: one per CG iteration and per start

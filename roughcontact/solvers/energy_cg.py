@@ -543,12 +543,14 @@ class _Solver:
         self.pel_field, self.trial_field, self.work, self.z_field, self.w_field = (body.empty() for _ in range(5))
         self.d, self.r, self.r_prev = np.zeros(n, dtype), np.zeros(n, dtype), np.zeros(n, dtype)
         self.free = np.zeros(n, np.bool_)
-        self.law_now = [np.zeros(n, dtype) for _ in range(4)]     # p_int, k at g (the layered law: flux, R)
-        self.law_trial = [np.zeros(n, dtype) for _ in range(4)]   # the same at the trial gap
         self.window_view = tuple(slice(0, m) for m in grid.shape)  # the grid in the corner of the body's fields
-        self.field = None                                          # the layered law, evaluated by field solves
-        if isinstance(law, ElectrostaticInteraction) and not law.local:
-            self.field = FieldLaw(law.stack, law.voltage, grid, model=law.field)
+        # the layered law, evaluated by field solves on the window; it also carries its unit-voltage flux and
+        # column elastance per point (zero outside the window)
+        self.field = FieldLaw(law.stack, law.voltage, grid) \
+            if isinstance(law, ElectrostaticInteraction) and not law.local else None
+        arrays = 2 if self.field is None else 4
+        self.law_now = [np.zeros(n, dtype) for _ in range(arrays)]     # p_int, k at g (and D₁, R)
+        self.law_trial = [np.zeros(n, dtype) for _ in range(arrays)]   # the same at the trial gap
         self.pixel_compliance = body.pixel_compliance
         # float32 fields carry the energy's terms to a few ε32: a smaller rise is round-off, not a rise
         self.round_off = max(ENERGY_ROUND_OFF, 3 * float(np.finfo(dtype).eps))
@@ -563,7 +565,7 @@ class _Solver:
     def evaluate(self, gap, pel, arrays):
         """Π/A, its magnitude and Σ V at ``gap`` with elastic traction ``pel``; the law evaluated into ``arrays``."""
         if self.field is None:
-            sums = _evaluate(self.law, self.code, gap, self.window, self.energy.h_f, pel, *arrays[:2])
+            sums = _evaluate(self.law, self.code, gap, self.window, self.energy.h_f, pel, *arrays)
         else:
             sums = _work_terms(gap, self.energy.h_f, pel) + (self.evaluate_field(gap, arrays),)
         return self.energy.value(*sums, self.n) + (sums[-1],)
@@ -573,8 +575,9 @@ class _Solver:
         from the accepted gap's flux; returns Σ V."""
         shape, inside = self.pel_field.shape, self.window_view
         traction, stiffness, flux, columns = (array.reshape(shape)[inside] for array in arrays)
-        start = tuple(array.reshape(shape)[inside] for array in self.law_now[3:1:-1]) \
-            if self.field.evaluations else None
+        start = None
+        if self.field.evaluations:                     # the accepted gap's columns and flux
+            start = tuple(array.reshape(shape)[inside] for array in (self.law_now[3], self.law_now[2]))
         return self.field.evaluate(gap.reshape(shape)[inside], traction, stiffness, flux, columns, start=start)
 
     def run(self, tol, maxiter, callback, warn, half, heights, control, requested, start_kind, start):
