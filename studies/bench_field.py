@@ -10,7 +10,8 @@ period with micro-roughness on the layered skin, at the apparent pressure of the
 voltage the per-pixel law (``field="parallel_plate"``) and the layered field are solved cold at the same
 tolerance; the layered solve's CPU time (best of ``--repeat``; CPU, not wall time, so that the ratios hold on a
 shared machine: run with one FFT thread) and FFT pairs (the elastic ones and the field solves' ones) are
-printed as multiples of the per-pixel solve's. Writes ``bench_field.csv`` with its provenance into ``--output``.
+printed as multiples of the per-pixel solve's. Writes ``bench_field.csv`` with its provenance into ``--output``,
+with the steps, the steps across an instability and the field solves' FFT pairs and evaluations of each solve.
 """
 from __future__ import annotations
 
@@ -22,9 +23,9 @@ from roughcontact import ElasticHalfSpace, ElectrostaticInteraction, solve_conta
 from roughcontact.electrostatics import DielectricStack
 from roughcontact.io import best_of, count_argument, output_directory, parse_arguments, write_csv
 
-COLUMNS = ("patch", "n", "voltage_V", "field", "time_s", "time_ratio", "iterations", "fft_pairs",
-           "fft_pair_ratio", "contact_fraction", "electrostatic_force_N", "field_equivalent_gap_m",
-           "equivalent_gap_m", "converged")
+COLUMNS = ("patch", "n", "voltage_V", "field", "time_s", "time_ratio", "iterations", "unstable_steps", "fft_pairs",
+           "field_fft_pairs", "field_evaluations", "fft_pair_ratio", "contact_fraction", "electrostatic_force_N",
+           "field_equivalent_gap_m", "equivalent_gap_m", "converged")
 
 
 def bench_patch(n):
@@ -59,6 +60,9 @@ def rows_for(name, n, args):
             reference = reference or (seconds, result.params["fft_pairs"])
             rows.append(dict(patch=name, n=n, voltage_V=voltage, field=field, time_s=seconds,
                              time_ratio=seconds / reference[0], iterations=result.iterations,
+                             unstable_steps=result.unstable_steps,
+                             field_fft_pairs=result.solver.details.get("field_fft_pairs", 0),
+                             field_evaluations=result.solver.details.get("field_evaluations", 0),
                              fft_pairs=result.params["fft_pairs"],
                              fft_pair_ratio=result.params["fft_pairs"] / reference[1],
                              contact_fraction=result.contact_fraction,

@@ -772,7 +772,9 @@ class _Solver:
             fft_pairs=self.transforms / 2 + (self.field.fft_pairs if self.field else 0),
             wall_time=time.perf_counter() - start, unstable_steps=self.unstable_steps, detached=detached,
             kernel=half.description, version=__version__,
-            details={"energy_history": [float(v) * grid.area * self.scale_to_body for v in history]})
+            details={"energy_history": [float(v) * grid.area * self.scale_to_body for v in history],
+                     **({} if self.field is None else {"field_fft_pairs": self.field.fft_pairs,
+                                                       "field_evaluations": self.field.evaluations})})
         return ContactResult(
             pressure=pressure, displacement=displacement, gap=gap, contact=contact,
             contact_fraction=float(np.count_nonzero(contact)) / contact.size,

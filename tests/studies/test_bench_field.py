@@ -17,3 +17,12 @@ def test_both_fields_on_both_patches(rows):
         assert float(plate["fft_pair_ratio"]) == 1.0 and float(layered["fft_pair_ratio"]) > 1.0
         # the layered field attracts more than the per-pixel law at the same load
         assert float(layered["electrostatic_force_N"]) > float(plate["electrostatic_force_N"])
+
+
+def test_the_field_solves_are_counted_within_the_solves_fft_pairs(rows):
+    for row in rows:
+        field_pairs, evaluations = int(row["field_fft_pairs"]), int(row["field_evaluations"])
+        if row["field"] == "parallel_plate":
+            assert field_pairs == evaluations == 0
+        else:           # every evaluation costs its start's pair; all of them are part of the solve's count
+            assert evaluations > 0 and evaluations <= field_pairs < float(row["fft_pairs"])
