@@ -50,6 +50,7 @@ from .stack import EPSILON_0, DielectricStack
 
 MODELS = ("layered", "parallel_plate")
 DEFAULT_TOL = 1e-10       # relative residual of the field solve ‖U − (M + R) D‖ / (U √n)
+CARRY_LIMIT = 50          # FieldLaw: warm starts whose M D is carried over before one is transformed afresh
 
 
 def _elastance(stack: DielectricStack, q: np.ndarray, model: str) -> np.ndarray:
@@ -153,13 +154,17 @@ class StackField:
         iterations, residual = self.conjugate_gradients(column, inverse_diagonal, flux, tol, maxiter)
         return flux, iterations, residual
 
-    def conjugate_gradients(self, column, inverse_diagonal, flux, tol: float, maxiter: int) -> tuple:
+    def conjugate_gradients(self, column, inverse_diagonal, flux, tol: float, maxiter: int, drop=None) -> tuple:
         """CG on (M + R) D₁ = 1 from ``flux`` (improved in place), preconditioned by ``inverse_diagonal`` =
-        1/(M_ii + R_ii); returns (iterations, relative residual), the residual field on ``self.residual``."""
+        1/(M_ii + R_ii); returns (iterations, relative residual), the residual field on ``self.residual``.
+        ``drop``: M D₁ of the start [V per volt], if known (saves its FFT pair)."""
         if self._work is None or self._work[0].shape != column.shape:
             self._work = tuple(np.empty(column.shape) for _ in range(4))       # allocated once per grid
         product, residual, z, direction = self._work
-        self.apply_elastance(flux, product)
+        if drop is None:
+            self.apply_elastance(flux, product)
+        else:
+            product[...] = drop
         rz, rr = _cg_start(flux.reshape(-1), product.reshape(-1), column.reshape(-1), inverse_diagonal.reshape(-1),
                            residual.reshape(-1), z.reshape(-1), direction.reshape(-1))
         target = (tol * tol) * column.size
@@ -224,10 +229,9 @@ def _attraction_into(gap, flux, factor, stencil, permittivity, out):
 
 
 @njit(cache=True)
-def _law_start_into(gap, stencil, permittivity, diagonal, warm, start_column, start_flux, factor, column,
-                    inverse_diagonal, flux):
+def _law_start_into(gap, stencil, permittivity, diagonal, warm, start_flux, factor, column, inverse_diagonal, flux):
     """factor, column R, 1/(M_ii + R_ii) and the starting flux of :class:`FieldLaw` in one pass: the start's flux
-    updated column by column to first order, δD ≈ −δR D/(M_ii + R_ii), where ``warm``, else D = 1/(M_ii + R_ii)."""
+    unchanged where ``warm`` (its M D₁ is then known without a transform), else D = 1/(M_ii + R_ii)."""
     _slope_factor_into(gap, stencil, factor)
     nx, ny = gap.shape
     for i in range(nx):
@@ -236,14 +240,14 @@ def _law_start_into(gap, stencil, permittivity, diagonal, warm, start_column, st
             column[i, j] = value
             inverse = 1.0 / (diagonal + value)
             inverse_diagonal[i, j] = inverse
-            flux[i, j] = start_flux[i, j] * (diagonal + start_column[i, j]) * inverse if warm else inverse
+            flux[i, j] = start_flux[i, j] if warm else inverse
 
 
 @njit(cache=True)
 def _law_outputs_into(gap, flux, factor, column, residual, stencil, permittivity, diagonal, squared_voltage,
-                      traction, stiffness, flux_out, column_out):
-    """traction −U² σ_el/U², stiffness U² D₁²/((ε f)² (M_ii + R_ii)), the flux and the columns into the solver's
-    arrays; returns Σ D₁ + Σ D₁ ρ₁ (the energy's sum, ρ₁ the residual)."""
+                      traction, stiffness, flux_out, drop_out):
+    """traction −U² σ_el/U², stiffness U² D₁²/((ε f)² (M_ii + R_ii)), the flux and the solid layers' drop
+    M D₁ = 1 − ρ₁ − R D₁ into the solver's arrays; returns Σ D₁ + Σ D₁ ρ₁ (the energy's sum, ρ₁ the residual)."""
     _attraction_into(gap, flux, factor, stencil, permittivity, traction)
     total = 0.0
     nx, ny = gap.shape
@@ -254,7 +258,7 @@ def _law_outputs_into(gap, flux, factor, column, residual, stencil, permittivity
             scale = permittivity * factor[i, j]
             stiffness[i, j] = squared_voltage * d * d / (scale * scale * (diagonal + column[i, j]))
             flux_out[i, j] = d
-            column_out[i, j] = column[i, j]
+            drop_out[i, j] = 1.0 - residual[i, j] - column[i, j] * d
             total += d + d * residual[i, j]
     return total
 
@@ -410,29 +414,35 @@ class FieldLaw:
         self.field = StackField(stack, grid, model="layered", backend=backend, threads=threads)
         self.voltage, self.tol = float(voltage), tol
         self._work = tuple(np.zeros(grid.shape) for _ in range(4))   # factor, R, 1/(M_ii + R_ii), D₁
-        self.fft_pairs = 0                     # over all evaluations: one per CG iteration and per start
+        self.fft_pairs = 0                     # over all evaluations: one per CG iteration and per exact start
         self.evaluations = 0
+        self._carried = 0                      # evaluations since M D₁ was last transformed, not carried
 
-    def evaluate(self, gap, traction, stiffness, flux, columns, start=None) -> float:
-        """traction, stiffness, the unit-voltage flux and the column elastance (grid-shaped) ← the law at
+    def evaluate(self, gap, traction, stiffness, flux, drop, start=None) -> float:
+        """traction, stiffness, the unit-voltage flux D₁ and the solid layers' drop M D₁ (grid-shaped) ← the law at
         ``gap``; returns Σ V [J/m² per pixel, summed].
 
-        ``start``: (columns, flux) of a nearby evaluation, whose flux starts the field solve."""
+        ``start``: (flux, drop) of a nearby evaluation. Its flux starts the field solve, and its drop gives the
+        start's residual 1 − M D₁ − R D₁ at the new columns R without a transform (recomputed every
+        ``CARRY_LIMIT`` evaluations, so that the recursion's round-off cannot accumulate); the first CG step from
+        there is the column-by-column update δD = −δR D/(M_ii + R_ii) with the best length."""
         field, work = self.field, self._work
         permittivity = EPSILON_0 * field.stack.eps_a
-        start_column, start_flux = (work[1], work[3]) if start is None else start
-        _law_start_into(gap, field._stencil, permittivity, field.pixel_elastance, start is not None, start_column,
-                        start_flux, *work)
+        warm = start is not None
+        _law_start_into(gap, field._stencil, permittivity, field.pixel_elastance, warm,
+                        start[0] if warm else work[3], *work)
         factor, column, inverse_diagonal, unit_flux = work
+        carried = warm and self._carried < CARRY_LIMIT
+        self._carried = self._carried + 1 if carried else 0
         iterations, residual = field.conjugate_gradients(column, inverse_diagonal, unit_flux, self.tol,
-                                                         10 * unit_flux.size)
+                                                         10 * unit_flux.size, drop=start[1] if carried else None)
         if residual > self.tol:
             raise FloatingPointError(f"the field solve stalled at relative residual {residual:.3g} "
                                      f"(tol {self.tol:g}) after {iterations} iterations")
-        self.fft_pairs += iterations + 1
+        self.fft_pairs += iterations + (not carried)
         self.evaluations += 1
         squared_voltage = self.voltage ** 2
         total = _law_outputs_into(gap, unit_flux, factor, column, field.residual, field._stencil, permittivity,
-                                  field.pixel_elastance, squared_voltage, traction, stiffness, flux, columns)
+                                  field.pixel_elastance, squared_voltage, traction, stiffness, flux, drop)
         # Φ = U² (−½⟨D₁⟩ − ½⟨D₁ ρ₁⟩) with ρ₁ = 1 − (M + R) D₁ the residual of the unit-voltage solve
         return -0.5 * squared_voltage * total

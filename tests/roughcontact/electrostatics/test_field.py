@@ -161,3 +161,40 @@ def test_bad_input_names_the_parameter(kwargs, message):
     arguments = dict(stack=STACK, lengths=1e-3, voltage=10.0) | kwargs
     with pytest.raises((ValueError, TypeError), match=message):
         solve_field(**arguments)
+
+
+def test_field_law_warm_start_carries_the_layers_drop():
+    # FieldLaw starts a solve from a nearby evaluation's flux and its solid layers' drop M D₁ (no transform for the
+    # start). At tol 1e-12 the warm evaluation must give the cold one's traction and energy (the field solve's
+    # error enters them at ~1e-12 relative; bound 1e-9), its carried drop must be the transformed M D₁ of its flux
+    # (the recursion's round-off only), and it must cost fewer FFT pairs. A start whose drop is wrong by 1e-6
+    # (a stale product) fails the first two checks by orders of magnitude.
+    from roughcontact.electrostatics.field import FieldLaw
+    grid = Grid((48, 40), (1e-4, 1e-4), periodic=True)
+    rng = np.random.default_rng(3)
+    before = rough_gap(grid.shape, rng)
+    after = np.maximum(before + 2e-10 * rng.standard_normal(grid.shape), 0.0)     # a late solver step
+
+    def evaluate(law, gap, start=None):
+        arrays = [np.zeros(grid.shape) for _ in range(4)]        # traction, stiffness, flux, drop
+        energy = law.evaluate(gap, *arrays, start=start)
+        return energy, arrays
+
+    def warm_and_cold(drop_error=0.0):
+        law = FieldLaw(STACK, 120.0, grid, tol=1e-12)
+        _, (_, _, flux, drop) = evaluate(law, before)
+        pairs = law.fft_pairs
+        warm_energy, warm = evaluate(law, after, start=(flux, drop + drop_error))
+        warm_pairs = law.fft_pairs - pairs
+        cold_law = FieldLaw(STACK, 120.0, grid, tol=1e-12)
+        cold_energy, cold = evaluate(cold_law, after)
+        product = StackField(STACK, grid).apply_elastance(warm[2], np.empty(grid.shape))
+        return (abs(warm_energy / cold_energy - 1), np.max(np.abs(warm[0] - cold[0])) / np.max(np.abs(cold[0])),
+                np.max(np.abs(warm[3] - product)), warm_pairs, cold_law.fft_pairs)
+
+    energy_error, traction_error, drop_error, warm_pairs, cold_pairs = warm_and_cold()
+    assert energy_error < 1e-9 and traction_error < 1e-9
+    assert drop_error < 1e-12                     # M D₁ < 1 (a share of the unit voltage): round-off
+    assert warm_pairs < cold_pairs
+    stale_energy, stale_traction, *_ = warm_and_cold(drop_error=1e-6)
+    assert stale_energy > 1e-9 or stale_traction > 1e-9
