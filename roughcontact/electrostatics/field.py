@@ -114,7 +114,7 @@ class StackField:
     def slope_factor(self, gap: np.ndarray) -> np.ndarray:
         """1 + |∇g|²/3 per pixel (central differences; one-sided at a free window's edges); 1 for the plate."""
         factor = np.empty(gap.shape)
-        _slope_factor_into(np.ascontiguousarray(gap, dtype=float), self._stencil, factor)
+        _slope_factor_into(np.ascontiguousarray(gap, dtype=float), self._stencil, factor, False)
         return factor
 
     def column_elastance(self, gap: np.ndarray, factor=None) -> np.ndarray:
@@ -125,9 +125,10 @@ class StackField:
         """σ_el / U² = ½ Σ_k D₁,k² ∂R_k/∂g [Pa/V²] per pixel: the virtual work of opening the gap at each pixel
         at fixed voltage, for the unit-voltage flux D₁ of ``gap`` (``factor``: its slope factor, if known)."""
         out = np.empty(gap.shape)
+        permittivity = EPSILON_0 * self.stack.eps_a
         _attraction_into(np.ascontiguousarray(gap, dtype=float), np.ascontiguousarray(unit_flux),
-                         self.slope_factor(gap) if factor is None else factor, self._stencil,
-                         EPSILON_0 * self.stack.eps_a, out)
+                         1.0 / (self.slope_factor(gap) if factor is None else factor), self._stencil,
+                         0.5 / permittivity, -1.0 / (3.0 * permittivity), out)
         return out
 
     def solve(self, gap, initial=None, tol: float = DEFAULT_TOL, maxiter=None) -> tuple:
@@ -197,46 +198,65 @@ def _stencil(grid: Grid, enabled: bool) -> tuple:
 
 
 @njit(cache=True)
-def _slope_factor_into(gap, stencil, factor):
-    """factor ← 1 + |∇g|²/3 by the central differences of ``stencil`` (:func:`_stencil`)."""
+def _slope_factor_into(gap, stencil, factor, inverse):
+    """factor ← f = 1 + |∇g|²/3 by the central differences of ``stencil`` (:func:`_stencil`), or 1/f where
+    ``inverse``."""
     ahead_x, behind_x, inverse_x, ahead_y, behind_y, inverse_y = stencil
     nx, ny = gap.shape
     for i in range(nx):
+        ahead, behind, width = ahead_x[i], behind_x[i], inverse_x[i]
         for j in range(ny):
-            slope_x = (gap[ahead_x[i], j] - gap[behind_x[i], j]) * inverse_x[i]
+            slope_x = (gap[ahead, j] - gap[behind, j]) * width
             slope_y = (gap[i, ahead_y[j]] - gap[i, behind_y[j]]) * inverse_y[j]
-            factor[i, j] = 1.0 + (slope_x * slope_x + slope_y * slope_y) / 3.0
+            value = 1.0 + (slope_x * slope_x + slope_y * slope_y) / 3.0
+            factor[i, j] = 1.0 / value if inverse else value
 
 
 @njit(cache=True)
-def _attraction_into(gap, flux, factor, stencil, permittivity, out):
-    """out ← ½ Σ_k D_k² ∂R_k/∂g per pixel for R = g/(permittivity · factor): the column's own D²/(2 ε f) and,
-    through the neighbours' slopes, Aᵀ(w A g) with w = −D² g/(3 ε f²) (A the central differences)."""
+def _attraction_into(gap, flux, inverse_factor, stencil, own, slope, out):
+    """out ← own D²/f + Aᵀ(w A g) with w = slope D² g/f² (A the central differences of ``stencil``): with
+    own = 1/(2ε) and slope = −1/(3ε), ½ Σ_k D_k² ∂R_k/∂g per pixel for R = g/(ε f) (the column's own D²/(2 ε f)
+    and its neighbours' through their slopes). Multiplications only; row by row, the neighbour rows' sums
+    contiguous, each pixel's sum in the order of a pixel-by-pixel pass."""
     ahead_x, behind_x, inverse_x, ahead_y, behind_y, inverse_y = stencil
     nx, ny = gap.shape
+    weight = np.empty(ny)
     for i in range(nx):
         for j in range(ny):
-            out[i, j] = flux[i, j] ** 2 / (2.0 * permittivity * factor[i, j])
+            out[i, j] = own * flux[i, j] ** 2 * inverse_factor[i, j]
     for i in range(nx):
+        ahead, behind, width = ahead_x[i], behind_x[i], inverse_x[i] * inverse_x[i]
         for j in range(ny):
-            weight = -flux[i, j] ** 2 * gap[i, j] / (3.0 * permittivity * factor[i, j] ** 2)
-            value = weight * (gap[ahead_x[i], j] - gap[behind_x[i], j]) * inverse_x[i] * inverse_x[i]
-            out[ahead_x[i], j] += value
-            out[behind_x[i], j] -= value
-            value = weight * (gap[i, ahead_y[j]] - gap[i, behind_y[j]]) * inverse_y[j] * inverse_y[j]
+            weight[j] = slope * flux[i, j] ** 2 * gap[i, j] * inverse_factor[i, j] ** 2
+        if ahead == i or behind == i:                   # a free axis's end row: its own sums in turn
+            for j in range(ny):
+                value = weight[j] * (gap[ahead, j] - gap[behind, j]) * width
+                out[ahead, j] += value
+                out[behind, j] -= value
+                value = weight[j] * (gap[i, ahead_y[j]] - gap[i, behind_y[j]]) * (inverse_y[j] * inverse_y[j])
+                out[i, ahead_y[j]] += value
+                out[i, behind_y[j]] -= value
+            continue
+        for j in range(ny):                             # the neighbour rows' sums (contiguous)
+            value = weight[j] * (gap[ahead, j] - gap[behind, j]) * width
+            out[ahead, j] += value
+            out[behind, j] -= value
+        for j in range(ny):                             # the row's own
+            value = weight[j] * (gap[i, ahead_y[j]] - gap[i, behind_y[j]]) * (inverse_y[j] * inverse_y[j])
             out[i, ahead_y[j]] += value
             out[i, behind_y[j]] -= value
 
 
 @njit(cache=True)
-def _law_start_into(gap, stencil, permittivity, diagonal, warm, start_flux, factor, column, inverse_diagonal, flux):
-    """factor, column R, 1/(M_ii + R_ii) and the starting flux of :class:`FieldLaw` in one pass: the start's flux
+def _law_start_into(gap, stencil, inverse_permittivity, diagonal, warm, start_flux, inverse_factor, column,
+                    inverse_diagonal, flux):
+    """1/f, the column R = g/(ε f), 1/(M_ii + R_ii) and the starting flux of :class:`FieldLaw`: the start's flux
     unchanged where ``warm`` (its M D₁ is then known without a transform), else D = 1/(M_ii + R_ii)."""
-    _slope_factor_into(gap, stencil, factor)
+    _slope_factor_into(gap, stencil, inverse_factor, True)
     nx, ny = gap.shape
     for i in range(nx):
         for j in range(ny):
-            value = gap[i, j] / (permittivity * factor[i, j])
+            value = gap[i, j] * inverse_permittivity * inverse_factor[i, j]
             column[i, j] = value
             inverse = 1.0 / (diagonal + value)
             inverse_diagonal[i, j] = inverse
@@ -244,19 +264,19 @@ def _law_start_into(gap, stencil, permittivity, diagonal, warm, start_flux, fact
 
 
 @njit(cache=True)
-def _law_outputs_into(gap, flux, factor, column, residual, stencil, permittivity, diagonal, squared_voltage,
-                      traction, stiffness, flux_out, drop_out):
-    """traction −U² σ_el/U², stiffness U² D₁²/((ε f)² (M_ii + R_ii)), the flux and the solid layers' drop
+def _law_outputs_into(gap, flux, inverse_factor, column, inverse_diagonal, residual, stencil, inverse_permittivity,
+                      squared_voltage, traction, stiffness, flux_out, drop_out):
+    """traction −U² σ_el/U², stiffness U² (D₁/(ε f))² / (M_ii + R_ii), the flux and the solid layers' drop
     M D₁ = 1 − ρ₁ − R D₁ into the solver's arrays; returns Σ D₁ + Σ D₁ ρ₁ (the energy's sum, ρ₁ the residual)."""
-    _attraction_into(gap, flux, factor, stencil, permittivity, traction)
+    _attraction_into(gap, flux, inverse_factor, stencil, -0.5 * squared_voltage * inverse_permittivity,
+                     squared_voltage * inverse_permittivity / 3.0, traction)
     total = 0.0
     nx, ny = gap.shape
     for i in range(nx):
         for j in range(ny):
             d = flux[i, j]
-            traction[i, j] *= -squared_voltage
-            scale = permittivity * factor[i, j]
-            stiffness[i, j] = squared_voltage * d * d / (scale * scale * (diagonal + column[i, j]))
+            column_field = d * inverse_permittivity * inverse_factor[i, j]
+            stiffness[i, j] = squared_voltage * column_field * column_field * inverse_diagonal[i, j]
             flux_out[i, j] = d
             drop_out[i, j] = 1.0 - residual[i, j] - column[i, j] * d
             total += d + d * residual[i, j]
@@ -413,7 +433,7 @@ class FieldLaw:
                  backend: str = "pyfftw", threads=None):
         self.field = StackField(stack, grid, model="layered", backend=backend, threads=threads)
         self.voltage, self.tol = float(voltage), tol
-        self._work = tuple(np.zeros(grid.shape) for _ in range(4))   # factor, R, 1/(M_ii + R_ii), D₁
+        self._work = tuple(np.zeros(grid.shape) for _ in range(4))   # 1/f, R, 1/(M_ii + R_ii), D₁
         self.fft_pairs = 0                     # over all evaluations: one per CG iteration and per exact start
         self.evaluations = 0
         self._carried = 0                      # evaluations since M D₁ was last transformed, not carried
@@ -427,11 +447,11 @@ class FieldLaw:
         ``CARRY_LIMIT`` evaluations, so that the recursion's round-off cannot accumulate); the first CG step from
         there is the column-by-column update δD = −δR D/(M_ii + R_ii) with the best length."""
         field, work = self.field, self._work
-        permittivity = EPSILON_0 * field.stack.eps_a
+        inverse_permittivity = 1.0 / (EPSILON_0 * field.stack.eps_a)
         warm = start is not None
-        _law_start_into(gap, field._stencil, permittivity, field.pixel_elastance, warm,
+        _law_start_into(gap, field._stencil, inverse_permittivity, field.pixel_elastance, warm,
                         start[0] if warm else work[3], *work)
-        factor, column, inverse_diagonal, unit_flux = work
+        inverse_factor, column, inverse_diagonal, unit_flux = work
         carried = warm and self._carried < CARRY_LIMIT
         self._carried = self._carried + 1 if carried else 0
         iterations, residual = field.conjugate_gradients(column, inverse_diagonal, unit_flux, self.tol,
@@ -442,7 +462,8 @@ class FieldLaw:
         self.fft_pairs += iterations + (not carried)
         self.evaluations += 1
         squared_voltage = self.voltage ** 2
-        total = _law_outputs_into(gap, unit_flux, factor, column, field.residual, field._stencil, permittivity,
-                                  field.pixel_elastance, squared_voltage, traction, stiffness, flux, drop)
+        total = _law_outputs_into(gap, unit_flux, inverse_factor, column, inverse_diagonal, field.residual,
+                                  field._stencil, inverse_permittivity, squared_voltage, traction, stiffness, flux,
+                                  drop)
         # Φ = U² (−½⟨D₁⟩ − ½⟨D₁ ρ₁⟩) with ρ₁ = 1 − (M + R) D₁ the residual of the unit-voltage solve
         return -0.5 * squared_voltage * total
