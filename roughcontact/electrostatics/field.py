@@ -50,7 +50,6 @@ from .stack import EPSILON_0, DielectricStack
 
 MODELS = ("layered", "parallel_plate")
 DEFAULT_TOL = 1e-10       # relative residual of the field solve ‖U − (M + R) D‖ / (U √n)
-CARRY_LIMIT = 50          # FieldLaw: warm starts whose M D is carried over before one is transformed afresh
 
 
 def _elastance(stack: DielectricStack, q: np.ndarray, model: str) -> np.ndarray:
@@ -155,17 +154,13 @@ class StackField:
         iterations, residual = self.conjugate_gradients(column, inverse_diagonal, flux, tol, maxiter)
         return flux, iterations, residual
 
-    def conjugate_gradients(self, column, inverse_diagonal, flux, tol: float, maxiter: int, drop=None) -> tuple:
+    def conjugate_gradients(self, column, inverse_diagonal, flux, tol: float, maxiter: int) -> tuple:
         """CG on (M + R) D₁ = 1 from ``flux`` (improved in place), preconditioned by ``inverse_diagonal`` =
-        1/(M_ii + R_ii); returns (iterations, relative residual), the residual field on ``self.residual``.
-        ``drop``: M D₁ of the start [V per volt], if known (saves its FFT pair)."""
+        1/(M_ii + R_ii); returns (iterations, relative residual), the residual field on ``self.residual``."""
         if self._work is None or self._work[0].shape != column.shape:
             self._work = tuple(np.empty(column.shape) for _ in range(4))       # allocated once per grid
         product, residual, z, direction = self._work
-        if drop is None:
-            self.apply_elastance(flux, product)
-        else:
-            product[...] = drop
+        self.apply_elastance(flux, product)
         rz, rr = _cg_start(flux.reshape(-1), product.reshape(-1), column.reshape(-1), inverse_diagonal.reshape(-1),
                            residual.reshape(-1), z.reshape(-1), direction.reshape(-1))
         target = (tol * tol) * column.size
@@ -248,10 +243,11 @@ def _attraction_into(gap, flux, inverse_factor, stencil, own, slope, out):
 
 
 @njit(cache=True)
-def _law_start_into(gap, stencil, inverse_permittivity, diagonal, warm, start_flux, inverse_factor, column,
-                    inverse_diagonal, flux):
-    """1/f, the column R = g/(ε f), 1/(M_ii + R_ii) and the starting flux of :class:`FieldLaw`: the start's flux
-    unchanged where ``warm`` (its M D₁ is then known without a transform), else D = 1/(M_ii + R_ii)."""
+def _law_start_into(gap, stencil, inverse_permittivity, diagonal, warm, start_column, start_flux, inverse_factor,
+                    column, inverse_diagonal, flux):
+    """1/f, the column R = g/(ε f), 1/(M_ii + R_ii) and the starting flux of :class:`FieldLaw` in one pass: the
+    start's flux updated column by column to first order, δD ≈ −δR D/(M_ii + R_ii), where ``warm``, else
+    D = 1/(M_ii + R_ii)."""
     _slope_factor_into(gap, stencil, inverse_factor, True)
     nx, ny = gap.shape
     for i in range(nx):
@@ -260,14 +256,14 @@ def _law_start_into(gap, stencil, inverse_permittivity, diagonal, warm, start_fl
             column[i, j] = value
             inverse = 1.0 / (diagonal + value)
             inverse_diagonal[i, j] = inverse
-            flux[i, j] = start_flux[i, j] if warm else inverse
+            flux[i, j] = start_flux[i, j] * (diagonal + start_column[i, j]) * inverse if warm else inverse
 
 
 @njit(cache=True)
 def _law_outputs_into(gap, flux, inverse_factor, column, inverse_diagonal, residual, stencil, inverse_permittivity,
-                      squared_voltage, traction, stiffness, flux_out, drop_out):
-    """traction −U² σ_el/U², stiffness U² (D₁/(ε f))² / (M_ii + R_ii), the flux and the solid layers' drop
-    M D₁ = 1 − ρ₁ − R D₁ into the solver's arrays; returns Σ D₁ + Σ D₁ ρ₁ (the energy's sum, ρ₁ the residual)."""
+                      squared_voltage, traction, stiffness, flux_out, column_out):
+    """traction −U² σ_el/U², stiffness U² (D₁/(ε f))² / (M_ii + R_ii), the flux and the columns into the solver's
+    arrays; returns Σ D₁ + Σ D₁ ρ₁ (the energy's sum, ρ₁ the residual)."""
     _attraction_into(gap, flux, inverse_factor, stencil, -0.5 * squared_voltage * inverse_permittivity,
                      squared_voltage * inverse_permittivity / 3.0, traction)
     total = 0.0
@@ -278,7 +274,7 @@ def _law_outputs_into(gap, flux, inverse_factor, column, inverse_diagonal, resid
             column_field = d * inverse_permittivity * inverse_factor[i, j]
             stiffness[i, j] = squared_voltage * column_field * column_field * inverse_diagonal[i, j]
             flux_out[i, j] = d
-            drop_out[i, j] = 1.0 - residual[i, j] - column[i, j] * d
+            column_out[i, j] = column[i, j]
             total += d + d * residual[i, j]
     return total
 
@@ -434,36 +430,30 @@ class FieldLaw:
         self.field = StackField(stack, grid, model="layered", backend=backend, threads=threads)
         self.voltage, self.tol = float(voltage), tol
         self._work = tuple(np.zeros(grid.shape) for _ in range(4))   # 1/f, R, 1/(M_ii + R_ii), D₁
-        self.fft_pairs = 0                     # over all evaluations: one per CG iteration and per exact start
+        self.fft_pairs = 0                     # over all evaluations: one per CG iteration and per start
         self.evaluations = 0
-        self._carried = 0                      # evaluations since M D₁ was last transformed, not carried
 
-    def evaluate(self, gap, traction, stiffness, flux, drop, start=None) -> float:
-        """traction, stiffness, the unit-voltage flux D₁ and the solid layers' drop M D₁ (grid-shaped) ← the law at
+    def evaluate(self, gap, traction, stiffness, flux, columns, start=None) -> float:
+        """traction, stiffness, the unit-voltage flux and the column elastance (grid-shaped) ← the law at
         ``gap``; returns Σ V [J/m² per pixel, summed].
 
-        ``start``: (flux, drop) of a nearby evaluation. Its flux starts the field solve, and its drop gives the
-        start's residual 1 − M D₁ − R D₁ at the new columns R without a transform (recomputed every
-        ``CARRY_LIMIT`` evaluations, so that the recursion's round-off cannot accumulate); the first CG step from
-        there is the column-by-column update δD = −δR D/(M_ii + R_ii) with the best length."""
+        ``start``: (columns, flux) of a nearby evaluation, whose flux starts the field solve."""
         field, work = self.field, self._work
         inverse_permittivity = 1.0 / (EPSILON_0 * field.stack.eps_a)
-        warm = start is not None
-        _law_start_into(gap, field._stencil, inverse_permittivity, field.pixel_elastance, warm,
-                        start[0] if warm else work[3], *work)
+        start_column, start_flux = (work[1], work[3]) if start is None else start
+        _law_start_into(gap, field._stencil, inverse_permittivity, field.pixel_elastance, start is not None,
+                        start_column, start_flux, *work)
         inverse_factor, column, inverse_diagonal, unit_flux = work
-        carried = warm and self._carried < CARRY_LIMIT
-        self._carried = self._carried + 1 if carried else 0
         iterations, residual = field.conjugate_gradients(column, inverse_diagonal, unit_flux, self.tol,
-                                                         10 * unit_flux.size, drop=start[1] if carried else None)
+                                                         10 * unit_flux.size)
         if residual > self.tol:
             raise FloatingPointError(f"the field solve stalled at relative residual {residual:.3g} "
                                      f"(tol {self.tol:g}) after {iterations} iterations")
-        self.fft_pairs += iterations + (not carried)
+        self.fft_pairs += iterations + 1
         self.evaluations += 1
         squared_voltage = self.voltage ** 2
         total = _law_outputs_into(gap, unit_flux, inverse_factor, column, inverse_diagonal, field.residual,
                                   field._stencil, inverse_permittivity, squared_voltage, traction, stiffness, flux,
-                                  drop)
+                                  columns)
         # Φ = U² (−½⟨D₁⟩ − ½⟨D₁ ρ₁⟩) with ρ₁ = 1 − (M + R) D₁ the residual of the unit-voltage solve
         return -0.5 * squared_voltage * total

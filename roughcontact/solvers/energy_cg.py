@@ -549,7 +549,7 @@ class _Solver:
         self.field = FieldLaw(law.stack, law.voltage, grid) \
             if isinstance(law, ElectrostaticInteraction) and not law.local else None
         arrays = 2 if self.field is None else 4
-        self.law_now = [np.zeros(n, dtype) for _ in range(arrays)]     # p_int, k at g (and D₁, M D₁)
+        self.law_now = [np.zeros(n, dtype) for _ in range(arrays)]     # p_int, k at g (and D₁, R)
         self.law_trial = [np.zeros(n, dtype) for _ in range(arrays)]   # the same at the trial gap
         self.pixel_compliance = body.pixel_compliance
         # float32 fields carry the energy's terms to a few ε32: a smaller rise is round-off, not a rise
@@ -574,11 +574,11 @@ class _Solver:
         """The layered law's traction, stiffness and flux at ``gap`` into ``arrays`` (window only), warm-started
         from the accepted gap's flux; returns Σ V."""
         shape, inside = self.pel_field.shape, self.window_view
-        traction, stiffness, flux, drop = (array.reshape(shape)[inside] for array in arrays)
+        traction, stiffness, flux, columns = (array.reshape(shape)[inside] for array in arrays)
         start = None
-        if self.field.evaluations:                     # the accepted gap's flux and solid layers' drop
-            start = tuple(array.reshape(shape)[inside] for array in self.law_now[2:])
-        return self.field.evaluate(gap.reshape(shape)[inside], traction, stiffness, flux, drop, start=start)
+        if self.field.evaluations:                     # the accepted gap's columns and flux
+            start = tuple(array.reshape(shape)[inside] for array in (self.law_now[3], self.law_now[2]))
+        return self.field.evaluate(gap.reshape(shape)[inside], traction, stiffness, flux, columns, start=start)
 
     def run(self, tol, maxiter, callback, warn, half, heights, control, requested, start_kind, start):
         energy, body, n = self.energy, self.body, self.n
