@@ -252,6 +252,20 @@ class ACFieldSolution(FieldSolution):
         return np.abs(self.oscillation)
 
     @property
+    def ac_equivalent_gap(self) -> float:
+        """The uniform gap d [m] whose time-averaged attraction under the same drive equals ⟨σ̄⟩: the series circuit
+        |a + d/ε_a| = U √(ε0/(2 ε_a ⟨σ̄⟩)) with a = d_sc/ε*_sc + d_i/ε_i solved for d (``equivalent_gap`` at ω = ∞).
+        Negative above full contact's attraction; ``nan`` at U = 0 and where not even a negative d reaches ⟨σ̄⟩."""
+        if self.voltage == 0.0:
+            return float("nan")
+        stack = self.stack
+        offset = inverse_permittivity(stack, self.frequency) * stack.d_sc + stack.d_i / stack.eps_i    # a [m]
+        thickness = abs(self.voltage) * math.sqrt(EPSILON_0 / (2 * stack.eps_a * self.mean_pressure))   # |h| [m]
+        if thickness < abs(offset.imag):
+            return float("nan")
+        return float(stack.eps_a * (math.sqrt(thickness ** 2 - offset.imag ** 2) - offset.real))
+
+    @property
     def mean_oscillation(self) -> float:
         """|⟨σ̂₂⟩| [Pa]: the amplitude of the 2ω component of the mean attraction (pixels oscillate out of phase,
         so it is at most ⟨|σ̂₂|⟩; it equals ⟨σ̄⟩ for a uniform gap and for a lossless stack)."""

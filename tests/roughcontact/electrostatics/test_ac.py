@@ -61,6 +61,7 @@ def test_uniform_gap_is_the_series_circuit(stack, model, shape):
         assert solution.mean_pressure == pytest.approx(abs(flux) ** 2 / (2 * EPSILON_0 * stack.eps_a), rel=1e-12)
         oscillation = 0.0 if frequency == 0 else flux ** 2 / (2 * EPSILON_0 * stack.eps_a)
         assert np.mean(solution.oscillation) == pytest.approx(oscillation, rel=1e-12, abs=1e-12 * abs(oscillation))
+        assert solution.ac_equivalent_gap == pytest.approx(gap, rel=1e-12)    # the circuit inverted
     # the RMS convention: at ω = ∞ the time average is the seed's Eq. 21 at U
     assert solution.mean_pressure == pytest.approx(float(stack.pressure(gap, 70.0)), rel=1e-12)
 
@@ -211,6 +212,10 @@ def test_cocg_converges_and_reports_when_it_does_not(rough):
     assert isinstance(solution, ACFieldSolution)
     assert solution.mean_oscillation <= np.mean(solution.oscillation_amplitude) * (1 + 1e-12)
     assert solution.equivalent_gap == pytest.approx(TABLE1.gap_for_pressure(solution.mean_pressure, 100.0))
+    dielectric = solve_ac_field(TABLE1, gap, grid.lengths, 100.0, frequency=math.inf)
+    assert dielectric.ac_equivalent_gap == pytest.approx(dielectric.equivalent_gap, rel=1e-12)
+    # the lossy stratum corneum attracts more than the dielectric at the same gap: its own circuit's gap is larger
+    assert solution.ac_equivalent_gap > solution.equivalent_gap
     with pytest.raises(AttributeError, match="no energy"):
         solution.energy
 
