@@ -13,7 +13,7 @@ and the layered model of :mod:`~roughcontact.electrostatics.field` holds with ε
     (M(ω) + R) D̂ = U,   M̂(q, ω) = [tanh(q d_sc)/(ε*_sc q) + tanh(q d_i)/(eps_i q)] / ε0.
 
 M(ω) is complex symmetric (not Hermitian): it is solved by COCG, the conjugate-orthogonal conjugate gradients
-(CG with the bilinear form xᵀy in place of x*y), preconditioned with the diagonal of M + R. M(ω) acts on a
+(CG with the bilinear form xᵀy in place of xᴴy), preconditioned with the diagonal of M + R. M(ω) acts on a
 complex flux as two real FFT pairs on the grid's real-FFT backend (the real and imaginary parts; its multiplier
 is even in q), cheaper than one complex FFT pair (2.4 real pairs, ``docs/guide/ac_drive.md``).
 
@@ -42,7 +42,8 @@ from surfaces import HeightField
 from surfaces.validation import check_real
 
 from ..io.results import ConvergenceWarning
-from .field import DEFAULT_TOL, FieldSolution, StackField, _cg_curvature, _cg_direction, _grid_and_gap
+from .field import (DEFAULT_TOL, FieldSolution, StackField, _cg_curvature, _cg_direction, _cg_start, _cg_update,
+                    _grid_and_gap)
 from .stack import EPSILON_0, DielectricStack
 
 
@@ -116,13 +117,14 @@ class ACStackField(StackField):
         return self._complex_diagonal
 
     def _transform(self, part: np.ndarray):
-        """The backend's spectrum ← FFT of the real array ``part`` (zero-padded on a free window)."""
+        """The backend's spectrum ← FFT of the real array ``part`` (a strided view; zero-padded on a free window,
+        else copied by the backend into its own aligned buffer)."""
+        source = part
         if self.padded:
-            self._buffer[...] = 0.0
-            self._buffer[self._window] = part
-        else:
-            self._buffer[...] = part
-        self._fft.forward(self._buffer)
+            source = self._buffer
+            source.fill(0.0)
+            source[self._window] = part
+        self._fft.forward(source)
 
     def apply_elastance(self, flux: np.ndarray, out: np.ndarray) -> np.ndarray:
         """out ← M(ω) D̂ [V] for a complex flux D̂ [C/m²] on the window (two real FFT pairs)."""
@@ -158,18 +160,22 @@ class ACStackField(StackField):
             self._work = tuple(np.empty(column.shape, complex) for _ in range(4))     # allocated once per grid
         product, residual, z, direction = (array.reshape(-1) for array in self._work)
         flat_flux, flat_column, flat_inverse = flux.reshape(-1), column.reshape(-1), inverse_diagonal.reshape(-1)
+        # the dielectric CG's kernels run COCG on complex arrays: their sums are the bilinear rᵀz and pᵀAp; the
+        # residual's norm rᴴr is taken apart (their r·r is the bilinear rᵀr)
         self.apply_elastance(flux, self._work[0])
-        rz, rr = _cocg_start(flat_flux, product, flat_column, flat_inverse, residual, z, direction)
+        rz = _cg_start(flat_flux, product, flat_column, flat_inverse, residual, z, direction)[0]
+        rr = np.vdot(residual, residual).real
         target = (tol * tol) * column.size
         iterations = 0
         while rr > target and iterations < maxiter:
             self.apply_elastance(self._work[3], self._work[0])
-            curvature = _cg_curvature(direction, product, flat_column)           # pᵀ (M + R) p, unconjugated
+            curvature = _cg_curvature(direction, product, flat_column)
             if curvature == 0:
                 break                               # a COCG breakdown: reported through the residual
             step = rz / curvature
             rz_old = rz
-            rz, rr = _cocg_update(step, direction, product, flat_flux, residual, z, flat_inverse)
+            rz = _cg_update(step, direction, product, flat_flux, residual, z, flat_inverse)[0]
+            rr = np.vdot(residual, residual).real
             _cg_direction(direction, z, rz / rz_old)
             iterations += 1
         self.residual = self._work[1]
@@ -199,33 +205,6 @@ def _combine_spectra(spectrum, real_spectrum, multiplier, imaginary_spectrum):
             m, a, b = multiplier[i, j], real_spectrum[i, j], spectrum[i, j]
             spectrum[i, j] = m.real * a - m.imag * b
             imaginary_spectrum[i, j] = m.imag * a + m.real * b
-
-
-@njit(cache=True)
-def _cocg_start(flux, product, column, inverse_diagonal, residual, z, direction):
-    """residual ← 1 − (M D̂ + R D̂) (``product`` holds M D̂), z = direction ← P⁻¹ residual; returns (rᵀz, r*r)."""
-    rz, rr = 0j, 0.0
-    for i in range(flux.size):
-        value = 1.0 - product[i] - column[i] * flux[i]
-        residual[i] = value
-        z[i] = direction[i] = inverse_diagonal[i] * value
-        rz += value * z[i]
-        rr += value.real * value.real + value.imag * value.imag
-    return rz, rr
-
-
-@njit(cache=True)
-def _cocg_update(step, direction, product, flux, residual, z, inverse_diagonal):
-    """D̂ += α p, r −= α (M + R) p, z ← P⁻¹ r; returns (rᵀz, r*r)."""
-    rz, rr = 0j, 0.0
-    for i in range(flux.size):
-        flux[i] += step * direction[i]
-        value = residual[i] - step * product[i]
-        residual[i] = value
-        z[i] = inverse_diagonal[i] * value
-        rz += value * z[i]
-        rr += value.real * value.real + value.imag * value.imag
-    return rz, rr
 
 
 @dataclass(frozen=True)
