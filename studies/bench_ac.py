@@ -12,7 +12,9 @@ solve starts cold and runs to ``--tol``:
 * ``cocg``: :class:`ACStackField` at each of ``--frequencies`` and DC (COCG, two real FFT pairs per iteration);
 * ``gmres-block`` / ``bicgstab-block``: the same complex system as the real 2×2 block system
   [[Re A, −Im A], [Im A, Re A]] (nonsymmetric), by scipy's GMRES (restart 30) and BiCGSTAB with the same Jacobi
-  preconditioner, through the same operator (two real FFT pairs per product).
+  preconditioner, through the same operator (two real FFT pairs per product);
+* ``fft-pair-real`` / ``fft-pair-complex``: one real FFT pair of the backend against one complex (c2c) pyFFTW pair
+  on the same n² points, the reason M(ω) is applied as two real pairs.
 
 Printed per solve: iterations, real FFT pairs and CPU time (best of ``--repeat``; CPU, not wall time, so that the
 ratios hold on a shared machine: run with one FFT thread) and their ratios to the dielectric solve's, and the
@@ -28,6 +30,7 @@ from scipy.sparse.linalg import LinearOperator, bicgstab, gmres
 
 from roughcontact import solve_contact
 from roughcontact.electrostatics import ACStackField, StackField
+from roughcontact.fft import default_planner, make_backend
 from roughcontact.io import best_of, count_argument, output_directory, parse_arguments, write_csv
 from roughcontact.study.apparent import apparent_contact
 from roughcontact.study.patch import patch_body, patch_grid, patch_surface
@@ -74,6 +77,33 @@ def block_solve(field: ACStackField, columns: np.ndarray, method: str, tol: floa
     return len(counter), float(residual)
 
 
+def fft_pair_times(n: int, repeat: int) -> tuple:
+    """CPU time [s] of one real FFT pair (the backend's plans) and of one complex pair (pyFFTW c2c, one thread)
+    on n² points, each the best of ``repeat`` runs of 100 pairs."""
+    import pyfftw
+    real = make_backend("pyfftw", (n, n), threads=1)
+    buffer = real.empty()
+    buffer[...] = np.random.default_rng(0).random((n, n))
+    data = pyfftw.empty_aligned((n, n), complex)
+    spectrum = pyfftw.empty_aligned((n, n), complex)
+    flags = (default_planner(),)
+    forward = pyfftw.FFTW(data, spectrum, axes=(0, 1), flags=flags, threads=1)
+    backward = pyfftw.FFTW(spectrum, data, axes=(0, 1), direction="FFTW_BACKWARD", flags=flags, threads=1)
+    data[...] = buffer
+
+    def real_pairs():
+        for _ in range(100):
+            real.forward(buffer)
+            real.backward(buffer)
+
+    def complex_pairs():
+        for _ in range(100):
+            forward()
+            backward()
+
+    return tuple(best_of(pairs, repeat, clock=time.process_time)[1] / 100 for pairs in (real_pairs, complex_pairs))
+
+
 def rows_for(n: int, args) -> list:
     stack, grid, gap = hard_wall_gap(n)
     dielectric = StackField(stack, grid)
@@ -99,8 +129,14 @@ def rows_for(n: int, args) -> list:
                                                           args.repeat, clock=time.process_time)
                 rows.append(dict(n=n, method=method, frequency_Hz=frequency, iterations=iterations,
                                  fft_pairs=field.fft_pairs // args.repeat, time_s=seconds, residual=residual))
+    real_pair, complex_pair = fft_pair_times(n, args.repeat)
+    rows += [dict(n=n, method="fft-pair-real", fft_pairs=1, time_s=real_pair),
+             dict(n=n, method="fft-pair-complex", fft_pairs=1, time_s=complex_pair)]
     for row in rows:
         row.update(fft_pair_ratio=row["fft_pairs"] / reference[0], time_ratio=row["time_s"] / reference[1])
+    print(f"{n:4d}² one complex FFT pair costs {complex_pair / real_pair:.2f} real pairs "
+          f"({complex_pair * 1e3:.3f} against {real_pair * 1e3:.3f} ms CPU)")
+    for row in rows[:-2]:
         print(f"{n:4d}² {row['method']:15s} {row['frequency_Hz']:9.4g} Hz  {row['iterations']:4d} it  "
               f"{row['fft_pairs']:5d} FFT pairs x{row['fft_pair_ratio']:.2f}  {row['time_s'] * 1e3:8.2f} ms CPU "
               f"x{row['time_ratio']:.2f}  residual {row['residual']:.1e}", flush=True)
