@@ -15,7 +15,7 @@ and the layered model of :mod:`~roughcontact.electrostatics.field` holds with ε
 M(ω) is complex symmetric (not Hermitian): it is solved by COCG, the conjugate-orthogonal conjugate gradients
 (CG with the bilinear form xᵀy in place of xᴴy), preconditioned with the diagonal of M + R. M(ω) acts on a
 complex flux as two real FFT pairs on the grid's real-FFT backend (the real and imaginary parts; its multiplier
-is even in q), cheaper than one complex FFT pair (2.4 real pairs, ``docs/guide/ac_drive.md``).
+is even in q), cheaper than one complex FFT pair (2.1–2.3 real pairs, ``docs/guide/ac_drive.md``).
 
 The force on the skin is the air-side virtual work of the instantaneous flux, σ(t) = ½ Σ_j D_j(t)² ∂R_j/∂g_k
 (:meth:`StackField.attraction`). With D_j(t)² = |D̂_j|² + Re(D̂_j² e^{2iωt}) it is
