@@ -833,3 +833,100 @@ def test_command_line_interrupted(tmp_path, monkeypatch):
     code, _, err = _cli(["run", "--preset", "draft", "--out", tmp_path / "o"])
     _check_one_line(code, err)
     assert code == 130 and "interrupted" in err and str(tmp_path / "o") in err
+
+
+# ---------------------------------------------------------------------------------------------- a finished run, damaged
+
+@pytest.fixture(scope="module")
+def finished(tmp_path_factory):
+    """A finished run of the tiny scene in a results directory (under a second)."""
+    directory = tmp_path_factory.mktemp("finished") / "run"
+    return directory, run_study(_tiny(), directory, workers=1)
+
+
+def _damaged(finished, tmp_path, damage):
+    import shutil
+    directory = tmp_path / "run"
+    shutil.copytree(finished[0], directory)
+    task = sorted((directory / "tasks").glob("*.json"))[0]
+    damage(task)
+    return directory, task
+
+
+def _edited(task, edit):
+    import json
+    stored = json.loads(task.read_text())
+    edit(stored)
+    task.write_text(json.dumps(stored))
+
+
+DAMAGES = [
+    ("zero-bytes", lambda task: task.write_bytes(b""), "empty"),
+    ("truncated", lambda task: task.write_bytes(task.read_bytes()[:50]), "not valid JSON"),
+    ("not-utf8", lambda task: task.write_bytes(b"\xff\xfe{}"), "cannot be read"),
+    ("json-list", lambda task: task.write_text("[1, 2]"), "older roughcontact"),
+    ("json-number", lambda task: task.write_text("3"), "not a task file"),
+    ("nan-record", lambda task: _edited(task, lambda s: s["records"][0].__setitem__("equivalent_gap", float("nan"))),
+     "equivalent_gap = nan"),
+    ("edited-record", lambda task: _edited(task, lambda s: s["records"][0].__setitem__("equivalent_gap", 1e-6)),
+     "digest"),
+    ("other-scene", lambda task: _edited(task, lambda s: s.__setitem__("scene", "0" * 16)), "another scene"),
+    ("one-record-short", lambda task: _edited(task, lambda s: s["records"].pop()), "one record per load"),
+]
+
+
+@pytest.mark.parametrize("damage, reason", [pytest.param(d, r, id=name) for name, d, r in DAMAGES])
+def test_resume_solves_a_damaged_task_again(finished, tmp_path, damage, reason):
+    """Resume over a damaged task file: a warning naming the file and the reason, the task solved again, the
+    same numbers as the undamaged run (the solves are deterministic); open_results refuses it, naming it."""
+    from roughcontact.study import StaleTaskWarning
+    directory, task = _damaged(finished, tmp_path, damage)
+    with pytest.raises(ValueError, match="not finished"):
+        with pytest.warns(StaleTaskWarning, match=reason):
+            open_results(directory)
+    with pytest.warns(StaleTaskWarning) as caught:
+        resumed = run_study(_tiny(), directory, workers=1)
+    assert any(task.name in str(w.message) and reason in str(w.message) for w in caught)
+    assert resumed.computed == len(_tiny().loads.normal_forces)         # one task: one point per load
+    assert resumed.points == finished[1].points or all(
+        np.array_equal(a.equivalent_gap, b.equivalent_gap) for row_a, row_b in zip(resumed.points, finished[1].points)
+        for a, b in zip(row_a, row_b))
+
+
+def test_resume_with_the_scene_file_deleted_and_another_scene(finished, tmp_path):
+    """scene.toml deleted, another scene run into the directory: the old tasks are of another scene (named,
+    solved again), so the numbers are the new scene's, as from a fresh directory."""
+    directory, _ = _damaged(finished, tmp_path, lambda task: None)
+    (directory / "scene.toml").unlink()
+    other = load_scene(text=TINY.replace("voltages = [0.0, 150.0]", "voltages = [0.0, 100.0]"), preset="draft")
+    with pytest.warns(Warning, match="another scene"):
+        resumed = run_study(other, directory, workers=1)
+    fresh = run_study(other, tmp_path / "fresh", workers=1)
+    assert [p.voltage for row in resumed.points for p in row] == [p.voltage for row in fresh.points for p in row]
+    assert all(a.equivalent_gap == b.equivalent_gap for row_a, row_b in zip(resumed.points, fresh.points)
+               for a, b in zip(row_a, row_b))
+
+
+def test_finished_results_misused(finished, tmp_path):
+    """open_results on a finished directory, then the calls a user gets wrong on it."""
+    from roughcontact.study import bottom_up_friction
+    result = open_results(finished[0])
+    assert result.points == finished[1].points                  # read back exactly, nothing solved
+    with pytest.raises(ValueError, match="'bogus'.*valid: equivalent_gap"):
+        result.summary("bogus")
+    with pytest.raises(ValueError, match="realisation.*5"):
+        bottom_up_friction(result, realisation=5)
+    with pytest.raises(ValueError, match="c2.*-1"):
+        bottom_up_friction(result, c2=-1.0)
+    with pytest.raises(Exception) as locked:                    # the directory while another run holds it
+        from roughcontact.study import TaskStore
+        holder = TaskStore(finished[0], result.scene)
+        try:
+            run_study(result.scene, finished[0], workers=1)
+        finally:
+            holder.release()
+    assert "run.lock" in str(locked.value) and type(locked.value).__name__ == "DirectoryInUse"
+    code, _, err = _cli(["run", write(tmp_path / "other.toml", TINY.replace("0.5, 2.0", "0.5, 3.0")), "--out",
+                         finished[0]])
+    _check_one_line(code, err)
+    assert "another scene" in err and str(finished[0]) in err
