@@ -64,8 +64,8 @@ def load_npz(path) -> tuple:
     """Read a file written by :func:`save_npz`; return ``(arrays, metadata)``. A file that is not one (empty,
     truncated, another format, no metadata record) raises :class:`UnreadableFile` (a ``ValueError``) naming it;
     a missing or unreadable one the ``OSError``, which names it."""
-    try:
-        with np.load(Path(path), allow_pickle=False) as data:
+    try:        # (the file opened here, so that it is closed when numpy fails on it)
+        with open(Path(path), "rb") as handle, np.load(handle, allow_pickle=False) as data:
             if _METADATA_KEY not in data:
                 raise UnreadableFile(path, "has no metadata record; it was not written by save_npz")
             metadata = json.loads(data[_METADATA_KEY].tobytes().decode("utf-8"), object_hook=_restore_tuple)
@@ -108,7 +108,8 @@ def read_npy(path) -> np.ndarray:
     """The array of the ``.npy`` file ``path``; ``ValueError`` naming it if it is not one (empty, truncated,
     pickled objects)."""
     try:
-        return np.load(Path(path), allow_pickle=False)
+        with open(Path(path), "rb") as handle:
+            return np.load(handle, allow_pickle=False)
     except (ValueError, EOFError) as error:
         reason = "it holds pickled objects" if "pickle" in str(error) else str(error)
         raise ValueError(f"{path} is not a readable .npy array ({reason})") from None

@@ -150,6 +150,21 @@ class UserExponential(Interaction):
 MATRIX = "".join(" ".join(str(4 * i + j + 1) for j in range(4)) + "\n" for i in range(4))
 
 
+@dataclass(frozen=True)
+class NoStiffness(Interaction):
+    """ExponentialAdhesion without its stiffness: the base class takes differences of the traction."""
+    work_of_adhesion: float = 1e-3
+    length: float = 1e-7
+    energy = UserExponential.energy
+    traction = UserExponential.traction
+
+
+@dataclass(frozen=True)
+class Empty(Interaction):
+    """A user's law with a length and nothing else."""
+    length: float = 1e-7
+
+
 def write(path: Path, content) -> Path:
     if isinstance(content, bytes):
         path.write_bytes(content)
@@ -426,6 +441,15 @@ ROWS = [
      refused(ValueError, "NegativeLength", "length", "-1e-07")),
     ("solve-user-law-nan", lambda: solve_contact(surface16(), half16(), mean_pressure=1e3, interaction=NaNLaw()),
      refused(ValueError, "NaNLaw", "non-finite")),
+    ("law-user-derived-stiffness-right", lambda: NoStiffness().stiffness(np.array([0.0, 1e-9, 1e-7, 1e-6])),
+     right(lambda k: np.allclose(k, 1e-3 / 1e-14 * np.exp(-np.array([0.0, 1e-9, 1e-7, 1e-6]) / 1e-7), rtol=1e-8,
+                                 atol=0))),     # ~1e-10 measured: second order in the step ε^(1/3) (g + length)
+    ("law-user-derived-stiffness-gap", lambda: NoStiffness().stiffness(-1e-9), refused(ValueError, "gap", "-1e-09")),
+    ("solve-user-law-derived-stiffness", lambda: solve_contact(surface16(), half16(), mean_pressure=1e3,
+                                                               interaction=NoStiffness()),
+     right(lambda r: r.converged and np.abs(r.gap - exponential16().gap).max() <= 1e-6 * 1e-6)),
+    ("solve-user-law-empty", lambda: solve_contact(surface16(), half16(), mean_pressure=1e3, interaction=Empty()),
+     refused(NotImplementedError, "Empty", "must implement")),
     ("solve-electro-0V-zero-load", lambda: solve_contact(surface16(), half16(), mean_pressure=0.0,
                                                          interaction=ElectrostaticInteraction(STACK, 0.0)),
      right(lambda r: r.converged)),
