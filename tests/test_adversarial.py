@@ -16,10 +16,9 @@ from __future__ import annotations
 import contextlib
 import functools
 import io
-import math
 import os
 import pickle
-import sys
+import runpy
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
@@ -431,6 +430,24 @@ ROWS = [
     ("solve-exp-half-strength-flat", lambda: solve_contact(
         flat16(), half16(), mean_pressure=-5e3, interaction=ExponentialAdhesion(1e-3, 1e-7)),
      right(lambda r: r.converged and not r.solver.detached and r.contact_fraction == 1.0)),
+    ("solve-exp-half-pull-off", lambda: _at_half_pull_off(ExponentialAdhesion(1e-3, 1e-7), step=50.0),
+     right(lambda r: r.converged and not r.solver.detached and r.contact_fraction > 0)),
+    ("solve-dugdale-half-pull-off", lambda: _at_half_pull_off(MaugisDugdale(1e-3, 1e-7), step=50.0),
+     right(lambda r: r.converged and not r.solver.detached and r.contact_fraction > 0)),
+    ("solve-electro-half-pull-off", lambda: _at_half_pull_off(PIXEL_LAW, step=5e3),
+     right(lambda r: r.converged and not r.solver.detached and r.contact_fraction > 0)),
+    ("solve-electro-flat-beyond-strength", lambda: solve_contact(flat16(), half16(), mean_pressure=-1.5 * PIXEL_LAW.strength,
+                                                                 interaction=PIXEL_LAW),
+     right(lambda r: not r.converged and r.solver.detached and np.isfinite(r.gap).all(), warns=ConvergenceWarning)),
+    ("solve-electro-flat-half-strength", lambda: solve_contact(flat16(), half16(), mean_pressure=-0.5 * PIXEL_LAW.strength,
+                                                               interaction=PIXEL_LAW),
+     right(lambda r: r.converged and r.contact_fraction == 1.0 and close(float(r.pressure.mean()),
+                                                                          -0.5 * PIXEL_LAW.strength, 1e-9))),
+    ("pulloff-too-few-steps", lambda: pull_off(ContactProblem(surface16(), half16(), ElectrostaticInteraction(STACK, 100.0)),
+                                               solve_contact(surface16(), half16(), mean_pressure=0.0,
+                                                             interaction=ElectrostaticInteraction(STACK, 100.0)),
+                                               step=50.0, max_steps=3),
+     refused(RuntimeError, "3 steps", "50")),
     ("solve-user-law-right", lambda: solve_contact(surface16(), half16(), mean_pressure=1e3,
                                                    interaction=UserExponential(1e-3, 1e-7)),
      right(lambda r: np.abs(r.gap - exponential16().gap).max() <= 1e-6 * 1e-6)),
@@ -626,21 +643,8 @@ ROWS = [
 
 # ---------------------------------------------------------------------------------------------- helpers of rows
 
-TINY = """\
-[loads]
-normal_forces = [0.5, 2.0]
-voltages = [0.0, 150.0]
-[roughness]
-long_cutoff = 1.5e-4
-[ridge_area]
-coarse_graining = 6e-5
-sensitivity = [2.0]
-[presets.draft]
-grid = 32
-realisations = 2
-tolerance = 1e-6
-pixels_per_cutoff = 3.0
-"""
+#: The tiny scene of the study tests (32² patches, two loads, 0 and 150 V; under a second to run).
+TINY = runpy.run_path(str(Path(__file__).parent / "roughcontact" / "study" / "study_scenes.py"))["TINY"]
 
 
 def _tiny():
@@ -685,6 +689,18 @@ def _quiet(call):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         return call()
+
+
+#: The seed's per-pixel electrostatic law at 100 V (its strength σ_el(0) is known).
+PIXEL_LAW = ElectrostaticInteraction(DielectricStack(), 100.0, field="parallel_plate")
+
+
+def _at_half_pull_off(law, step):
+    """A cold solve at half the pull-off tension that pull_off finds on the same rough patch (the issue's case:
+    it must stay attached, as the retract path does)."""
+    start = solve_contact(surface16(), half16(), mean_pressure=0.0, interaction=law)
+    found = pull_off(ContactProblem(surface16(), half16(), law), start, step=step)
+    return solve_contact(surface16(), half16(), mean_pressure=0.5 * found.mean_pressure, interaction=law)
 
 
 def _exp_problem():
