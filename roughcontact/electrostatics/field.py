@@ -395,6 +395,8 @@ def _grid_and_gap(gap, lengths, periodic) -> tuple:
         values = values[:, None]
     if values.ndim != 2:
         raise ValueError(f"gap must be a 1-D profile or a 2-D field, got {values.ndim} dimensions")
+    if values.size == 0:
+        raise ValueError(f"gap must have at least one pixel per axis, got shape {values.shape}")
     if lengths is None:
         raise ValueError("lengths (the window's size in m) is required for a gap array")
     if np.ndim(lengths) == 0:
