@@ -14,11 +14,14 @@ multiplier that the Polonsky–Keer solver computes. The smooth laws (:class:`El
 traction p_int(g) everywhere, the wall's contact pressure where g = 0.
 
 A user's own law subclasses :class:`Interaction`, is a frozen dataclass (so that results can be saved and
-pickled with it) and implements the three methods on float arrays of gaps g ≥ 0 (finite values at every such
-gap; the energy +inf where g < 0), plus ``length``, the gap scale [m] over which it varies (the solver's scale
-for "far away"; required, > 0), and optionally ``strength``, its largest attraction max_g −p_int(g) [Pa] (with
-it a tensile load beyond the strength is reported as detached without iterating). ``docs/guide/interactions.md``
-has an example. The built-in laws refuse a non-finite gap, and a negative one in traction and stiffness
+pickled with it) and implements ``energy`` and ``traction`` on float arrays of gaps g ≥ 0 (finite values at
+every such gap; the energy +inf where g < 0), ``stiffness`` if it can (otherwise the base class takes it by
+differences of the traction), plus ``length``, the gap scale [m] over which it varies (the solver's scale for
+"far away"; required, > 0), and optionally ``strength``, its largest attraction max_g −p_int(g) [Pa] (with it
+a tensile load beyond the strength is reported as detached without iterating). The repulsion is the wall's: a
+law that also models it (a potential whose minimum is the contact, such as the full 9-3 wall) puts a convex
+well far stiffer than a pixel at the wall, which the solver converges through slowly.
+``docs/guide/interactions.md`` has an example and the measured cost. The built-in laws refuse a non-finite gap, and a negative one in traction and stiffness
 (``ValueError`` naming ``gap``); their energy is +inf where the wall is penetrated.
 """
 from __future__ import annotations
@@ -32,6 +35,8 @@ from surfaces.validation import check_choice, check_finite_array, check_positive
 from .electrostatics import DielectricStack
 from .io.results import savable_field
 
+#: Relative step of a stiffness taken by differences of the traction (ε^(1/3) of float64; :meth:`Interaction.stiffness`).
+FINITE_DIFFERENCE_STEP = float(np.finfo(np.float64).eps) ** (1 / 3)
 #: How an electrostatic law takes the field (:class:`ElectrostaticInteraction`).
 FIELDS = ("parallel_plate", "layered")
 
@@ -62,13 +67,24 @@ class Interaction:
     strength: float | None = None
 
     def energy(self, gap) -> np.ndarray:
-        raise NotImplementedError
+        raise NotImplementedError(f"{type(self).__name__} must implement energy(gap), V(g) [J/m²] "
+                                  "(roughcontact.interactions; docs/guide/interactions.md)")
 
     def traction(self, gap) -> np.ndarray:
-        raise NotImplementedError
+        raise NotImplementedError(f"{type(self).__name__} must implement traction(gap), p_int(g) = −dV/dg [Pa] "
+                                  "(roughcontact.interactions; docs/guide/interactions.md)")
 
     def stiffness(self, gap) -> np.ndarray:
-        raise NotImplementedError
+        """k(g) = dp_int/dg [Pa/m] by differences of :meth:`traction`, for a law without its own stiffness: the
+        central difference with step δ = ε^(1/3) (g + length), the one-sided second-order one (−3p(g) + 4p(g+δ)
+        − p(g+2δ))/(2δ) where g < δ (the wall); both err by O(δ²), ~1e-10 relative for a smooth law."""
+        gap = check_finite_array("gap", gap, nonnegative=True)
+        step = FINITE_DIFFERENCE_STEP * (gap + check_positive(f"{type(self).__name__}.length",
+                                                                 getattr(self, "length", None)))
+        ahead = self.traction(gap + step)
+        central = (ahead - self.traction(np.maximum(gap - step, 0.0))) / (2 * step)
+        one_sided = (4 * ahead - 3 * self.traction(gap) - self.traction(gap + 2 * step)) / (2 * step)
+        return np.where(gap >= step, central, one_sided)
 
 
 @dataclass(frozen=True)

@@ -8,10 +8,11 @@
 * ``field_check_sinusoid.csv``: the second-order coefficient S of the mean attraction of a sinusoidal gap
   g0 + a cos(2πx/λ), σ̄ = σ_el(g0) + a² S, for λ = 10 µm … 5 mm and g0 = 0.5, 1, 2 µm: the exact result
   (``roughcontact.electrostatics.perturbation``), the FE solve (``roughcontact.electrostatics.fem``,
-  Richardson in a from a = 0.05 g0 and 0.1 g0), the layered model (``solve_field``, the same Richardson) and
-  the per-pixel law (σ_el''/4), each as a ratio to the exact S.
+  Richardson in a from a = 0.05 g0 and 0.1 g0), the layered model with air columns (``solve_field``, the same
+  Richardson), with the air's lateral field (``model="layered_air"``) and the per-pixel law (σ_el''/4), each as a
+  ratio to the exact S.
 * ``field_check_profiles.csv``: the mean attraction over resolved gap profiles, FE against the layered model
-  and the per-pixel law (relative differences, and the equivalent gaps of Eq. 21; the FE's own error as the
+  (air columns and ``layered_air``) and the per-pixel law (relative differences, and the equivalent gaps of Eq. 21; the FE's own error as the
   change on a mesh with every length halved): (a) synthetic, a cylinder
   ridge cap with self-affine micro-roughness pressed onto the flat; (b) one period of the default scene's
   ridge with micro-roughness as a 1-D profile; each pressed (``solve_contact`` on a profile grid of shape
@@ -73,11 +74,14 @@ def sinusoid_rows(stack, wavelengths, mean_gaps, columns: int, fem_options: dict
             fem = _second_order(lambda a: field_solve_profile(stack, gap + a * shape, wavelength, voltage,
                                                               **fem_options).mean_pressure, gap)
             seconds = time.process_time() - start
-            layered = _second_order(lambda a: solve_field(stack, gap + a * shape, wavelength, voltage,
-                                                          tol=1e-13).mean_pressure, gap)
+            # the air-lateral solve's round-off floor is about 1e-16 q_max d_sc (its stratum-corneum stiffness)
+            layered, layered_air = (_second_order(lambda a: solve_field(
+                stack, gap + a * shape, wavelength, voltage, model=model, tol=tol).mean_pressure, gap)
+                for model, tol in (("layered", 1e-13), ("layered_air", 1e-11)))
             per_pixel = float(stack.pressure_derivative(gap, voltage, 2)) / 4
             rows.append({"wavelength_um": wavelength * 1e6, "mean_gap_um": gap * 1e6, "S_exact_Pa_per_m2": exact,
                          "fem_over_exact": fem / exact, "layered_over_exact": layered / exact,
+                         "layered_air_over_exact": layered_air / exact,
                          "per_pixel_over_exact": per_pixel / exact, "fem_columns": columns, "fem_cpu_s": seconds})
     return rows
 
@@ -129,6 +133,7 @@ def profile_rows(scene, stack, pixel: float, forces, voltages, fem_options: dict
                 fine = field_solve_profile(stack, fine_gap, length, voltage,
                                            **{key: 2 * value for key, value in fem_options.items()})
                 layered = solve_field(stack, gap, length, voltage, tol=1e-12).mean_pressure
+                layered_air = solve_field(stack, gap, length, voltage, model="layered_air", tol=1e-11).mean_pressure
                 per_pixel = float(np.mean(stack.pressure(gap, voltage)))
                 rows.append({
                     "profile": name, "normal_force_N": force, "solve_voltage_V": solve_voltage,
@@ -138,6 +143,7 @@ def profile_rows(scene, stack, pixel: float, forces, voltages, fem_options: dict
                     "fem_maxwell_Pa": fem.mean_maxwell_pressure,
                     "layered_Pa": layered, "per_pixel_Pa": per_pixel,
                     "layered_difference": layered / fem.mean_pressure - 1,
+                    "layered_air_difference": layered_air / fem.mean_pressure - 1,
                     "per_pixel_difference": per_pixel / fem.mean_pressure - 1,
                     "fem_equivalent_gap_um": stack.gap_for_pressure(fem.mean_pressure, voltage) * 1e6,
                     "layered_equivalent_gap_um": stack.gap_for_pressure(layered, voltage) * 1e6,
@@ -175,11 +181,14 @@ def patch_rows(stack, columns: int, rng: int) -> list:
         seconds = time.process_time() - start
         fine = field_solve_patch(stack, _refined(gap), (window, window), voltage)
         layered = solve_field(stack, gap, (window, window), voltage, tol=1e-12).mean_pressure
+        layered_air = solve_field(stack, gap, (window, window), voltage, model="layered_air",
+                                  tol=1e-11).mean_pressure
         per_pixel = float(np.mean(stack.pressure(gap, voltage)))
         rows.append({"nominal_pressure_Pa": pressure, "pixels": gap.size, "pixel_um": window / columns * 1e6,
                      "contact_fraction": np.mean(gap == 0), "mean_gap_um": gap.mean() * 1e6,
                      "fem_Pa": fem.mean_pressure, "layered_Pa": layered, "per_pixel_Pa": per_pixel,
                      "layered_difference": layered / fem.mean_pressure - 1,
+                     "layered_air_difference": layered_air / fem.mean_pressure - 1,
                      "per_pixel_difference": per_pixel / fem.mean_pressure - 1,
                      "fem_refined_difference": fine.mean_pressure / fem.mean_pressure - 1,
                      "fem_unknowns": fem.unknowns, "fem_refined_unknowns": fine.unknowns, "fem_cpu_s": seconds,
@@ -190,7 +199,8 @@ def patch_rows(stack, columns: int, rng: int) -> list:
 def _differences(row) -> str:
     """The FE mean, its change on refinement and the other models' differences from it, as printed."""
     return (f"FE {row['fem_Pa']:.5g} Pa (refined {100 * row['fem_refined_difference']:+.2f} %), "
-            f"layered {100 * row['layered_difference']:+.2f} %, per pixel {100 * row['per_pixel_difference']:+.2f} %")
+            f"layered {100 * row['layered_difference']:+.2f} %, with lateral air "
+            f"{100 * row['layered_air_difference']:+.2f} %, per pixel {100 * row['per_pixel_difference']:+.2f} %")
 
 
 def main(argv=None):
@@ -220,6 +230,7 @@ def main(argv=None):
     for row in sinusoid:
         print(f"λ {row['wavelength_um']:7.0f} µm  g0 {row['mean_gap_um']:.1f} µm  S/S_exact: FE "
               f"{row['fem_over_exact']:.6f}  layered {row['layered_over_exact']:.6f}  "
+              f"with lateral air {row['layered_air_over_exact']:.6f}  "
               f"per pixel {row['per_pixel_over_exact']:.6f}")
     write_csv(output / "field_check_profiles.csv", rows, provenance)
     for row in rows:

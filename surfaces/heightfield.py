@@ -8,7 +8,7 @@ import numpy as np
 
 from .validation import check_choice, check_finite_array, check_real
 from .grid import Grid
-from .io import grid_from_columns, length_unit, load_npz, read_text_table, save_npz
+from .io import grid_from_columns, length_unit, load_npz, read_npy, read_text_table, save_npz
 
 
 def _physical_size(shape: tuple, lengths, pixel_size) -> tuple:
@@ -117,6 +117,8 @@ class HeightField:
         as ``pixel_size`` [m] (one number: square pixels, or a pair (dx, dy)).
         """
         heights = check_finite_array("heights", heights)
+        if heights.ndim not in (1, 2):
+            raise ValueError(f"heights must be a 1-D profile or a 2-D map, got shape {heights.shape}")
         if heights.ndim == 1:
             heights = heights[:, None]
         if heights.size == 0:
@@ -153,7 +155,9 @@ class HeightField:
         check_choice("layout", layout, ("auto", "matrix", "columns"))
         check_choice("missing", missing, ("refuse", "harmonic"))
         scale = length_unit("unit", unit)
-        raw = np.load(path) if path.suffix == ".npy" else read_text_table(path, delimiter, skiprows)
+        raw = read_npy(path) if path.suffix == ".npy" else read_text_table(path, delimiter, skiprows)
+        if raw.ndim > 2:
+            raise ValueError(f"{path} holds an array of shape {raw.shape}; a height map is 1-D (a profile) or 2-D")
         if np.iscomplexobj(raw):
             check_finite_array("heights", raw)                      # the TypeError naming complex heights
         raw = np.asarray(raw, dtype=np.float64)

@@ -7,11 +7,13 @@ from __future__ import annotations
 
 import io
 import json
+import zipfile
+import zlib
 from pathlib import Path
 
 import numpy as np
 
-from .validation import check_real
+from .validation import check_integer, check_real
 
 _METADATA_KEY = "__metadata_json__"
 _TUPLE_TAG = "__tuple__"          # JSON has no tuple: {"__tuple__": [...]} keeps one apart from a list
@@ -50,13 +52,35 @@ def _restore_tuple(record: dict):
     return tuple(record[_TUPLE_TAG]) if record.keys() == {_TUPLE_TAG} else record
 
 
+class UnreadableFile(ValueError):
+    """A file that is not what :func:`load_npz` reads: ``"<path>: <reason>"``."""
+
+    def __init__(self, path, reason: str):
+        super().__init__(f"{path}: {reason}")
+        self.path, self.reason = path, reason
+
+
 def load_npz(path) -> tuple:
-    """Read a file written by :func:`save_npz`; return ``(arrays, metadata)``."""
-    with np.load(Path(path), allow_pickle=False) as data:
-        if _METADATA_KEY not in data:
-            raise ValueError(f"{path} has no metadata record; it was not written by save_npz")
-        metadata = json.loads(data[_METADATA_KEY].tobytes().decode("utf-8"), object_hook=_restore_tuple)
-        arrays = {name: data[name] for name in data.files if name != _METADATA_KEY}
+    """Read a file written by :func:`save_npz`; return ``(arrays, metadata)``. A file that is not one (empty,
+    truncated, another format, no metadata record) raises :class:`UnreadableFile` (a ``ValueError``) naming it;
+    a missing or unreadable one the ``OSError``, which names it."""
+    try:        # (the file opened here, so that it is closed when numpy fails on it)
+        with open(Path(path), "rb") as handle, np.load(handle, allow_pickle=False) as data:
+            if _METADATA_KEY not in data:
+                raise UnreadableFile(path, "has no metadata record; it was not written by save_npz")
+            metadata = json.loads(data[_METADATA_KEY].tobytes().decode("utf-8"), object_hook=_restore_tuple)
+            arrays = {name: data[name] for name in data.files if name != _METADATA_KEY}
+    except (zipfile.BadZipFile, zlib.error, EOFError) as error:
+        raise UnreadableFile(path, f"not a readable .npz archive (empty, truncated or of another format: {error})"
+                             ) from None
+    except (json.JSONDecodeError, UnicodeDecodeError) as error:
+        raise UnreadableFile(path, f"its metadata record is not valid JSON ({error})") from None
+    except UnreadableFile:
+        raise
+    except ValueError as error:             # numpy takes what is not a zip for a pickle, and advises allow_pickle
+        if "pickle" not in str(error):
+            raise
+        raise UnreadableFile(path, "not an .npz archive") from None
     return arrays, metadata
 
 
@@ -80,6 +104,17 @@ def length_unit(name: str, unit) -> float:
     return check_real(name, unit, low=0.0, low_open=True)
 
 
+def read_npy(path) -> np.ndarray:
+    """The array of the ``.npy`` file ``path``; ``ValueError`` naming it if it is not one (empty, truncated,
+    pickled objects)."""
+    try:
+        with open(Path(path), "rb") as handle:
+            return np.load(handle, allow_pickle=False)
+    except (ValueError, EOFError) as error:
+        reason = "it holds pickled objects" if "pickle" in str(error) else str(error)
+        raise ValueError(f"{path} is not a readable .npy array ({reason})") from None
+
+
 def read_text_table(path, delimiter=None, skiprows: int = 0) -> np.ndarray:
     """The numbers of the text file ``path`` as a 2-D array (one row per line; ``#`` starts a comment).
 
@@ -87,6 +122,7 @@ def read_text_table(path, delimiter=None, skiprows: int = 0) -> np.ndarray:
     Binary files and lines that are not numbers raise ``ValueError`` naming the file (and the line).
     """
     path = Path(path)
+    skiprows = check_integer("skiprows", skiprows, low=0)
     raw = path.read_bytes()
     for magic, kind in _BINARY_MAGIC.items():
         if raw.startswith(magic):
@@ -114,6 +150,7 @@ def read_text_table(path, delimiter=None, skiprows: int = 0) -> np.ndarray:
 
 def _first_unreadable_line(path, lines, skiprows: int, delimiter) -> str:
     """The message naming the first line of ``lines`` that is not a row of numbers like the first data row."""
+    separator = "white space" if delimiter is None else repr(delimiter)
     width = None
     for number, line in enumerate(lines[skiprows:], start=skiprows + 1):
         content = line.split("#", 1)[0].strip()
@@ -123,12 +160,12 @@ def _first_unreadable_line(path, lines, skiprows: int, delimiter) -> str:
             row = [float(value) for value in content.split(delimiter)]
         except ValueError:
             return (f"{path}, line {number}: {content[:60]!r} is not a row of numbers separated by "
-                    f"{'white space' if delimiter is None else repr(delimiter)}; pass delimiter= or skiprows= "
+                    f"{separator}; pass delimiter= or skiprows= "
                     "(header lines), or start comment lines with '#'")
         width = len(row) if width is None else width
         if len(row) != width:
             return f"{path}, line {number}: {len(row)} columns, but the first data row has {width}"
-    return f"{path} is not a table of numbers separated by {delimiter!r}"
+    return f"{path} is not a table of numbers separated by {separator}"
 
 
 def _lattice_indices(name: str, values: np.ndarray) -> tuple:

@@ -46,9 +46,12 @@ from surfaces.validation import check_choice, check_finite_array, check_integer,
 
 from ..fft import make_backend
 from ..io.results import ConvergenceWarning
+from .air import LateralAirField, slab_elastance
 from .stack import EPSILON_0, DielectricStack
 
 MODELS = ("layered", "parallel_plate")
+#: the models of :func:`solve_field`: also the air's lateral field on fixed gaps (:mod:`.air`)
+FIELD_MODELS = MODELS + ("layered_air",)
 DEFAULT_TOL = 1e-10       # relative residual of the field solve ‖U − (M + R) D‖ / (U √n)
 
 
@@ -56,10 +59,7 @@ def _elastance(stack: DielectricStack, q: np.ndarray, model: str) -> np.ndarray:
     """M̂(q) ε0 [m]: the solid layers' air-equivalent thickness seen by the flux mode q (q = 0: c)."""
     if model == "parallel_plate":
         return np.full(q.shape, stack.dielectric_offset)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        out = np.tanh(q * stack.d_sc) / (stack.eps_sc * q) + np.tanh(q * stack.d_i) / (stack.eps_i * q)
-    out[q == 0] = stack.dielectric_offset
-    return out
+    return slab_elastance(q, stack.d_sc, stack.eps_sc) + slab_elastance(q, stack.d_i, stack.eps_i)
 
 
 class StackField:
@@ -326,7 +326,8 @@ def _cg_direction(direction, z, beta):
 class FieldSolution:
     """The field of the stack over one gap field at one voltage (``solve_field``). SI units.
 
-    ``flux`` D [C/m²] and ``pressure`` σ_el [Pa] (the attraction, N ∂W/∂g) per pixel, shaped like the gap given;
+    ``flux`` D [C/m²] (through the air column; for ``"layered_air"`` the flux leaving the stratum corneum) and
+    ``pressure`` σ_el [Pa] (the attraction, N ∂W/∂g) per pixel, shaped like the gap given;
     ``traction`` −σ_el in the contact solver's convention (positive compressive). ``mean_pressure`` and
     ``energy`` (W = −½ U ⟨D⟩ [J/m²]) are averages over the window (the apparent area).
     """
@@ -379,20 +380,28 @@ def solve_field(stack: DielectricStack, gap, lengths=None, voltage: float = 1.0,
     ``gap`` is a 1-D profile or a 2-D field [m] (g ≥ 0), or a :class:`~surfaces.HeightField` (its grid then
     gives ``lengths`` and ``periodic``). ``lengths`` is the window's size [m] (a scalar for a profile);
     ``periodic`` a bool or one per axis (a free axis is zero-padded). ``model`` is ``"layered"`` (the slabs'
-    lateral field) or ``"parallel_plate"`` (Eq. 21 per pixel). ``tol`` bounds the field solve's relative residual.
+    lateral field, air columns: the law inside the contact solve), ``"layered_air"`` (also the air's own lateral
+    field, periodic grids only: :mod:`~roughcontact.electrostatics.air`) or ``"parallel_plate"`` (Eq. 21 per
+    pixel). ``tol`` bounds the field solve's relative residual.
     """
     shape = np.shape(gap.heights if isinstance(gap, HeightField) else gap)
     grid, gap = _grid_and_gap(gap, lengths, periodic)
     voltage = check_real("voltage", voltage)
-    field = StackField(stack, grid, model=model, backend=backend, threads=1)
-    unit_flux, iterations, residual = field.solve(gap, tol=tol, maxiter=maxiter)
+    model = check_choice("model", model, FIELD_MODELS)
+    tol = check_real("tol", tol, low=0.0, low_open=True)
+    maxiter = None if maxiter is None else check_integer("maxiter", maxiter, low=1)
+    if model == "layered_air":
+        flux, pressure, iterations, residual = LateralAirField(stack, grid, backend=backend).solve(
+            gap, voltage, tol, maxiter)
+    else:
+        field = StackField(stack, grid, model=model, backend=backend, threads=1)
+        unit_flux, iterations, residual = field.solve(gap, tol=tol, maxiter=maxiter)
+        flux, pressure = voltage * unit_flux, voltage ** 2 * field.attraction(gap, unit_flux)
     if residual > tol:
         warnings.warn(f"field solve stopped at relative residual {residual:.3g} > tol = {tol:g} after "
                       f"{iterations} iterations", ConvergenceWarning, stacklevel=2)
-    return FieldSolution(model=model, voltage=voltage, stack=stack, grid=grid,
-                         flux=(voltage * unit_flux).reshape(shape),
-                         pressure=(voltage ** 2 * field.attraction(gap, unit_flux)).reshape(shape),
-                         iterations=iterations, residual=residual)
+    return FieldSolution(model=model, voltage=voltage, stack=stack, grid=grid, flux=flux.reshape(shape),
+                         pressure=pressure.reshape(shape), iterations=iterations, residual=residual)
 
 
 def _grid_and_gap(gap, lengths, periodic) -> tuple:
@@ -406,6 +415,8 @@ def _grid_and_gap(gap, lengths, periodic) -> tuple:
         values = values[:, None]
     if values.ndim != 2:
         raise ValueError(f"gap must be a 1-D profile or a 2-D field, got {values.ndim} dimensions")
+    if values.size == 0:
+        raise ValueError(f"gap must have at least one pixel per axis, got shape {values.shape}")
     if lengths is None:
         raise ValueError("lengths (the window's size in m) is required for a gap array")
     if np.ndim(lengths) == 0:

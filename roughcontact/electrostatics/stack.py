@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from surfaces.validation import check_broadcast, check_finite_array, check_positive
+from surfaces.validation import check_broadcast, check_finite_array, check_positive, check_real
 
 #: Vacuum permittivity ε0 [F/m] (CODATA 2018).
 EPSILON_0 = 8.8541878128e-12
@@ -32,12 +32,19 @@ class ElectricFields:
     displacement: np.ndarray
 
 
+#: Conductivity of the stratum corneum [S/m]: the static conduction term of dry skin's dielectric spectrum
+#: (Gabriel et al. 1996, ``docs/references.md`` §11); hydration raises it by orders of magnitude.
+SIGMA_SC = 2e-4
+
+
 @dataclass(frozen=True)
 class DielectricStack:
     """Stratum corneum, air gap and insulating screen layer in series (seed Eqs. 18–25).
 
     Defaults are the seed's Table 1: ``d_sc`` = 250 µm, ``eps_sc`` = 3000, ``d_i`` = 1 µm, ``eps_i`` = 3.9,
-    ``eps_a`` = 1. Thicknesses in m, permittivities relative (dimensionless).
+    ``eps_a`` = 1. Thicknesses in m, permittivities relative (dimensionless). ``sigma_sc`` [S/m, >= 0] is the
+    stratum corneum's conductivity; only an AC or DC drive uses it (:mod:`roughcontact.electrostatics.ac`), every
+    method here is the seed's perfect dielectric, the high-frequency limit.
     """
 
     d_sc: float = 250e-6
@@ -45,10 +52,12 @@ class DielectricStack:
     d_i: float = 1e-6
     eps_i: float = 3.9
     eps_a: float = 1.0
+    sigma_sc: float = SIGMA_SC
 
     def __post_init__(self):
         for name in ("d_sc", "eps_sc", "d_i", "eps_i", "eps_a"):
             object.__setattr__(self, name, check_positive(name, getattr(self, name)))
+        object.__setattr__(self, "sigma_sc", check_real("sigma_sc", self.sigma_sc, low=0.0))
 
     # -- geometry of the series capacitor ------------------------------------------------------------------
     @property

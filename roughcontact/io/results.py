@@ -15,18 +15,15 @@ fields, with a warning naming the class.
 from __future__ import annotations
 
 import dataclasses
-import json
 import os
 import sys
 import warnings
-import zipfile
-import zlib
 from pathlib import Path
 
 import numpy as np
 
 from surfaces import Grid
-from surfaces.io import load_npz, save_npz
+from surfaces.io import UnreadableFile, load_npz, save_npz
 
 from .._version import __version__
 
@@ -176,14 +173,10 @@ def _read(path) -> tuple:
         raise TypeError(f"path must be a str or os.PathLike, got {type(path).__name__}")
     try:
         arrays, metadata = load_npz(path)
-    except (zipfile.BadZipFile, zlib.error, EOFError, TypeError) as error:
-        raise ValueError(f"{path} is not a saved result: not a readable .npz archive (empty, truncated or of another "
-                         f"format: {error})") from None
-    except json.JSONDecodeError as error:
-        raise ValueError(f"{path} is not a saved result: its metadata record is not valid JSON ({error})") from None
-    except ValueError as error:
-        reason = "not an .npz archive" if "pickle" in str(error) else str(error)    # (numpy's allow_pickle advice)
-        raise ValueError(f"{path} is not a saved result: {reason}") from None
+    except UnreadableFile as error:
+        raise ValueError(f"{path} is not a saved result: {error.reason}") from None
+    except TypeError as error:
+        raise ValueError(f"{path} is not a saved result: not a readable .npz archive ({error})") from None
     if not isinstance(metadata, dict) or not isinstance(metadata.get("fields"), dict):
         raise ValueError(f"{path} is not a saved result: its metadata record has no fields")
     stored = _array_record(arrays)

@@ -147,7 +147,8 @@ def pull_off(problem: ContactProblem, start: ContactResult, step, tol=1e-3, max_
             raise RuntimeError(f"the retract step to {load:.6g} Pa did not converge: {result.message}")
         attached = result
     if detached_load is None:
-        raise RuntimeError(f"no detachment within {max_steps} steps of {step:g} Pa below {start.mean_pressure:g} Pa")
+        raise RuntimeError(f"no detachment within max_steps = {max_steps} steps of step = {step:g} Pa below "
+                           f"{start.mean_pressure:g} Pa: raise max_steps or step")
     while attached.mean_pressure - detached_load > tol * step:
         load = 0.5 * (attached.mean_pressure + detached_load)
         result = problem.solve(mean_pressure=load, x0=attached, warn=False, **solver_options)

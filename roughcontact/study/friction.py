@@ -14,7 +14,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from surfaces.validation import check_finite_array
+
+from ..electrostatics import DielectricStack
 from ..macro import SlidingFrictionModel, TabulatedArea, TabulatedGap
+from ..macro.gap import table_axis
 from .run import StudyResult
 
 #: Relative error of the electrostatic force within which the report counts the equivalent-gap assumption as held.
@@ -36,8 +40,16 @@ def friction_recipe(normal_forces, voltages, ridge_gaps, ridge_areas, stack, c2:
     (len(normal_forces), len(voltages)) at ``normal_forces`` [N] (>= 2) and ``voltages`` [V] (one: voltage
     independent). d_eq,R is the uniform gap with σ_el(d_eq,R) A_R = the solved F_el, so the law's attraction is
     the solved one; A_R(F_N, w) replaces Eq. 9, with w = w(d_eq,R, U) of Eq. 22 (made non-decreasing in U)."""
-    forces, voltages = np.asarray(normal_forces, float), np.asarray(voltages, float)
-    gaps, areas = np.asarray(ridge_gaps, float), np.asarray(ridge_areas, float)
+    if not isinstance(stack, DielectricStack):
+        raise TypeError(f"stack must be a DielectricStack, got {type(stack).__name__}")
+    forces = table_axis("normal_forces", normal_forces, FRICTION_MIN_LOADS, nonnegative=True)
+    voltages = table_axis("voltages", voltages, 1, nonnegative=True)
+    gaps, areas = (check_finite_array(name, values, nonnegative=True)
+                   for name, values in (("ridge_gaps", ridge_gaps), ("ridge_areas", ridge_areas)))
+    for name, values in (("ridge_gaps", gaps), ("ridge_areas", areas)):
+        if values.shape != (forces.size, voltages.size):
+            raise ValueError(f"{name} has shape {values.shape}; it must be (len(normal_forces), len(voltages)) = "
+                             f"{(forces.size, voltages.size)}")
     works = stack.work_of_adhesion(gaps, voltages[None, :])
     seed = SlidingFrictionModel.paper_table1()
     return SlidingFrictionModel(mu0=seed.mu0, c2=seed.c2 if c2 is None else c2, stack=stack,

@@ -1,0 +1,43 @@
+"""The AC drive's study scripts run in fast mode and their rows are self-consistent (no timing is asserted)."""
+import math
+
+import pytest
+
+
+@pytest.fixture(scope="module")
+def sweep(fast_run, read_csv):
+    return read_csv(fast_run("ac_drive") / "ac_drive.csv")
+
+
+def test_sweep_runs_from_dc_to_the_dielectric_limit(sweep):
+    frequencies = [float(row["frequency_Hz"]) for row in sweep]
+    assert frequencies[0] == 0.0 and frequencies[-1] == math.inf and frequencies == sorted(frequencies)
+    means = [float(row["mean_pressure_Pa"]) for row in sweep]
+    assert all(a >= b for a, b in zip(means, means[1:])) and means[0] > means[-1]
+    assert float(sweep[-1]["ratio_to_dielectric"]) == 1.0
+    # the dielectric limit's AC-equivalent gap is its field-equivalent gap; the crossover lies inside the sweep
+    assert float(sweep[-1]["ac_equivalent_gap_m"]) == pytest.approx(float(sweep[-1]["field_equivalent_gap_m"]))
+    measured, circuit = float(sweep[0]["measured_crossover_Hz"]), float(sweep[0]["circuit_crossover_Hz"])
+    assert 10 < measured < 1e4 and circuit == pytest.approx(measured, rel=0.05)
+
+
+def test_bench_counts_two_fft_pairs_per_cocg_iteration(fast_run, read_csv):
+    rows = read_csv(fast_run("bench_ac") / "bench_ac.csv")
+    assert {row["method"] for row in rows} == {"dielectric", "cocg", "gmres-block", "bicgstab-block", "fft-pair-real",
+                                               "fft-pair-complex"}
+    for row in rows:
+        if row["method"].startswith("fft-pair"):
+            continue
+        assert float(row["residual"]) <= 1e-10
+        if row["method"] == "cocg":
+            assert int(row["fft_pairs"]) == 2 * (int(row["iterations"]) + 1)
+
+
+def test_deferred_correction_converges(fast_run, read_csv):
+    rows = read_csv(fast_run("ac_coupling") / "ac_coupling.csv")
+    for frequency in {row["frequency_Hz"] for row in rows}:
+        for surrogate in ("dielectric", "matched"):
+            changes = [float(row["gap_change"]) for row in rows
+                       if row["frequency_Hz"] == frequency and row["surrogate"] == surrogate and row["gap_change"]]
+            # a contraction: each correction moves the gap less than the last, three steps gain two digits
+            assert all(b <= a for a, b in zip(changes, changes[1:])) and changes[-1] < 1e-2 * changes[0]
