@@ -108,8 +108,8 @@ def solve_contact(height_field, body: ElasticHalfSpace, *, mean_pressure=None, t
         pixels fall back to ``"pk"``: Polonsky and Keer's uniform p̄ (load control) or the rigid overlap
         (displacement control).
     preconditioned : bool, Polonsky–Keer only
-        Precondition the conjugate gradients with the inverse kernel K⁻¹ (default True): one more FFT pair per
-        step, fewer steps (``docs/guide/solver.md``).
+        Precondition the conjugate gradients with the inverse kernel K⁻¹: one more FFT pair per step, fewer steps
+        (``docs/guide/solver.md``). Default: True on 2-D grids, False on 1-D profiles (where it saves no steps).
 
     Notes
     -----

@@ -404,12 +404,14 @@ def _start(heights, half, load, flat_position, x0, tol, maxiter):
         raise TypeError(f"x0 of a smooth interaction must be a ContactResult (its gap starts the solve), got "
                         f"{type(x0).__name__}")
     h_max = float(heights.max())
+    # the start keeps the K⁻¹ preconditioner on profiles too: a smooth solve that crosses instabilities ends in an
+    # equilibrium that depends on its start (docs/dev/investigations.md), and the profile studies were measured so
     if load is not None and load > 0:
         start = solve_hard_wall(heights, half, mean_pressure=load, tol=max(tol, START_TOL), maxiter=maxiter,
-                                warn=False)
+                                preconditioned=True, warn=False)
     elif flat_position is not None and flat_position < h_max:
         start = solve_hard_wall(heights, half, penetration=h_max - flat_position, tol=max(tol, START_TOL),
-                                maxiter=maxiter, warn=False)
+                                maxiter=maxiter, preconditioned=True, warn=False)
     else:
         return None, "rigid", 0.0
     return start, "hard wall", start.solver.fft_pairs

@@ -288,7 +288,7 @@ def _full_contact(h, half, mean_pressure, pressure, displacement):
 
 def solve_hard_wall(height_field, half: ElasticHalfSpace, interaction: Interaction | None = None, *,
                     mean_pressure=None, total_force=None, penetration=None, tol=None, maxiter=10000, x0=None,
-                    cold_start="nested", callback=None, preconditioned=True, warn=True) -> ContactResult:
+                    cold_start="nested", callback=None, preconditioned=None, warn=True) -> ContactResult:
     """Polonsky–Keer's solve (module docstring) of :func:`~roughcontact.solvers.dispatch.solve_contact` for the
     hard wall, or a law that vanishes (0 V); same arguments."""
     start = time.perf_counter()
@@ -305,7 +305,8 @@ def solve_hard_wall(height_field, half: ElasticHalfSpace, interaction: Interacti
     if callback is not None and not callable(callback):
         raise TypeError(f"callback must be callable, got {type(callback).__name__}")
     grid = half.grid
-    preconditioned = check_bool("preconditioned", preconditioned)
+    # K⁻¹ saves steps on 2-D grids; on 1-D profiles it does not (docs/guide/solver.md): off there by default
+    preconditioned = not grid.is_profile if preconditioned is None else check_bool("preconditioned", preconditioned)
     heights = _heights(height_field, half)
     warm = _warm_pressure(x0, heights.shape)
     warm_started = warm is not None

@@ -290,7 +290,20 @@ def test_a_preconditioned_cycle_is_solved_again_without_the_preconditioner():
     scene = load_scene(preset="draft")
     pressure = dict(zip(scene.loads.normal_forces, (scale[1][0] for scale in apparent_scale(scene))))[2.0]
     heights, _, body = profile_surface(scene, 0.25e-6, realisation=1)
-    result = solve_contact(heights, body, mean_pressure=pressure)
+    result = solve_contact(heights, body, mean_pressure=pressure, preconditioned=True)
     assert result.converged and result.params["preconditioned_stalled_at"] >= 200
     assert not result.solver.details["preconditioned"]
     check_contact_state(heights, result)
+
+
+def test_profiles_are_unpreconditioned_by_default():
+    """The K⁻¹ preconditioner saves no steps on 1-D profiles (studies/bench_profiles.py): off there by default, on
+    for 2-D grids; an explicit choice is kept."""
+    grid = Grid((256, 1), (1e-3, 1e-3 / 256), periodic=True)
+    x = (np.arange(256) + 0.5) / 256 - 0.5
+    profile = HeightField(grid, (-(x * 1e-3) ** 2 / 2e-3)[:, None])
+    body = ElasticHalfSpace(grid, E_star=1e6)
+    assert not solve_contact(profile, body, mean_pressure=1e3).solver.details["preconditioned"]
+    assert solve_contact(profile, body, mean_pressure=1e3, preconditioned=True).solver.details["preconditioned"]
+    surface, half = bench_like(np.float64)
+    assert solve_contact(surface, half, mean_pressure=1e3).solver.details["preconditioned"]
