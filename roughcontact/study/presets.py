@@ -34,12 +34,12 @@ from .scene import AUTO, Preset, Scene, load_scene
 #: The discretisation errors of a setting's pixel (fractions; module docstring).
 RESOLUTION_COLUMNS = ("fel_error", "deq_error", "field_deq_error")
 #: The band (fractions) within which the layered model defines F_el at the default scene's contact edges, about
-#: its cold solves' value at the 0.11 µm reference pixel: the lowest-energy equilibrium that any start reaches lies
-#: 5.4 % below it (0.5 N; 2.1 % at 2 N; ``python studies/resolution_edges.py``, resolution_edges_band.csv, 8
-#: realisations), and the cold solves rise by up to 3.4 % at finer pixels (0.5 N, 0.027 µm; ``python
-#: studies/resolution.py``, beyond_reference, 24 realisations). Both are set by the contact edges below 0.1 µm,
-#: which the model does not describe (``docs/guide/presets.md``, "Resolution near contacts").
-EDGE_MODEL_BAND = (-0.054, 0.034)
+#: its cold solves' value at the 0.11 µm reference pixel: the lowest-energy equilibria that any start reaches, at
+#: that pixel or finer, lie down to 5.7 % below it (0.5 N, 0.055 µm; ``python studies/resolution_edges.py``, its
+#: "band" line, 8 realisations), and the cold solves rise by up to 3.4 % at finer pixels (0.5 N, 0.027 µm;
+#: ``python studies/resolution.py``, beyond_reference, 24 realisations). Both are set by the contact edges below
+#: 0.1 µm, which the model does not describe (``docs/guide/presets.md``, "Resolution near contacts").
+EDGE_MODEL_BAND = (-0.057, 0.034)
 #: The measured table (package data).
 TABLE_PATH = Path(__file__).with_name("preset_errors.csv")
 #: The Preset keys that a measured setting fixes (with ``realisations``); ``rings`` acts on the fingertip model

@@ -85,3 +85,13 @@ def test_fast_run_tables_are_consistent(fast_run, read_csv):
     for row in read_csv(path / "resolution_edges_profile.csv"):
         # the gap opens away from the contact line (1 µm is 2 and 5 pixels out on these profiles)
         assert 0 < float(row["first_gap_nm"]) < float(row["gap_1um_nm"])
+
+
+def test_model_band_spans_the_lowest_energy_and_the_cold_solves_about_the_reference(edges):
+    rows = [{"normal_force_N": force, "pixels": n, "cold_fel_kPa": cold, "lowest_energy_fel_kPa": lowest}
+            for force, table in ((0.5, ((2048, 150.0, 90.0), (4096, 100.0, 95.0), (8192, 104.0, 93.0))),
+                                 (2.0, ((4096, 200.0, 198.0), (8192, 210.0, 199.0))))
+            for n, cold, lowest in table]
+    below, above = edges.model_band(rows)
+    # coarser pixels (2048) take no part; at 0.5 N 93/100 below, at 2 N 210/200 above
+    assert below == pytest.approx(-0.07, rel=1e-12) and above == pytest.approx(0.05, rel=1e-12)
