@@ -63,8 +63,8 @@ from roughcontact.study.scene import load_scene
 
 #: pixels per ridge period (450 µm): 3.5 µm (draft), 1.76 µm (standard), 0.88 µm (reference) … 0.027 µm
 PIXELS_PER_PERIOD = (128, 256, 512, 1024, 2048, 4096, 8192, 16384)
-#: the reference pixel, 0.11 µm: the finest at which the layered model describes its contact edges (the
-#: crack-like opening g ≈ A√s of its edges is steeper than 1 within about A² ≈ 0.1 µm of the contact line, where
+#: the reference pixel, 0.11 µm: the finest at which the layered model describes its contact edges (their
+#: crack-like opening g ≈ A√s is wider than its distance s from the contact line within A² ≈ 0.1–0.2 µm, where
 #: the local air columns and the slope factor 1 + |∇g|²/3 no longer hold; studies/resolution_edges.py); a
 #: shorter sequence uses its finest pixel
 REFERENCE_PIXELS = 4096
