@@ -5,7 +5,7 @@ contacts").
     python studies/resolution_edges.py --output out          # every table (minutes)
     python studies/resolution_edges.py --fast --output out   # two pixels, one realisation: seconds
 
-Four measurements, each a CSV:
+Five measurements, each a CSV (with the band of the layered F_el that they give):
 
 * ``resolution_edges_zones.csv``: the cohesive (process) zone ℓ = (π/4) E* w / σ0² of a Dugdale-like edge
   (``zone_length``) for the per-pixel law (σ0 = ε0 U²/(2 c²), w = ε0 U²/(2 c), c = d_sc/ε_sc + d_i/ε_i) and for
@@ -15,16 +15,20 @@ Four measurements, each a CSV:
   ``STRIP_WINDOW`` with a strip of ``STRIP_WIDTH``), the gap opening from its edges like an adhesive (crack-like)
   contact, g = A √s + s²/(2R), or like a Hertz contact, g = B (s/s0)^{3/2} + s²/(2R) (s the distance from the
   edge), on pixels from 0.5 µm down to 0.5 nm: F_el/A0 and its contact-pixel part.
+* ``resolution_edges_fem.csv``: the same crack-like strip with the finite-element field
+  (``roughcontact.electrostatics.fem.field_solve_profile``, optional extra ``fieldcheck``; ``--no-fem`` skips
+  it), 500 nm … 7.8 nm columns.
 * ``resolution_edges_profile.csv``: realisation 0 of the default scene's profile (``studies/resolution.py``) at
   0.5 N and 200 V, the layered law's own cold solve on 1024 … 32768 pixels per period: F_el/A0, the contact
-  fraction, and, averaged over the contact spots' edges, the gap of the first open pixel, σ_el of the last
+  fraction, F_el/A0 of the same solve to a tolerance of 1e-12, and, averaged over the contact spots' edges, the gap of the first open pixel, σ_el of the last
   contact pixel, the gap at ``EDGE_DISTANCES`` outside and σ_el at the same distances inside.
 * ``resolution_edges_paths.csv``: per realisation, load and pixel, the layered solve started cold (the
   default: the field solves' tolerance adapted to the step), cold with the field solves at a fixed 1e-12
   (``fixed_field_tolerance``), and warm from the next coarser pixel's solution (its gap interpolated
   linearly): F_el/A0, the contact fraction and the total energy Π/A0 = (U_el + ∫V dA)/A0 + P̄ ⟨g⟩ of each
   equilibrium; ``resolution_edges_band.csv``: per load and pixel, the mean F_el/A0 of the cold solves and of
-  the lowest-energy equilibrium any path reached, and the cold solves' excess over it.
+  the lowest-energy equilibrium any path reached, and the cold solves' excess over it; printed: the band
+  (``model_band``) of the layered F_el about the cold solves at the 0.11 µm reference pixel.
 
 Every CSV starts with its provenance line.
 """
@@ -117,13 +121,26 @@ def fixed_field_tolerance(tol: float):
         energy_cg.FIELD_TOL_FLOOR, energy_cg.FIELD_TOL_CEILING = bounds
 
 
-def layered_solve(scene, pixels: int, realisation: int, force: float, x0=None):
-    """``(result, grid)``: the layered law's contact solve of the profile at ``force`` [N] (apparent pressure)."""
+def fem_strip_rows(stack, pixels) -> list:
+    """F_el/A0 of the finite-element field (``field_solve_profile``, its default rows) on the crack-like strip gap:
+    whether the independent reference resolves such an edge (optional extra ``fieldcheck``)."""
+    from roughcontact.electrostatics.fem import field_solve_profile
+    rows = []
+    for n in pixels:
+        solution = field_solve_profile(stack, strip_gap("crack", n), STRIP_WINDOW, VOLTAGE)
+        rows.append({"opening": "crack", "pixels": n, "pixel_nm": STRIP_WINDOW / n * 1e9,
+                     "fel_kPa": solution.mean_pressure / 1e3, "converged": solution.converged})
+    return rows
+
+
+def layered_solve(scene, pixels: int, realisation: int, force: float, x0=None, tol: float = TOLERANCE):
+    """``(result, grid)``: the layered law's contact solve of the profile at ``force`` [N] (apparent pressure) to
+    the relative tolerance ``tol``."""
     stack = scene.screen.stack()
     pressure = dict(zip(scene.loads.normal_forces, (scale[1][0] for scale in apparent_scale(scene))))[force]
     heights, grid, body = profile_surface(scene, scene.ridges.period / pixels, realisation)
     result = solve_contact(heights, body, mean_pressure=pressure, interaction=ElectrostaticInteraction(stack, VOLTAGE),
-                           tol=TOLERANCE, warn=False, x0=x0)
+                           tol=tol, warn=False, x0=x0)
     return result, grid
 
 
@@ -156,12 +173,15 @@ def edge_measures(gap: np.ndarray, pressure: np.ndarray, spacing: float) -> dict
 
 
 def profile_rows(scene, pixels) -> list:
-    """The edges of realisation 0's layered solve at 0.5 N against the pixel (module docstring)."""
+    """The edges of realisation 0's layered solve at 0.5 N against the pixel (module docstring), and F_el of the
+    same solve to a tolerance of 1e-12 instead of 1e-8."""
     rows = []
     for n in pixels:
         result, grid = layered_solve(scene, n, 0, 0.5)
         values, gap, pressure = equilibrium(scene, result, grid)
+        tight, _ = layered_solve(scene, n, 0, 0.5, tol=1e-12)
         rows.append({"pixels": n, "pixel_nm": grid.spacing[0] * 1e9, **values,
+                     "fel_kPa_tol_1e-12": equilibrium(scene, tight, grid)[0]["fel_kPa"],
                      **edge_measures(gap, pressure, grid.spacing[0])})
     return rows
 
@@ -228,16 +248,18 @@ def model_band(bands) -> tuple:
     return below, above
 
 
-def summarise(zones, strips, profiles, paths, bands, pixels) -> list:
+def summarise(zones, strips, fem, profiles, paths, bands, pixels) -> list:
     lines = ["cohesive zone (π/4) E* w/σ0²:"]
     lines += [f"  {row['law']:>21}: h {row['thickness_um']:.3f} µm, σ0 {row['strength_MPa']:.2f} MPa, "
               f"w {row['work_J_m2']:.3f} J/m², ℓ {row['zone_um']:.2f} µm" for row in zones]
     lines.append("fixed strip gaps, F_el/A0 [kPa] (contact part) against the pixel:")
     lines += [f"  {row['opening']:>5} {row['pixel_nm']:9.2f} nm: {row['fel_kPa']:.3f} ({row['fel_contact_kPa']:.3f}),"
               f" edge σ {row['edge_sigma_MPa']:.2f} MPa" for row in strips]
+    lines += [f"  FE    {row['pixel_nm']:9.2f} nm: {row['fel_kPa']:.3f}" for row in fem]
     lines.append("realisation 0, 0.5 N, layered solve: edges against the pixel:")
-    lines += [f"  {row['pixel_nm']:7.1f} nm: F_el {row['fel_kPa']:.2f} kPa, contact {100 * row['contact_fraction']:.3f} %, "
-              f"first gap {row['first_gap_nm']:.1f} nm, edge σ {row['edge_sigma_MPa']:.2f} MPa" for row in profiles]
+    lines += [f"  {row['pixel_nm']:7.1f} nm: F_el {row['fel_kPa']:.2f} kPa (tolerance 1e-12: {row['fel_kPa_tol_1e-12']:.2f}), "
+              f"contact {100 * row['contact_fraction']:.3f} %, first gap {row['first_gap_nm']:.1f} nm, "
+              f"edge σ {row['edge_sigma_MPa']:.2f} MPa" for row in profiles]
     lines.append("paths: mean F_el/A0 [kPa] (mean |ΔF_el| from cold) per load and pixel:")
     for force in NORMAL_FORCES:
         for n in pixels:
@@ -263,6 +285,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--fast", action="store_true", help="two pixels, one realisation")
     parser.add_argument("--realisations", type=int, default=8)
+    parser.add_argument("--no-fem", action="store_true", help="skip the finite-element strip (needs scikit-fem)")
     parser.add_argument("--output", default="out", help="output directory (its parent must exist)")
     args, provenance = parse_arguments(parser, argv, "python studies/resolution_edges.py")
     output = output_directory(args.output)
@@ -270,15 +293,17 @@ def main(argv=None):
     stack = scene.screen.stack()
     zones = zone_rows(scene)
     strips = strip_rows(stack, STRIP_PIXELS[:6] if args.fast else STRIP_PIXELS)
+    fem = [] if args.no_fem else fem_strip_rows(stack, STRIP_PIXELS[:3] if args.fast else STRIP_PIXELS[:7])
     profiles = profile_rows(scene, PROFILE_PIXELS[:2] if args.fast else PROFILE_PIXELS)
     path_pixels = PATH_PIXELS[:2] if args.fast else PATH_PIXELS
     paths = path_rows(scene, path_pixels, 1 if args.fast else args.realisations)
     bands = band_rows(paths)
-    for name, rows in (("zones", zones), ("strip", strips), ("profile", profiles), ("paths", paths),
+    for name, rows in (("zones", zones), ("strip", strips), ("fem", fem), ("profile", profiles), ("paths", paths),
                        ("band", bands)):
-        write_csv(output / f"resolution_edges_{name}.csv", rows, provenance)
-    print("\n".join(summarise(zones, strips, profiles, paths, bands, path_pixels)) + f"\nwritten to {output}/")
-    return zones, strips, profiles, paths, bands
+        if rows:
+            write_csv(output / f"resolution_edges_{name}.csv", rows, provenance)
+    print("\n".join(summarise(zones, strips, fem, profiles, paths, bands, path_pixels)) + f"\nwritten to {output}/")
+    return zones, strips, fem, profiles, paths, bands
 
 
 if __name__ == "__main__":
