@@ -63,10 +63,10 @@ from roughcontact.study.scene import load_scene
 
 #: pixels per ridge period (450 µm): 3.5 µm (draft), 1.76 µm (standard), 0.88 µm (reference) … 0.027 µm
 PIXELS_PER_PERIOD = (128, 256, 512, 1024, 2048, 4096, 8192, 16384)
-#: the reference pixel, 0.11 µm: the finest at which the layered model describes its contact edges (their
-#: crack-like opening g ≈ A√s is wider than its distance s from the contact line within A² ≈ 0.1–0.2 µm, where
-#: the local air columns and the slope factor 1 + |∇g|²/3 no longer hold; studies/resolution_edges.py); a
-#: shorter sequence uses its finest pixel
+#: the reference pixel, 0.11 µm: the finest at which the layered model describes its contact edges (there the
+#: first open pixel's gap about equals the pixel; at finer pixels the crack-like edges, g ≈ A√s, resolve gaps
+#: wider than their distance from the contact line, where one air column per pixel and the slope factor
+#: 1 + |∇g|²/3 no longer hold; studies/resolution_edges.py); a shorter sequence uses its finest pixel
 REFERENCE_PIXELS = 4096
 FAST_PIXELS = (128, 256, 512)
 #: the presets' patch grids over one ridge period
