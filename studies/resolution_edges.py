@@ -5,7 +5,7 @@ contacts").
     python studies/resolution_edges.py --output out          # every table (minutes)
     python studies/resolution_edges.py --fast --output out   # two pixels, one realisation: seconds
 
-Five measurements, each a CSV (with the band of the layered F_el that they give):
+Six measurements, each a CSV (with the band of the layered F_el that they give):
 
 * ``resolution_edges_zones.csv``: the cohesive (process) zone ℓ = (π/4) E* w / σ0² of a Dugdale-like edge
   (``zone_length``) for the per-pixel law (σ0 = ε0 U²/(2 c²), w = ε0 U²/(2 c), c = d_sc/ε_sc + d_i/ε_i) and for
@@ -18,6 +18,10 @@ Five measurements, each a CSV (with the band of the layered F_el that they give)
 * ``resolution_edges_fem.csv``: the same crack-like strip with the finite-element field
   (``roughcontact.electrostatics.fem.field_solve_profile``, optional extra ``fieldcheck``; ``--no-fem`` skips
   it), 500 nm … 7.8 nm columns.
+* ``resolution_edges_cylinder.csv``: the clean model problem, one contact per period (parabolic cylinders of
+  ``CYLINDER_RADIUS`` every ``CYLINDER_PERIOD`` at ``CYLINDER_PRESSURE``, the scene's skin and stack), with the
+  layered and the per-pixel law, cold and from the next coarser pixel's equilibrium, 156 … 9.8 nm pixels: F_el/A0,
+  the contact width and Π/A0.
 * ``resolution_edges_profile.csv``: realisation 0 of the default scene's profile (``studies/resolution.py``) at
   0.5 N and 200 V, the layered law's own cold solve on 1024 … 32768 pixels per period: F_el/A0, the contact
   fraction, F_el/A0 of the same solve to a tolerance of 1e-12, and, averaged over the contact spots' edges, the gap of the first open pixel, σ_el of the last
@@ -49,8 +53,9 @@ from roughcontact.electrostatics import EPSILON_0, solve_field
 from roughcontact.io import output_directory, parse_arguments, write_csv
 from roughcontact.solvers import energy_cg
 from roughcontact.study.apparent import apparent_scale
-from roughcontact.study.patch import profile_surface
+from roughcontact.study.patch import patch_body, profile_surface
 from roughcontact.study.scene import load_scene
+from surfaces import Grid
 
 VOLTAGE = 200.0                     # [V]
 TOLERANCE = 1e-8                    # the contact solves' relative tolerance (studies/resolution.py)
@@ -64,6 +69,9 @@ STRIP_PIXELS = tuple(40 * 2 ** k for k in range(14))       # 500 nm … 0.06 nm
 PROFILE_PIXELS = (1024, 2048, 4096, 8192, 16384, 32768)   # 0.44 µm … 0.014 µm over the 450 µm period
 EDGE_DISTANCES = (0.02e-6, 0.05e-6, 0.1e-6, 0.2e-6, 0.5e-6, 1e-6)   # [m] from a contact edge
 PATH_PIXELS = (1024, 2048, 4096, 8192, 16384)
+#: the clean model problem: a periodic row of parabolic cylinders (period, radius [m]) at a mean pressure [Pa]
+CYLINDER_PERIOD, CYLINDER_RADIUS, CYLINDER_PRESSURE = 20e-6, 5e-6, 1e3
+CYLINDER_PIXELS = (128, 256, 512, 1024, 2048)             # 156 nm … 9.8 nm
 REFERENCE_PIXELS = 4096             # 0.11 µm, the reference pixel of studies/resolution.py
 NORMAL_FORCES = (0.5, 2.0)          # [N]
 
@@ -130,6 +138,33 @@ def fem_strip_rows(stack, pixels) -> list:
         solution = field_solve_profile(stack, strip_gap("crack", n), STRIP_WINDOW, VOLTAGE)
         rows.append({"opening": "crack", "pixels": n, "pixel_nm": STRIP_WINDOW / n * 1e9,
                      "fel_kPa": solution.mean_pressure / 1e3, "converged": solution.converged})
+    return rows
+
+
+def cylinder_rows(scene, pixels) -> list:
+    """A single contact per period, the layered and the per-pixel law: cold solves and solves started from the
+    next coarser pixel's equilibrium, on the scene's skin (plane strain) and stack at ``VOLTAGE``: F_el/A0
+    [kPa], the contact width [µm] and Π/A0 [J/m²]."""
+    stack, rows = scene.screen.stack(), []
+    for law in ("layered", "parallel_plate"):
+        interaction, coarser = ElectrostaticInteraction(stack, VOLTAGE, field=law), None
+        for n in pixels:
+            grid = Grid((n, 1), (CYLINDER_PERIOD, CYLINDER_PERIOD / n), periodic=True)
+            x = (np.arange(n) + 0.5) * CYLINDER_PERIOD / n - CYLINDER_PERIOD / 2
+            heights, body = (-x * x / (2 * CYLINDER_RADIUS))[:, None], patch_body(scene, grid=grid)
+            cold = solve_contact(heights, body, mean_pressure=CYLINDER_PRESSURE, interaction=interaction,
+                                 tol=TOLERANCE, warn=False)
+            starts = {"cold": cold}
+            if coarser is not None:
+                start = dataclasses.replace(cold, gap=interpolated_gap(coarser, n))
+                starts["warm_from_coarser"] = solve_contact(heights, body, mean_pressure=CYLINDER_PRESSURE,
+                                                            interaction=interaction, tol=TOLERANCE, warn=False,
+                                                            x0=start)
+            for path, result in starts.items():
+                values = equilibrium(scene, result, grid)[0]
+                rows.append({"law": law, "pixels": n, "pixel_nm": grid.spacing[0] * 1e9, "path": path, **values,
+                             "contact_um": result.contact_fraction * CYLINDER_PERIOD * 1e6})
+            coarser = starts.get("warm_from_coarser", cold)
     return rows
 
 
@@ -248,7 +283,7 @@ def model_band(bands) -> tuple:
     return below, above
 
 
-def summarise(zones, strips, fem, profiles, paths, bands, pixels) -> list:
+def summarise(zones, strips, fem, cylinders, profiles, paths, bands, pixels) -> list:
     lines = ["cohesive zone (π/4) E* w/σ0²:"]
     lines += [f"  {row['law']:>21}: h {row['thickness_um']:.3f} µm, σ0 {row['strength_MPa']:.2f} MPa, "
               f"w {row['work_J_m2']:.3f} J/m², ℓ {row['zone_um']:.2f} µm" for row in zones]
@@ -256,6 +291,10 @@ def summarise(zones, strips, fem, profiles, paths, bands, pixels) -> list:
     lines += [f"  {row['opening']:>5} {row['pixel_nm']:9.2f} nm: {row['fel_kPa']:.3f} ({row['fel_contact_kPa']:.3f}),"
               f" edge σ {row['edge_sigma_MPa']:.2f} MPa" for row in strips]
     lines += [f"  FE    {row['pixel_nm']:9.2f} nm: {row['fel_kPa']:.3f}" for row in fem]
+    lines.append("one cylinder per period: F_el/A0, contact width, Π/A0:")
+    lines += [f"  {row['law']:>14} {row['pixel_nm']:7.2f} nm {row['path']:>17}: {row['fel_kPa']:.2f} kPa, "
+              f"{row['contact_um']:.4f} µm, {row['energy_J_m2']:.8f} J/m²{'' if row['converged'] else ' (not converged)'}"
+              for row in cylinders]
     lines.append("realisation 0, 0.5 N, layered solve: edges against the pixel:")
     lines += [f"  {row['pixel_nm']:7.1f} nm: F_el {row['fel_kPa']:.2f} kPa (tolerance 1e-12: {row['fel_kPa_tol_1e-12']:.2f}), "
               f"contact {100 * row['contact_fraction']:.3f} %, first gap {row['first_gap_nm']:.1f} nm, "
@@ -294,16 +333,18 @@ def main(argv=None):
     zones = zone_rows(scene)
     strips = strip_rows(stack, STRIP_PIXELS[:6] if args.fast else STRIP_PIXELS)
     fem = [] if args.no_fem else fem_strip_rows(stack, STRIP_PIXELS[:3] if args.fast else STRIP_PIXELS[:7])
+    cylinders = cylinder_rows(scene, CYLINDER_PIXELS[:2] if args.fast else CYLINDER_PIXELS)
     profiles = profile_rows(scene, PROFILE_PIXELS[:2] if args.fast else PROFILE_PIXELS)
     path_pixels = PATH_PIXELS[:2] if args.fast else PATH_PIXELS
     paths = path_rows(scene, path_pixels, 1 if args.fast else args.realisations)
     bands = band_rows(paths)
-    for name, rows in (("zones", zones), ("strip", strips), ("fem", fem), ("profile", profiles), ("paths", paths),
-                       ("band", bands)):
+    for name, rows in (("zones", zones), ("strip", strips), ("fem", fem), ("cylinder", cylinders),
+                       ("profile", profiles), ("paths", paths), ("band", bands)):
         if rows:
             write_csv(output / f"resolution_edges_{name}.csv", rows, provenance)
-    print("\n".join(summarise(zones, strips, fem, profiles, paths, bands, path_pixels)) + f"\nwritten to {output}/")
-    return zones, strips, fem, profiles, paths, bands
+    print("\n".join(summarise(zones, strips, fem, cylinders, profiles, paths, bands, path_pixels))
+          + f"\nwritten to {output}/")
+    return zones, strips, fem, cylinders, profiles, paths, bands
 
 
 if __name__ == "__main__":

@@ -84,6 +84,15 @@ def test_fast_run_tables_are_consistent(edges, read_csv, tmp_path):
     assert {row["path"] for row in paths if row["pixels"] == "2048"} == {"cold", "fixed_field_tolerance",
                                                                          "warm_from_coarser"}
     assert not (path / "resolution_edges_fem.csv").exists()
+    # one cylinder per period at 78 nm: the per-pixel law (a 1.7 µm process zone) reaches one equilibrium from
+    # either start, the layered law two stable ones (measured: 659 and 724 kPa, contact 4.22 and 4.92 µm)
+    cylinder = {(row["law"], row["path"]): row for row in read_csv(path / "resolution_edges_cylinder.csv")
+                if row["pixels"] == "256"}
+    assert all(row["converged"] == "True" for row in cylinder.values())
+    plate = [float(cylinder["parallel_plate", path]["fel_kPa"]) for path in ("cold", "warm_from_coarser")]
+    assert plate[1] == pytest.approx(plate[0], rel=1e-9)
+    layered = [float(cylinder["layered", path]["fel_kPa"]) for path in ("cold", "warm_from_coarser")]
+    assert abs(layered[1] / layered[0] - 1) > 0.03
     for row in read_csv(path / "resolution_edges_profile.csv"):
         # a tolerance of 1e-12 instead of 1e-8 reaches the same equilibrium
         assert float(row["fel_kPa_tol_1e-12"]) == pytest.approx(float(row["fel_kPa"]), rel=1e-6)
