@@ -90,7 +90,7 @@ def test_fast_run_tables_are_consistent(edges, read_csv, tmp_path):
                 if row["pixels"] == "256"}
     assert all(row["converged"] == "True" for row in cylinder.values())
     plate = [float(cylinder["parallel_plate", path]["fel_kPa"]) for path in ("cold", "warm_from_coarser")]
-    assert plate[1] == pytest.approx(plate[0], rel=1e-9)
+    assert plate[1] == pytest.approx(plate[0], rel=1e-7)       # the solves' tolerance, 1e-8 (measured 5e-9)
     layered = [float(cylinder["layered", path]["fel_kPa"]) for path in ("cold", "warm_from_coarser")]
     assert abs(layered[1] / layered[0] - 1) > 0.03
     for row in read_csv(path / "resolution_edges_profile.csv"):
