@@ -10,7 +10,7 @@ patch" and "The remedy: a measured correction of F_el"; the columns ``fel_error`
 
 Profiles: one ridge period of the default scene across the ridges, ridges and micro-roughness
 (``roughcontact.study.patch.profile_surface``: the line spectrum of the patch's 2-D roughness, the same
-band-limited profile at every pixel), on ``PIXELS_PER_PERIOD`` pixels (3.5 µm down to 0.055 µm, halving), on
+band-limited profile at every pixel), on ``PIXELS_PER_PERIOD`` pixels (3.5 µm down to 0.027 µm, halving), on
 the scene's skin (plane strain), pressed at the apparent pressure of 0.5 and 2 N
 (``roughcontact.study.apparent``): at 0 V (hard wall) and at 200 V with the layered law and with the per-pixel
 law (Eq. 21), each inside its own contact solve. On every solved gap g, at 200 V: F_el/A0 of the layered field
@@ -18,15 +18,19 @@ law (Eq. 21), each inside its own contact solve. On every solved gap g, at 200 V
 the layered field's mean attraction).
 
 Convergence: per point, law and quantity, the mean over the realisations (those whose solves converged at
-every pixel) against the pixel h; where the sequence is regular (the observed orders p = log2(Δ_coarse/Δ_fine)
-of the two finest triples agree within ``ORDER_SPREAD`` and p > 0), the converged value is Richardson's
-f_h + (f_h − f_2h)/(2^p − 1) from the finest pair; otherwise the finest value stands for it. The error at a
-preset's pixel is f(h)/f_∞ − 1, with a paired 95 % half-width (1.96 sd/√R of the realisations' differences
-from their finest value, over f_∞). The layered law's F_el is irregular: single realisations jump between
-equilibria (neighbouring asperities pulled into contact or not) from one pixel to the next.
+every pixel) against the pixel h, up to the reference pixel ``REFERENCE_PIXELS`` (0.11 µm): below it the layered
+law's contact edges resolve structure the layered model does not describe (``studies/resolution_edges.py``),
+so finer pixels measure the model's edge error (``beyond_reference``: the largest |f(h)/f_ref − 1| at finer
+pixels), not a discretisation error. Where the sequence up to the reference is regular (the observed orders
+p = log2(Δ_coarse/Δ_fine) of the two finest triples agree within ``ORDER_SPREAD`` and p > 0), the converged
+value is Richardson's f_h + (f_h − f_2h)/(2^p − 1) from the finest pair; otherwise the reference pixel's value
+stands for it. The error at a preset's pixel is f(h)/f_∞ − 1, with a paired 95 % half-width (1.96 sd/√R of the
+realisations' differences from their reference-pixel value, over f_∞). The layered law's F_el is irregular:
+single realisations jump between equilibria (neighbouring asperities pulled into contact or not, contact edges
+trapped at different pixels) from one pixel to the next.
 
-Measured correction: the factor f_finest/f(h) of the layered F_el at each preset pixel from the even
-realisations, applied to the odd ones, and the error left there.
+Measured correction: the factor f_ref/f(h) of the layered F_el at each preset pixel from the even
+realisations, applied to the odd ones, and the error left there against their reference-pixel mean.
 
 2-D check (``--patch-grids``, not in ``--fast``): realisation 0's patch (one ridge period, the scene's 10 µm
 cut-off at every grid) at 2 N, hard wall and the layered law at 200 V: the same quantities, to set beside the
@@ -57,8 +61,13 @@ from roughcontact.study.patch import patch_body, patch_surface, profile_surface
 from roughcontact.study.presets import add_resolution_errors
 from roughcontact.study.scene import load_scene
 
-#: pixels per ridge period (450 µm): 3.5 µm (draft), 1.76 µm (standard), 0.88 µm (reference) … 0.055 µm
-PIXELS_PER_PERIOD = (128, 256, 512, 1024, 2048, 4096, 8192)
+#: pixels per ridge period (450 µm): 3.5 µm (draft), 1.76 µm (standard), 0.88 µm (reference) … 0.027 µm
+PIXELS_PER_PERIOD = (128, 256, 512, 1024, 2048, 4096, 8192, 16384)
+#: the reference pixel, 0.11 µm: the finest at which the layered model describes its contact edges (there the
+#: first open pixel's gap about equals the pixel; at finer pixels the crack-like edges, g ≈ A√s, resolve gaps
+#: wider than their distance from the contact line, where one air column per pixel and the slope factor
+#: 1 + |∇g|²/3 no longer hold; studies/resolution_edges.py); a shorter sequence uses its finest pixel
+REFERENCE_PIXELS = 4096
 FAST_PIXELS = (128, 256, 512)
 #: the presets' patch grids over one ridge period
 PRESET_PIXELS = {"draft": 128, "standard": 256, "reference": 512}
@@ -147,26 +156,35 @@ def realisation_values(rows, force, law, quantity, pixels) -> np.ndarray:
     return np.array([[by_pixels[n] for n in pixels] for _, by_pixels in sorted(values.items())])
 
 
+def reference_column(pixels) -> int:
+    """The column of the reference pixel in ``pixels``: ``REFERENCE_PIXELS``, or the finest below it."""
+    return max(index for index, n in enumerate(pixels) if n <= REFERENCE_PIXELS)
+
+
 def convergence_rows(rows, pixels) -> list:
     """Per normal force, solve law and quantity: the means over the realisations converged at every pixel
-    count, the observed order, the converged value, and at each preset's pixel the relative error of the mean
-    and its 95 % half-width (paired over the realisations: the spread of each realisation's difference from
-    its converged value, 1.96 sd/√R, over the converged mean)."""
-    table = []
+    count, the observed order and the converged value up to the reference pixel, at each preset's pixel the
+    relative error of the mean and its 95 % half-width (paired over the realisations: the spread of each
+    realisation's difference from its reference-pixel value, 1.96 sd/√R, over the converged mean), and the
+    largest relative change of the mean at pixels finer than the reference (``beyond_reference``)."""
+    table, reference = [], reference_column(pixels)
     for force in NORMAL_FORCES:
         for voltage, law in SOLVES:
             for quantity in QUANTITIES:
                 values = realisation_values(rows, force, law, quantity, pixels)
                 means = values.mean(axis=0)
-                converged, order, regular = richardson(means)
+                converged, order, regular = richardson(means[:reference + 1])
+                beyond = [abs(mean / means[reference] - 1) for mean in means[reference + 1:]]
                 entry = {"normal_force_N": force, "solve_voltage_V": voltage, "law": law, "quantity": quantity,
                          "realisations": len(values), "order": order, "richardson": regular,
-                         "converged_value": converged, **{f"mean_{n}": value for n, value in zip(pixels, means)}}
+                         "converged_value": converged, "reference_pixels": pixels[reference],
+                         "beyond_reference": max(beyond) if beyond else math.nan,
+                         **{f"mean_{n}": value for n, value in zip(pixels, means)}}
                 for preset, n in PRESET_PIXELS.items():
                     if n in pixels:
                         column = pixels.index(n)
                         entry[f"error_{preset}"] = means[column] / converged - 1
-                        differences = values[:, column] - values[:, -1]
+                        differences = values[:, column] - values[:, reference]
                         spread = np.std(differences, ddof=1) if len(values) > 1 else math.nan
                         entry[f"ci_{preset}"] = 1.96 * spread / math.sqrt(len(values)) / abs(converged)
                 table.append(entry)
@@ -175,19 +193,19 @@ def convergence_rows(rows, pixels) -> list:
 
 def correction_rows(rows, pixels) -> list:
     """The measured correction tested out of sample: per normal force and preset pixel, the factor
-    f_∞/f(h) of the layered F_el (the layered solve) measured on the even realisations, applied to the odd ones,
-    and the error left against their finest pixel (the finest value stands for f_∞)."""
-    table = []
+    f_ref/f(h) of the layered F_el (the layered solve) measured on the even realisations, applied to the odd
+    ones, and the error left against their reference-pixel mean."""
+    table, reference = [], reference_column(pixels)
     for force in NORMAL_FORCES:
         values = realisation_values(rows, force, "layered", "fel_layered_Pa", pixels)
         train, test = values[0::2].mean(axis=0), values[1::2].mean(axis=0)
         for preset, n in PRESET_PIXELS.items():
             if n in pixels:
                 column = pixels.index(n)
-                factor = train[-1] / train[column]
+                factor = train[reference] / train[column]
                 table.append({"normal_force_N": force, "preset": preset, "pixels": n, "factor": factor,
-                              "error_uncorrected": test[column] / test[-1] - 1,
-                              "error_corrected": factor * test[column] / test[-1] - 1})
+                              "error_uncorrected": test[column] / test[reference] - 1,
+                              "error_corrected": factor * test[column] / test[reference] - 1})
     return table
 
 
@@ -226,13 +244,14 @@ def patch_rows(grids) -> list:
 
 def summarise(convergence, corrections, patches) -> list:
     lines = ["relative error of the realisation mean at the presets' pixels ± 95 % (1-D profiles; R: Richardson, "
-             "order p; *: against the finest pixel)"]
+             "order p; *: against the reference pixel; beyond: the largest change at finer pixels)"]
     for entry in convergence:
         errors = "  ".join(f"{preset} {100 * entry[f'error_{preset}']:+6.1f} ± {100 * entry[f'ci_{preset}']:.1f} %"
                            for preset in PRESET_PIXELS if f"error_{preset}" in entry)
         mark = f"R p={entry['order']:.2f}" if entry["richardson"] else f"* p={entry['order']:.2f}"
         lines.append(f"  {entry['normal_force_N']:.1f} N {entry['law']:>14} {entry['quantity']:>16}: "
-                     f"{entry['converged_value']:.5g} ({mark}, {entry['realisations']} r)  {errors}")
+                     f"{entry['converged_value']:.5g} ({mark}, {entry['realisations']} r)  {errors}  "
+                     f"beyond {100 * entry['beyond_reference']:.1f} %")
     lines.append("measured correction of the layered F_el (even realisations) on the odd ones:")
     for entry in corrections:
         lines.append(f"  {entry['normal_force_N']:.1f} N {entry['preset']:>9}: factor {entry['factor']:.3f}, error "

@@ -82,3 +82,22 @@ def test_correction_is_measured_on_some_realisations_and_tested_on_others(study,
         assert float(entry["factor"]) == pytest.approx(factor, rel=1e-12)
         ratio = fel("1", entry["pixels"]) / fel("1", "512")           # odd realisation: the test
         assert float(entry["error_corrected"]) == pytest.approx(factor * ratio - 1, rel=1e-9, abs=1e-15)
+
+
+def test_errors_are_against_the_reference_pixel_and_finer_pixels_measure_the_edges(load_experiment):
+    module = load_experiment("resolution")
+    pixels = list(module.PIXELS_PER_PERIOD)
+    assert pixels[module.reference_column(pixels)] == module.REFERENCE_PIXELS == 4096
+    assert module.reference_column([128, 256, 512]) == 2                  # a shorter sequence: its finest
+    sequence = [1.0, 1.3, 1.1, 1.25, 1.2, 1.22, 1.5, 1.6]                   # irregular: no Richardson
+    rows = [{"realisation": realisation, "normal_force_N": force, "law": law, "pixels": n, "converged": True,
+             **{quantity: value * (1 + 0.1 * realisation) for quantity in module.QUANTITIES}}
+            for realisation in (0, 1) for force in module.NORMAL_FORCES for _, law in module.SOLVES
+            for n, value in zip(pixels, sequence)]
+    for entry in module.convergence_rows(rows, pixels):
+        assert not entry["richardson"] and entry["converged_value"] == pytest.approx(1.22 * 1.05, rel=1e-12)
+        assert entry["error_reference"] == pytest.approx(1.1 / 1.22 - 1, rel=1e-12)
+        # paired over the realisations: their differences from their own 4096-pixel values, −0.12 and −0.132
+        spread = np.std([-0.12, -0.132], ddof=1)
+        assert entry["ci_reference"] == pytest.approx(1.96 * spread / np.sqrt(2) / (1.22 * 1.05), rel=1e-9)
+        assert entry["beyond_reference"] == pytest.approx(1.6 / 1.22 - 1, rel=1e-12)
