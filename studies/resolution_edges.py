@@ -14,7 +14,8 @@ Six measurements, each a CSV (with the band of the layered F_el that they give):
 * ``resolution_edges_strip.csv``: ``solve_field`` on FIXED gap fields with one contact strip (a periodic
   ``STRIP_WINDOW`` with a strip of ``STRIP_WIDTH``), the gap opening from its edges like an adhesive (crack-like)
   contact, g = A √s + s²/(2R), or like a Hertz contact, g = B (s/s0)^{3/2} + s²/(2R) (s the distance from the
-  edge), on pixels from 0.5 µm down to 0.5 nm: F_el/A0 and its contact-pixel part.
+  edge), on pixels from 0.5 µm down to 0.5 nm: F_el/A0 and its contact-pixel part; on the crack-like strip down
+  to 3.9 nm also with the air's lateral field (``model="layered_air"``).
 * ``resolution_edges_fem.csv``: the same crack-like strip with the finite-element field
   (``roughcontact.electrostatics.fem.field_solve_profile``, optional extra ``fieldcheck``; ``--no-fem`` skips
   it), 500 nm … 7.8 nm columns.
@@ -66,6 +67,7 @@ CRACK_OPENING = 3.2e-4              # g ≈ A √s: the layered solves' edges (r
 HERTZ_OPENING, HERTZ_LENGTH = 0.1e-6, 2e-6
 STRIP_RADIUS = 50e-6
 STRIP_PIXELS = tuple(40 * 2 ** k for k in range(14))       # 500 nm … 0.06 nm
+AIR_STRIP_PIXELS = 5120             # 3.9 nm: the finest strip solved with the air's lateral field too
 PROFILE_PIXELS = (1024, 2048, 4096, 8192, 16384, 32768)   # 0.44 µm … 0.014 µm over the 450 µm period
 EDGE_DISTANCES = (0.02e-6, 0.05e-6, 0.1e-6, 0.2e-6, 0.5e-6, 1e-6)   # [m] from a contact edge
 PATH_PIXELS = (1024, 2048, 4096, 8192, 16384)
@@ -103,17 +105,22 @@ def strip_gap(kind: str, n: int) -> np.ndarray:
 
 
 def strip_rows(stack, pixels) -> list:
-    """F_el/A0 of the layered field on the fixed strip gaps against the pixel (module docstring)."""
+    """F_el/A0 of the layered field on the fixed strip gaps against the pixel (module docstring), and on the
+    crack-like strip down to ``AIR_STRIP_PIXELS`` the same with the air's lateral field (``model="layered_air"``)."""
     rows = []
     for kind in ("crack", "hertz"):
         for n in pixels:
             gap = strip_gap(kind, n)
             field = solve_field(stack, gap, STRIP_WINDOW, VOLTAGE, tol=1e-12)
             contact = gap == 0
+            air = (solve_field(stack, gap, STRIP_WINDOW, VOLTAGE, model="layered_air", tol=1e-10)
+                   if kind == "crack" and n <= AIR_STRIP_PIXELS else None)
             rows.append({"opening": kind, "pixels": n, "pixel_nm": STRIP_WINDOW / n * 1e9,
                          "fel_kPa": field.mean_pressure / 1e3,
                          "fel_contact_kPa": float(field.pressure[contact].sum()) / n / 1e3,
-                         "edge_sigma_MPa": float(field.pressure[contact].max()) / 1e6})
+                         "edge_sigma_MPa": float(field.pressure[contact].max()) / 1e6,
+                         "fel_lateral_air_kPa": "" if air is None else air.mean_pressure / 1e3,
+                         "edge_sigma_lateral_air_MPa": "" if air is None else float(air.pressure[contact].max()) / 1e6})
     return rows
 
 
@@ -289,7 +296,9 @@ def summarise(zones, strips, fem, cylinders, profiles, paths, bands, pixels) -> 
               f"w {row['work_J_m2']:.3f} J/m², ℓ {row['zone_um']:.2f} µm" for row in zones]
     lines.append("fixed strip gaps, F_el/A0 [kPa] (contact part) against the pixel:")
     lines += [f"  {row['opening']:>5} {row['pixel_nm']:9.2f} nm: {row['fel_kPa']:.3f} ({row['fel_contact_kPa']:.3f}),"
-              f" edge σ {row['edge_sigma_MPa']:.2f} MPa" for row in strips]
+              f" edge σ {row['edge_sigma_MPa']:.2f} MPa"
+              + (f"; lateral air {row['fel_lateral_air_kPa']:.3f}, edge σ {row['edge_sigma_lateral_air_MPa']:.2f} MPa"
+                 if row["fel_lateral_air_kPa"] != "" else "") for row in strips]
     lines += [f"  FE    {row['pixel_nm']:9.2f} nm: {row['fel_kPa']:.3f}" for row in fem]
     lines.append("one cylinder per period: F_el/A0, contact width, Π/A0:")
     lines += [f"  {row['law']:>14} {row['pixel_nm']:7.2f} nm {row['path']:>17}: {row['fel_kPa']:.2f} kPa, "
