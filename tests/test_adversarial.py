@@ -35,6 +35,7 @@ from roughcontact.solvers import ContactResult, load_cycle, pull_off
 from roughcontact import macro, paper
 from roughcontact.electrostatics import solve_field
 from roughcontact.study import friction_recipe, load_scene, open_results, run_study, run_scene
+from roughcontact.study.presets import error_floor
 
 
 # ---------------------------------------------------------------------------------------------- expectations
@@ -606,7 +607,8 @@ ROWS = [
     ("recipe-right", lambda: friction_recipe([0.5, 1.0], [0.0], np.full((2, 1), 1e-6), np.full((2, 1), 1e-5), STACK
                                              ).friction_coefficient(1.0, 0.0),
      right(lambda mu: close(float(mu), 0.26, 1e-12))),      # at 0 V only μ0 F_N: the seed's μ0 = 0.26
-    ("preset-auto-below-floor", lambda: run_scene(None, "auto", "1%"), refused(ValueError, "target", "1 %", "8.25 %")),
+    ("preset-auto-below-floor", lambda: run_scene(None, "auto", "1%"),
+     refused(ValueError, "target", "1 %", f"{100 * error_floor()[0]:.2f} %")),
     ("preset-auto-garbage", lambda: run_scene(None, "auto", "ten"), refused(ValueError, "target", "ten")),
     ("preset-auto-negative", lambda: run_scene(None, "auto", "-5%"), refused(ValueError, "target", "-0.05", "(0, 1]")),
     ("preset-target-without-auto", lambda: run_scene(None, "draft", "10%"), refused(ValueError, "auto")),
