@@ -82,7 +82,7 @@ class _Correction:
         self.model = StackField(self.surrogate.stack, grid)
         self.squared_voltage = law.voltage ** 2
         self.fluxes = (None, None)
-        self.fft_pairs = iterations + 1                 # the DC solve that matched ε_eff
+        self.fft_pairs = iterations + 1                 # the DC solve that matched ε_eff (the drive's: its own)
         self.residual = 0.0                              # the largest relative residual of a field solve
 
     def __call__(self, gap) -> tuple:
@@ -143,7 +143,8 @@ def solve_driven(height_field, half, law, *, mean_pressure=None, total_force=Non
     ``interaction_energy`` is ``nan`` where the stack dissipates (f > 0: no energy exists), the DC law's at f = 0.
     ``solver.details`` holds ``frequency`` [Hz], ``voltage`` (RMS) [V], ``corrections``, ``correction_size`` (the
     last, in units of ``tol``'s measure) with their history ``correction_sizes``, ``surrogate_eps_sc`` ε_eff,
-    ``rest_thickness`` h_rest [m] and ``solve_iterations`` per correction.
+    ``rest_thickness`` h_rest [m], ``solve_iterations`` per correction and ``correction_fft_pairs``, the real FFT
+    pairs of the corrections' own field solves and displacements (``fft_pairs`` counts them with the solves').
     """
     began = time.perf_counter()
     grid = half.grid
@@ -169,7 +170,8 @@ def solve_driven(height_field, half, law, *, mean_pressure=None, total_force=Non
             dict(penetration=requested + float(shifted.max()) - float(heights.max()))
         result = solve_smooth(shifted, half, correction.surrogate, tol=tol, maxiter=maxiter, x0=result,
                               callback=callback, warn=False, **target)
-        pairs += result.solver.fft_pairs + 2                                 # and K c, K Δc
+        pairs += result.solver.fft_pairs
+        correction.fft_pairs += 2                                           # K c, K Δc
         iterations.append(result.iterations)
         if not result.converged:
             message = f"the solve of correction {len(sizes) + 1} stopped: {result.message}"
@@ -185,26 +187,31 @@ def solve_driven(height_field, half, law, *, mean_pressure=None, total_force=Non
                        f"{len(sizes)} corrections")
             break
         frozen = update
-    converged = result.converged and sizes[-1] <= tol and correction.residual <= FIELD_TOL_FLOOR
+    converged = result.converged and bool(sizes) and sizes[-1] <= tol and correction.residual <= FIELD_TOL_FLOOR
     if result.converged and correction.residual > FIELD_TOL_FLOOR:
         message = (f"not converged: an AC field solve stopped at relative residual {correction.residual:.3g} "
                    f"> {FIELD_TOL_FLOOR:g}")
     message += f" (AC drive {law.frequency:g} Hz, {law.voltage:g} V RMS)"
     if not converged and warn:
         warnings.warn(message, ConvergenceWarning, stacklevel=3)
-    return _driven_result(result, half, heights, law, frozen, traction, dict(
-        message=message, converged=converged, start=start_kind, iterations=sum(iterations),
-        fft_pairs=pairs + correction.fft_pairs + correction.drive.fft_pairs, wall_time=time.perf_counter() - began,
-        corrections=len(iterations), sizes=sizes, iterations_per_solve=iterations, correction=correction),
-        control, requested)
+    correction_pairs = correction.fft_pairs + correction.drive.fft_pairs
+    details = {"frequency": law.frequency, "voltage": law.voltage, "corrections": len(iterations),
+               "correction_size": sizes[-1] if sizes else math.inf, "correction_sizes": sizes,
+               "surrogate_eps_sc": correction.permittivity, "rest_thickness": correction.rest_thickness,
+               "solve_iterations": iterations, "correction_fft_pairs": float(correction_pairs)}
+    report = dataclasses.replace(result.solver, method=METHOD, converged=converged, message=message,
+                                 iterations=sum(iterations), start=start_kind, fft_pairs=float(pairs + correction_pairs),
+                                 wall_time=time.perf_counter() - began, details={**result.solver.details, **details})
+    return _driven_result(result, half, heights, law, frozen, traction if result.converged else None, report,
+                          control, requested)
 
 
-def _driven_result(result, half, heights, law, frozen, traction, record, control, requested) -> ContactResult:
+def _driven_result(result, half, heights, law, frozen, traction, report, control, requested) -> ContactResult:
     """The ContactResult of the original problem from the last surrogate solve ``result`` (which had the traction
-    ``frozen`` c added): p = p_S + c, u = u_S + K c, the true traction ``traction`` t(g) (the solve's t_S + c
-    where the last solve did not converge) and the report of the corrections in ``record``."""
+    ``frozen`` c added) with the ``report``: p = p_S + c, u = u_S + K c, the true traction ``traction`` t(g) at
+    its gap (None where that solve did not converge: the solve's own t_S + c)."""
     dtype = half.dtype
-    if traction is None or not record["converged"]:
+    if traction is None:
         traction = np.asarray(result.interaction_traction, dtype=np.float64) + frozen
     pressure = np.asarray(result.pressure, dtype=np.float64) + frozen
     displacement = np.asarray(result.displacement, dtype=np.float64) + half.displacement(frozen.astype(dtype))
@@ -214,15 +221,6 @@ def _driven_result(result, half, heights, law, frozen, traction, record, control
                                                               ("contact_pressure", contact_pressure))}
     for values in arrays.values():
         values.flags.writeable = False
-    correction, sizes = record["correction"], record["sizes"]
-    report = dataclasses.replace(
-        result.solver, method=METHOD, converged=record["converged"], message=record["message"],
-        iterations=record["iterations"], start=record["start"], fft_pairs=float(record["fft_pairs"]),
-        wall_time=record["wall_time"],
-        details={**result.solver.details, "frequency": law.frequency, "voltage": law.voltage,
-                 "corrections": record["corrections"], "correction_size": sizes[-1] if sizes else math.inf,
-                 "correction_sizes": sizes, "surrogate_eps_sc": correction.permittivity,
-                 "rest_thickness": correction.rest_thickness, "solve_iterations": record["iterations_per_solve"]})
     energy = result.interaction_energy if law.frequency == 0.0 else math.nan
     return dataclasses.replace(
         result, **arrays, mean_pressure=result.mean_pressure + float(np.mean(frozen)),
