@@ -172,6 +172,7 @@ def solve_driven(height_field, half, law, *, mean_pressure=None, total_force=Non
         result = solve_smooth(shifted, half, correction.surrogate, tol=tol, maxiter=maxiter, x0=result,
                               callback=callback, warn=False, **target)
         pairs += result.solver.fft_pairs + 2                                 # and K c, K Δc
+        start_kind = result.solver.start if begin is None and not iterations else start_kind   # the solve's own
         iterations.append(result.iterations)
         if not result.converged:
             message = f"the solve of correction {len(sizes) + 1} stopped: {result.message}"
