@@ -19,7 +19,8 @@ footprint) and ``--voltage`` RMS, solved cold to ``--tol``. The reference is the
 Printed per solve: energy-solve iterations (per correction), real FFT pairs (all of them: the hard-wall start,
 the field solves inside the solves, the corrections' AC field solves, listed apart) and CPU time (best of
 ``--repeat``; CPU, not wall time, so that the ratios hold on a shared machine: run with one FFT thread), their
-ratios to the reference, F_el and A/A0. Writes ``bench_ac_drive.csv`` with its provenance into ``--output``.
+ratios to the reference, F_el and A/A0, and the ε_sc of the law solved (a surrogate's ε_eff). Writes
+``bench_ac_drive.csv`` with its provenance into ``--output``.
 """
 from __future__ import annotations
 
@@ -35,7 +36,7 @@ from roughcontact.study.apparent import apparent_contact
 from roughcontact.study.patch import patch_body, patch_surface
 from roughcontact.study.scene import load_scene
 
-COLUMNS = ("n", "solve", "frequency_Hz", "iterations", "solve_iterations", "fft_pairs", "correction_fft_pairs",
+COLUMNS = ("n", "solve", "frequency_Hz", "eps_sc", "iterations", "solve_iterations", "fft_pairs", "correction_fft_pairs",
            "time_s", "fft_pair_ratio", "time_ratio", "electrostatic_force_N", "contact_fraction", "converged")
 
 
@@ -61,7 +62,7 @@ def rows_for(n: int, args) -> list:
         if name == "ac-drive":                                  # next: its surrogate law alone, solved directly
             surrogate = dataclasses.replace(stack, eps_sc=details["surrogate_eps_sc"])
             laws.insert(0, ("surrogate", frequency, ElectrostaticInteraction(surrogate, args.voltage)))
-        rows.append(dict(n=n, solve=name, frequency_Hz=frequency, iterations=result.iterations,
+        rows.append(dict(n=n, solve=name, frequency_Hz=frequency, eps_sc=law.stack.eps_sc, iterations=result.iterations,
                          solve_iterations=" ".join(str(i) for i in details.get("solve_iterations", [result.iterations])),
                          fft_pairs=result.solver.fft_pairs, correction_fft_pairs=details.get("correction_fft_pairs", 0.0),
                          time_s=seconds, electrostatic_force_N=result.electrostatic_force,
@@ -69,7 +70,8 @@ def rows_for(n: int, args) -> list:
     reference = rows[0]
     for row in rows:
         row.update(fft_pair_ratio=row["fft_pairs"] / reference["fft_pairs"], time_ratio=row["time_s"] / reference["time_s"])
-        print(f"{n:4d}² {row['solve']:15s} {row['frequency_Hz']:7.4g} Hz  {row['iterations']:4d} it "
+        print(f"{n:4d}² {row['solve']:15s} {row['frequency_Hz']:7.4g} Hz  eps_sc {row['eps_sc']:8.4g}  "
+              f"{row['iterations']:4d} it "
               f"({row['solve_iterations']:>9s})  {row['fft_pairs']:7.1f} FFT pairs x{row['fft_pair_ratio']:.2f} "
               f"(corrections {row['correction_fft_pairs']:5.1f})  {row['time_s']:6.3f} s CPU x{row['time_ratio']:.2f}  "
               f"F_el {row['electrostatic_force_N'] * 1e3:.4f} mN  A/A0 {row['contact_fraction']:.4f}", flush=True)

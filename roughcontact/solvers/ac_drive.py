@@ -137,15 +137,16 @@ def solve_driven(height_field, half, law, *, mean_pressure=None, total_force=Non
     """The equilibrium of ``height_field`` on the flat under the time-averaged attraction of the AC drive ``law``
     (module docstring); load control (``mean_pressure`` [Pa] or ``total_force`` [N]) or ``penetration`` [m], as
     for :func:`~roughcontact.solvers.energy_cg.solve_smooth`, whose ``tol``, ``maxiter``, ``callback`` and
-    ``warn`` every correction's solve takes.
+    ``warn`` every energy solve takes.
 
     The result's ``interaction_traction`` is the true t(g) = −σ̄(g) at the returned gap and ``pressure`` the
     solved traction p_S + c (their difference on the open gap is the last correction's change);
     ``interaction_energy`` is ``nan`` where the stack dissipates (f > 0: no energy exists), the DC law's at f = 0.
-    ``solver.details`` holds ``frequency`` [Hz], ``voltage`` (RMS) [V], ``corrections``, ``correction_size`` (the
-    last, in units of ``tol``'s measure) with their history ``correction_sizes``, ``surrogate_eps_sc`` ε_eff,
-    ``rest_thickness`` h_rest [m], ``solve_iterations`` per correction and ``correction_fft_pairs``, the real FFT
-    pairs of the corrections' AC field solves (``fft_pairs`` counts them with the solves' and the hard-wall start's).
+    ``solver.details`` holds ``frequency`` [Hz], ``voltage`` (RMS) [V], ``corrections`` (the energy solves after
+    the first, the surrogate's alone), ``correction_size`` (the last change of c, in units of ``tol``'s measure)
+    with ``correction_sizes`` (one per solve, the first is c itself), ``surrogate_eps_sc`` ε_eff,
+    ``rest_thickness`` h_rest [m], ``solve_iterations`` per solve and ``correction_fft_pairs``, the real FFT pairs
+    of the AC field solves (``fft_pairs`` counts them with the solves' and the hard-wall start's).
     """
     began = time.perf_counter()
     grid = half.grid
@@ -175,17 +176,17 @@ def solve_driven(height_field, half, law, *, mean_pressure=None, total_force=Non
         start_kind = result.solver.start if begin is None and not iterations else start_kind   # the solve's own
         iterations.append(result.iterations)
         if not result.converged:
-            message = f"the solve of correction {len(sizes) + 1} stopped: {result.message}"
+            message = f"solve {len(iterations)} (after {len(sizes)} corrections) stopped: {result.message}"
             break
         traction, update = correction(result)
         sizes.append(_correction_size(half, update - frozen, gap_scale))
         if sizes[-1] <= tol:
-            message = (f"converged: correction {len(sizes)} changed by {sizes[-1]:.3g} <= tol {tol:g}; the last "
-                       f"solve's {result.message}")
+            message = (f"converged after {len(sizes) - 1} corrections: the correction changed by {sizes[-1]:.3g} "
+                       f"<= tol {tol:g}; the last solve {result.message}")
             break
-        if len(sizes) == MAX_CORRECTIONS:
+        if len(sizes) > MAX_CORRECTIONS:
             message = (f"not converged: the deferred correction changed by {sizes[-1]:.3g} > tol {tol:g} after "
-                       f"{len(sizes)} corrections")
+                       f"{len(sizes) - 1} corrections")
             break
         frozen = update
     converged = result.converged and bool(sizes) and sizes[-1] <= tol and correction.residual <= correction.tol
@@ -196,7 +197,7 @@ def solve_driven(height_field, half, law, *, mean_pressure=None, total_force=Non
     if not converged and warn:
         warnings.warn(message, ConvergenceWarning, stacklevel=3)
     correction_pairs = correction.drive.fft_pairs
-    details = {"frequency": law.frequency, "voltage": law.voltage, "corrections": len(iterations),
+    details = {"frequency": law.frequency, "voltage": law.voltage, "corrections": len(iterations) - 1,
                "correction_size": sizes[-1] if sizes else math.inf, "correction_sizes": sizes,
                "surrogate_eps_sc": correction.permittivity, "rest_thickness": correction.rest_thickness,
                "solve_iterations": iterations, "correction_fft_pairs": float(correction_pairs)}

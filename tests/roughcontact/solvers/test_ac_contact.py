@@ -113,7 +113,7 @@ def test_the_returned_gap_is_an_equilibrium_of_the_true_time_averaged_traction(p
     # the report says the drive, the corrections and the last one's size; the force is the true time average
     details = res.solver.details
     assert details["frequency"] == 1e3 and details["voltage"] == VOLTAGE
-    assert details["corrections"] == len(details["correction_sizes"]) >= 2
+    assert details["corrections"] == len(details["correction_sizes"]) - 1 >= 1
     assert details["correction_size"] == details["correction_sizes"][-1] <= res.solver.tol
     assert "1000 Hz" in res.message and math.isnan(res.interaction_energy)
     field = solve_ac_field(STACK, res.gap, half.grid.lengths, VOLTAGE, frequency=1e3, tol=1e-12)
