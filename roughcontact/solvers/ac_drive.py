@@ -9,23 +9,23 @@ symmetric (``docs/dev/roadmap.md``), so there is no energy for :mod:`.energy_cg`
     g_{n+1} = argmin Π_S(g) − ⟨c_n g⟩,   c_n = t(g_n) − t_S(g_n),
 
 from c_0 = 0 (the surrogate alone) to a fixed point, where the solve's traction t_S(g) + c equals t(g): an
-equilibrium of the true time-averaged traction (complementarity and force balance with p = p_S + c). t_S(g_n) is
-the traction the solve balanced (its last field evaluation), t(g_n) one AC field solve (COCG,
-:class:`~roughcontact.electrostatics.ac.ACStackField`, warm-started from the last gap's flux). S is the dielectric layered law with a real
-ε_eff matched to the uniform mode of the circuit,
+equilibrium of the true time-averaged traction (complementarity and force balance with p = p_S + c). t_S(g_n)
+is the traction the solve balanced (its last field evaluation), t(g_n) one AC field solve (COCG,
+:class:`~roughcontact.electrostatics.ac.ACStackField`, warm-started from the last gap's flux). S is the
+dielectric layered law with a real ε_eff matched to the uniform mode of the circuit,
 
     |h_rest + d_sc/ε*_sc| = h_rest + d_sc/ε_eff,   h_rest = 1/⟨1/(g/(ε_a (1 + |∇g|²/3)) + d_i/ε_i)⟩,
 
 h_rest the DC capacitance thickness of the air + insulator columns at the starting gap, so S has nearly the true
 law's uniform response there and is the true law itself at DC (ε_eff → ∞). Any real ε_eff gives the same fixed
-point; the match makes the corrections small. A frozen traction field c acts on the body
-like a change of its heights by −K c and of the external load by −⟨c⟩ (g = s − h + K p_S + K c with
-⟨p_S⟩ = P̄ − ⟨c⟩; the flat keeps its position, so the penetration δ = max(h) − s becomes δ + max(h − K c) − max(h)):
-each step is an ordinary warm-started energy solve of the surrogate, and nothing of that solver changes.
+point; the match makes the corrections small. A frozen traction field c acts on the body like a change of its
+heights by −K c and of the external load by −⟨c⟩ (g = s − h + K p_S + K c with ⟨p_S⟩ = P̄ − ⟨c⟩; the flat keeps
+its position, so the penetration δ = max(h) − s becomes δ + max(h − K c) − max(h)): each step is an ordinary
+warm-started energy solve of the surrogate, and nothing of that solver changes.
 
 Stopping rule: the change of the correction between the last two gaps, measured as the displacement it
-causes, sqrt(⟨(K Δc̃)²⟩ + (Φ_L ⟨Δc⟩)²) ≤ tol · gap_scale (the energy solve's own criterion, :mod:`.energy_cg`; Φ_L
-the compliance of the longest wavelength). The returned gap then solves the surrogate problem to ``tol`` and
+causes, sqrt(⟨(K Δc̃)²⟩ + (Φ_L ⟨Δc⟩)²) ≤ tol · gap_scale (the energy solve's own criterion,
+:mod:`.energy_cg`; Φ_L the compliance of the longest wavelength, gap_scale the rms height). The returned gap then solves the surrogate problem to ``tol`` and
 the true one to within that change: its true residual is at most about twice ``tol``.
 """
 from __future__ import annotations
@@ -41,7 +41,6 @@ from surfaces.validation import check_real
 
 from ..electrostatics import EPSILON_0
 from ..electrostatics.ac import ACStackField, inverse_permittivity
-from ..electrostatics.field import StackField
 from ..interactions import ElectrostaticInteraction
 from ..io.results import ConvergenceWarning
 from .energy_cg import FIELD_TOL_FLOOR, START_TOL, solve_smooth
