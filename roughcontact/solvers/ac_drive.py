@@ -98,6 +98,10 @@ class _Correction:
         return traction, traction - np.asarray(result.interaction_traction, dtype=np.float64)
 
 
+def _corrections(count: int) -> str:
+    return f"{count} correction" + ("" if count == 1 else "s")
+
+
 def _correction_size(half, change, gap_scale: float) -> float:
     """sqrt(⟨(K Δc̃)²⟩ + (Φ_L ⟨Δc⟩)²)/gap_scale for a change Δc [Pa] of the frozen traction (a free window: the
     rms of K Δc over it): the displacement it would cause, in the energy solve's units of its tolerance."""
@@ -175,17 +179,17 @@ def solve_driven(height_field, half, law, *, mean_pressure=None, total_force=Non
         start_kind = result.solver.start if begin is None and not iterations else start_kind   # the solve's own
         iterations.append(result.iterations)
         if not result.converged:
-            message = f"solve {len(iterations)} (after {len(sizes)} corrections) stopped: {result.message}"
+            message = f"solve {len(iterations)} (after {_corrections(len(sizes))}) stopped: {result.message}"
             break
         traction, update = correction(result)
         sizes.append(_correction_size(half, update - frozen, gap_scale))
         if sizes[-1] <= tol:
-            message = (f"converged after {len(sizes) - 1} corrections: the correction changed by {sizes[-1]:.3g} "
-                       f"<= tol {tol:g}; the last solve {result.message}")
+            message = (f"converged after {_corrections(len(sizes) - 1)}: the correction changed by "
+                       f"{sizes[-1]:.3g} <= tol {tol:g}; the last solve {result.message}")
             break
         if len(sizes) > MAX_CORRECTIONS:
             message = (f"not converged: the deferred correction changed by {sizes[-1]:.3g} > tol {tol:g} after "
-                       f"{len(sizes) - 1} corrections")
+                       f"{_corrections(len(sizes) - 1)}")
             break
         frozen = update
     converged = result.converged and bool(sizes) and sizes[-1] <= tol and correction.residual <= correction.tol
