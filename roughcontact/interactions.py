@@ -33,6 +33,7 @@ import numpy as np
 from surfaces.validation import check_choice, check_finite_array, check_positive, check_real
 
 from .electrostatics import DielectricStack
+from .electrostatics.ac import check_frequency
 from .io.results import savable_field
 
 #: Relative step of a stiffness taken by differences of the traction (ε^(1/3) of float64; :meth:`Interaction.stiffness`).
@@ -125,17 +126,28 @@ class ElectrostaticInteraction(Interaction):
     assumption. The layered law is non-local: its traction at a pixel depends on the whole gap field, so the
     contact solver evaluates it through :class:`~roughcontact.electrostatics.field.FieldLaw`, and the per-pixel
     methods give the parallel-plate values.
+
+    ``frequency`` [Hz] drives the layered field with a sinusoid of RMS ``voltage`` through the leaky stratum
+    corneum (``stack.sigma_sc``; :mod:`roughcontact.electrostatics.ac`): the solve balances the time-averaged
+    attraction (:mod:`roughcontact.solvers.ac_drive`, ``docs/guide/ac_drive.md``). ``None`` (the default) is the
+    dielectric stratum corneum, as is ``math.inf``; 0 is a DC voltage. It needs ``field="layered"``.
     """
 
     stack: DielectricStack = DielectricStack()
     voltage: float = 0.0
     field: str = "layered"
+    frequency: float | None = None
 
     def __post_init__(self):
         if not isinstance(self.stack, DielectricStack):
             raise TypeError(f"stack must be a DielectricStack, got {type(self.stack).__name__}")
         object.__setattr__(self, "voltage", check_real("voltage", self.voltage))
         check_choice("field", self.field, FIELDS)
+        if self.frequency is not None:
+            object.__setattr__(self, "frequency", check_frequency(self.frequency))
+            if self.local:
+                raise ValueError(f"frequency = {self.frequency!r} Hz needs field = 'layered' (the AC drive acts "
+                                 f"through the layered field); got field = {self.field!r}")
 
     @property
     def local(self) -> bool:

@@ -1,5 +1,8 @@
 """Prototype: the contact equilibrium under the time-averaged AC attraction by deferred correction.
 
+The library's solver (``ElectrostaticInteraction(stack, U, frequency=f)``, ``roughcontact.solvers.ac_drive``)
+grew out of this; the script keeps the design's measurements (both surrogates, every step) of docs/dev/roadmap.md.
+
     python studies/ac_coupling.py                     # 128², 1 N, 100 V RMS, DC and the crossover
     python studies/ac_coupling.py --grid 256 --frequencies 0 300 1000 --output out
     python studies/ac_coupling.py --fast              # 64², seconds
@@ -24,14 +27,13 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import math
 
 import numpy as np
 
 from roughcontact import ElectrostaticInteraction, solve_contact
 from roughcontact.electrostatics import EPSILON_0, solve_ac_field, solve_field
-from roughcontact.electrostatics.ac import inverse_permittivity
 from roughcontact.io import output_directory, parse_arguments, write_csv
+from roughcontact.solvers.ac_drive import NO_ELASTANCE, surrogate_permittivity
 from roughcontact.study.apparent import apparent_contact
 from roughcontact.study.patch import patch_body, patch_grid, patch_surface
 from roughcontact.study.scene import load_scene
@@ -41,11 +43,10 @@ COLUMNS = ("frequency_Hz", "surrogate", "eps_eff", "step", "gap_change", "mean_p
 
 
 def matched_permittivity(stack, gap, lengths, voltage, frequency) -> float:
-    """ε_eff with |h_rest + d_sc/ε*_sc| = h_rest + d_sc/ε_eff, h_rest = ε0 U/⟨D̂_DC⟩ at ``gap``."""
+    """ε_eff with |h_rest + d_sc/ε*_sc| = h_rest + d_sc/ε_eff, h_rest = ε0 U/⟨D̂_DC⟩ at ``gap`` (the library's
+    solver takes h_rest from the air + insulator columns instead, within about 1 % of this)."""
     direct = solve_ac_field(stack, gap, lengths, voltage, frequency=0.0)
-    rest = EPSILON_0 * voltage / float(np.mean(direct.flux.real))
-    excess = abs(rest + stack.d_sc * inverse_permittivity(stack, frequency)) - rest
-    return stack.d_sc / excess if excess > 0 else 1e300        # DC: no elastance of the stratum corneum
+    return surrogate_permittivity(stack, EPSILON_0 * voltage / float(np.mean(direct.flux.real)), frequency)
 
 
 def deferred_correction(scene_parts, frequency, surrogate_eps, args) -> list:
@@ -82,7 +83,7 @@ def check_equilibrium(scene_parts, fixed_point, args):
     """At DC the true law is conservative (the layered field without the stratum corneum's elastance): solve it
     from the fixed point (an equilibrium stays put) and from the dielectric start (the direct path)."""
     stack, grid, heights, body, pressure, start = scene_parts
-    law = ElectrostaticInteraction(dataclasses.replace(stack, eps_sc=1e300), args.voltage, field="layered")
+    law = ElectrostaticInteraction(dataclasses.replace(stack, eps_sc=NO_ELASTANCE), args.voltage, field="layered")
     for name, x0 in (("the fixed point", fixed_point), ("the dielectric start", start)):
         result = solve_contact(heights, body, mean_pressure=pressure, interaction=law, x0=x0, tol=args.tol)
         change = np.max(np.abs(result.gap - fixed_point.gap)) / np.max(fixed_point.gap)

@@ -1,21 +1,22 @@
-"""The attraction of the default scene's patch under an AC drive, 10 Hz – 10 kHz, at a fixed gap.
+"""The default scene's patch under an AC drive, 10 Hz – 10 kHz: the equilibrium solved at each frequency.
 
     python studies/ac_drive.py                        # 256², 1 N, 100 V RMS: the table of docs/guide/ac_drive.md
     python studies/ac_drive.py --grid 512 --output out
     python studies/ac_drive.py --fast                 # 64², seconds
 
-The gap is the default scene's patch (realisation 0) solved with the layered field inside the contact solve at
-the apparent pressure of ``--force`` (the Hertz mean over the footprint) and ``--voltage``: the dielectric
-stratum corneum, i.e. the high-frequency limit. That gap is then held fixed (the skin's quasi-static response to
-the frequency-dependent force is the next step, docs/dev/roadmap.md) and the field is solved with the leaky
-stratum corneum (``DielectricStack.sigma_sc``) at each frequency, at DC and at ω = ∞. Per frequency: the mean
-time-averaged attraction ⟨σ̄⟩ and its ratio to the dielectric one, the 2ω modulation depth |⟨σ̂₂⟩|/⟨σ̄⟩, the
-field-equivalent gap (Eq. 21 inverted: the dielectric uniform gap with the same attraction, what the seed's
-friction model must be fed), the AC-equivalent gap (the uniform gap with the same attraction under the same
-drive) and the per-pixel (parallel-plate) law's ⟨σ̄⟩ on the same gap; the Eq. 25 gap of the fixed gap, the
-measured crossover (⟨σ̄⟩ halfway between DC and ω = ∞) and the circuit's f_c = σ_sc/(2π ε0 (ε_sc + d_sc/h_rest))
-with h_rest = ε0 U/⟨D̂_DC⟩, the DC capacitance thickness of air + insulator. Writes ``ac_drive.csv`` with its
-provenance into ``--output`` and prints the table.
+The default scene's patch (realisation 0) at the apparent pressure of ``--force`` (the Hertz mean over the
+footprint) is solved to equilibrium under the time-averaged attraction of ``--voltage`` RMS at each frequency
+(``ElectrostaticInteraction(stack, U, frequency=f)``, the deferred correction of
+``roughcontact.solvers.ac_drive``; each solve cold, from the hard-wall start), at DC and at ω = ∞ (the dielectric
+layered solve). Per frequency, of the solved equilibrium: the mean time-averaged attraction ⟨σ̄⟩ and its ratio to
+the dielectric one, A/A0, the Eq. 25 gap, the field-equivalent gap (Eq. 21 inverted: what the seed's friction
+model must be fed), the AC-equivalent gap (the uniform gap with the same attraction under the same drive), the
+2ω modulation depth |⟨σ̂₂⟩|/⟨σ̄⟩ and the number of corrections. For comparison, the **fixed gap** of the
+dielectric solve with the field alone solved at each frequency (the layered ⟨σ̄⟩, its ratio and the per-pixel
+law's ⟨σ̄⟩). The crossovers: the frequency where ⟨σ̄⟩ is halfway between DC and ω = ∞, measured on the solved
+equilibria and on the fixed gap, and the circuit's f_c = σ_sc/(2π ε0 (ε_sc + d_sc/h_rest)) with
+h_rest = ε0 U/⟨D̂_DC⟩, the DC capacitance thickness of air + insulator, of the DC equilibrium and of the fixed
+gap. Writes ``ac_drive.csv`` with its provenance into ``--output`` and prints the table.
 """
 from __future__ import annotations
 
@@ -32,43 +33,78 @@ from roughcontact.study.apparent import apparent_contact
 from roughcontact.study.patch import patch_body, patch_grid, patch_surface
 from roughcontact.study.scene import load_scene
 
-COLUMNS = ("frequency_Hz", "mean_pressure_Pa", "ratio_to_dielectric", "modulation_depth", "field_equivalent_gap_m",
-           "ac_equivalent_gap_m", "parallel_plate_mean_pressure_Pa", "equivalent_gap_m", "electrostatic_force_N",
-           "measured_crossover_Hz", "circuit_crossover_Hz", "h_rest_m", "contact_fraction", "grid")
+COLUMNS = ("frequency_Hz", "mean_pressure_Pa", "ratio_to_dielectric", "contact_fraction", "equivalent_gap_m",
+           "field_equivalent_gap_m", "ac_equivalent_gap_m", "modulation_depth", "corrections", "converged",
+           "electrostatic_force_N", "fixed_mean_pressure_Pa", "fixed_ratio_to_dielectric",
+           "fixed_parallel_plate_mean_pressure_Pa", "measured_crossover_Hz", "circuit_crossover_Hz", "h_rest_m",
+           "fixed_measured_crossover_Hz", "fixed_circuit_crossover_Hz", "fixed_h_rest_m", "grid")
 
 
-def scene_gap(grid_size: int, force: float, voltage: float, tol: float) -> tuple:
-    """(stack, grid, gap [m], apparent area [m²], contact fraction) of the default scene's patch solved with the
-    layered field at ``force`` [N] and ``voltage`` [V]."""
-    scene = load_scene(text=f"[presets.standard]\ngrid = {grid_size}\n", preset="standard")
-    area, (pressure,) = apparent_contact(scene.fingerpad, force, 1)
-    stack = scene.screen.stack()
-    result = solve_contact(patch_surface(scene, 0), patch_body(scene), mean_pressure=pressure, tol=tol,
-                           interaction=ElectrostaticInteraction(stack, voltage, field="layered"))
-    if not result.converged:
-        raise RuntimeError(f"the contact solve did not converge: {result.message}")
-    return stack, patch_grid(scene), result.gap, area, result.contact_fraction
+class Patch:
+    """The default scene's patch on ``grid_size``² pixels at ``force`` [N] and ``voltage`` [V RMS]: its solves."""
+
+    def __init__(self, grid_size: int, force: float, voltage: float, tol: float):
+        scene = load_scene(text=f"[presets.standard]\ngrid = {grid_size}\n", preset="standard")
+        self.area, (self.pressure,) = apparent_contact(scene.fingerpad, force, 1)
+        self.stack, self.grid = scene.screen.stack(), patch_grid(scene)
+        self.heights, self.body = patch_surface(scene, 0), patch_body(scene)
+        self.voltage, self.tol = voltage, tol
+
+    def solve(self, frequency):
+        """The equilibrium under the drive at ``frequency`` [Hz] (inf: the dielectric layered solve)."""
+        result = solve_contact(self.heights, self.body, mean_pressure=self.pressure, tol=self.tol,
+                               interaction=ElectrostaticInteraction(self.stack, self.voltage, frequency=frequency))
+        if not result.converged:
+            raise RuntimeError(f"the contact solve at {frequency:g} Hz did not converge: {result.message}")
+        return result
+
+    def field(self, gap, frequency, model="layered"):
+        return solve_ac_field(self.stack, gap, self.grid.lengths, self.voltage, frequency=frequency, model=model,
+                              tol=self.tol)
+
+    def rest_thickness(self, gap) -> float:
+        """h_rest = ε0 U/⟨D̂_DC⟩ [m] of ``gap``."""
+        return EPSILON_0 * self.voltage / float(np.mean(self.field(gap, 0.0).flux.real))
 
 
-def sweep(stack, grid, gap, voltage: float, frequencies, tol: float) -> tuple:
-    """The rows at ``frequencies`` [Hz] (with 0 and inf) and (measured crossover [Hz], circuit's [Hz], h_rest [m])."""
-    def solve(frequency, model="layered"):
-        return solve_ac_field(stack, gap, grid.lengths, voltage, frequency=frequency, model=model, tol=tol)
+def halfway(attraction, low: float, high: float) -> float:
+    """The frequency [Hz] where ``attraction(f)`` is halfway between its values ``low`` (DC) and ``high`` (∞)."""
+    middle = 0.5 * (low + high)
+    return 10 ** brentq(lambda log_f: attraction(10 ** log_f) - middle, 1, 4, xtol=1e-4)
 
-    dielectric, direct = solve(math.inf), solve(0.0)
-    rest = EPSILON_0 * voltage / float(np.mean(direct.flux.real))
-    middle = 0.5 * (dielectric.mean_pressure + direct.mean_pressure)
-    measured = 10 ** brentq(lambda log_f: solve(10 ** log_f).mean_pressure - middle, -2, 7, xtol=1e-6)
+
+def sweep(patch: Patch, frequencies) -> list:
+    """The rows at DC, ``frequencies`` [Hz] and ∞, with the crossovers."""
+    solved = {frequency: patch.solve(frequency) for frequency in (0.0, *frequencies, math.inf)}
+    dielectric, direct = solved[math.inf], solved[0.0]
+    fixed = {frequency: patch.field(dielectric.gap, frequency) for frequency in solved}
+
+    def mean_attraction(result):
+        return -float(np.mean(result.interaction_traction))
+
+    measured = halfway(lambda f: mean_attraction(patch.solve(f)), mean_attraction(direct), mean_attraction(dielectric))
+    fixed_measured = halfway(lambda f: patch.field(dielectric.gap, f).mean_pressure, fixed[0.0].mean_pressure,
+                             fixed[math.inf].mean_pressure)
+    rest, fixed_rest = patch.rest_thickness(direct.gap), patch.rest_thickness(dielectric.gap)
+    common = dict(measured_crossover_Hz=measured, circuit_crossover_Hz=crossover_frequency(patch.stack, rest),
+                  h_rest_m=rest, fixed_measured_crossover_Hz=fixed_measured, fixed_h_rest_m=fixed_rest,
+                  fixed_circuit_crossover_Hz=crossover_frequency(patch.stack, fixed_rest), grid=patch.grid.shape[0])
     rows = []
-    for frequency in (0.0, *frequencies, math.inf):
-        solution = solve(frequency)
-        rows.append(dict(frequency_Hz=frequency, mean_pressure_Pa=solution.mean_pressure,
-                         ratio_to_dielectric=solution.mean_pressure / dielectric.mean_pressure,
-                         modulation_depth=solution.mean_oscillation / solution.mean_pressure,
-                         field_equivalent_gap_m=solution.equivalent_gap,
-                         ac_equivalent_gap_m=solution.ac_equivalent_gap,
-                         parallel_plate_mean_pressure_Pa=solve(frequency, "parallel_plate").mean_pressure))
-    return rows, (measured, crossover_frequency(stack, rest), rest)
+    for frequency, result in solved.items():
+        field = patch.field(result.gap, frequency)
+        details = result.solver.details
+        rows.append(dict(common, frequency_Hz=frequency, mean_pressure_Pa=field.mean_pressure,
+                         ratio_to_dielectric=field.mean_pressure / fixed[math.inf].mean_pressure,
+                         contact_fraction=result.contact_fraction, equivalent_gap_m=result.equivalent_gap,
+                         field_equivalent_gap_m=field.equivalent_gap, ac_equivalent_gap_m=field.ac_equivalent_gap,
+                         modulation_depth=field.mean_oscillation / field.mean_pressure,
+                         corrections=details.get("corrections", 0), converged=result.converged,
+                         electrostatic_force_N=field.mean_pressure * patch.area,
+                         fixed_mean_pressure_Pa=fixed[frequency].mean_pressure,
+                         fixed_ratio_to_dielectric=fixed[frequency].mean_pressure / fixed[math.inf].mean_pressure,
+                         fixed_parallel_plate_mean_pressure_Pa=patch.field(dielectric.gap, frequency,
+                                                                           "parallel_plate").mean_pressure))
+    return rows
 
 
 def main(argv=None):
@@ -85,27 +121,26 @@ def main(argv=None):
     if args.fast:
         args.grid, args.per_decade = 64, 2
     directory = output_directory(args.output)
-    stack, grid, gap, area, contact = scene_gap(args.grid, args.force, args.voltage, args.tol)
-    frequencies = np.logspace(1, 4, 3 * args.per_decade + 1)
-    rows, (measured, circuit, rest) = sweep(stack, grid, gap, args.voltage, frequencies, args.tol)
-    for row in rows:
-        row.update(equivalent_gap_m=stack.equivalent_gap(gap), electrostatic_force_N=row["mean_pressure_Pa"] * area,
-                   measured_crossover_Hz=measured, circuit_crossover_Hz=circuit, h_rest_m=rest,
-                   contact_fraction=contact, grid=args.grid)
+    patch = Patch(args.grid, args.force, args.voltage, args.tol)
+    rows = sweep(patch, np.logspace(1, 4, 3 * args.per_decade + 1))
     write_csv(directory / "ac_drive.csv", rows, provenance, COLUMNS)
-    print(f"{args.grid}² patch at {args.force:g} N, {args.voltage:g} V RMS: A/A0 = {contact:.4f}, Eq. 25 gap "
-          f"{rows[0]['equivalent_gap_m'] * 1e6:.3f} µm; crossover measured {measured:.0f} Hz, circuit {circuit:.0f} Hz "
-          f"(h_rest = {rest * 1e6:.3f} µm, {circuit / measured - 1:+.1%})")
-    print("| f [Hz] | ⟨σ̄⟩ [kPa] | / dielectric | 2ω depth | field-eq. gap [µm] | AC-eq. gap [µm] | per-pixel ⟨σ̄⟩ [kPa] |")
-    print("|---|---|---|---|---|---|---|")
-    nearest = min(frequencies, key=lambda f: abs(math.log(f / measured)))
+    first = rows[0]
+    print(f"{args.grid}² patch at {args.force:g} N, {args.voltage:g} V RMS. Crossover of the solved equilibria: "
+          f"measured {first['measured_crossover_Hz']:.0f} Hz, circuit {first['circuit_crossover_Hz']:.0f} Hz "
+          f"(h_rest = {first['h_rest_m'] * 1e6:.3f} µm at DC, {first['circuit_crossover_Hz'] / first['measured_crossover_Hz'] - 1:+.1%}); "
+          f"of the fixed gap: measured {first['fixed_measured_crossover_Hz']:.0f} Hz, circuit "
+          f"{first['fixed_circuit_crossover_Hz']:.0f} Hz (h_rest = {first['fixed_h_rest_m'] * 1e6:.3f} µm)")
+    print("| f [Hz] | ⟨σ̄⟩ [kPa] | / dielectric | A/A0 [%] | Eq. 25 gap [µm] | field-eq. gap [µm] | AC-eq. gap [µm] "
+          "| 2ω depth | corrections | fixed gap: ⟨σ̄⟩ [kPa] | / dielectric | per-pixel ⟨σ̄⟩ [kPa] |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for row in rows:
         frequency = row["frequency_Hz"]
-        label = "DC" if frequency == 0 else "∞" if frequency == math.inf else f"{frequency:.0f}"
-        label += " ← crossover" if frequency == nearest else ""
+        label = "DC" if frequency == 0 else "∞ (dielectric)" if frequency == math.inf else f"{frequency:.0f}"
         print(f"| {label} | {row['mean_pressure_Pa'] / 1e3:.3f} | {row['ratio_to_dielectric']:.4f} | "
-              f"{row['modulation_depth']:.4f} | {row['field_equivalent_gap_m'] * 1e6:.3f} | "
-              f"{row['ac_equivalent_gap_m'] * 1e6:.3f} | {row['parallel_plate_mean_pressure_Pa'] / 1e3:.3f} |")
+              f"{row['contact_fraction'] * 100:.3f} | {row['equivalent_gap_m'] * 1e6:.3f} | "
+              f"{row['field_equivalent_gap_m'] * 1e6:.3f} | {row['ac_equivalent_gap_m'] * 1e6:.3f} | "
+              f"{row['modulation_depth']:.4f} | {row['corrections']} | {row['fixed_mean_pressure_Pa'] / 1e3:.3f} | "
+              f"{row['fixed_ratio_to_dielectric']:.4f} | {row['fixed_parallel_plate_mean_pressure_Pa'] / 1e3:.3f} |")
 
 
 if __name__ == "__main__":

@@ -1,7 +1,8 @@
 """The contact solve: :func:`solve_contact` hands a problem to a method of the registry :data:`METHODS` —
 Polonsky–Keer's constrained conjugate gradients for the hard wall (:mod:`.polonsky_keer`), the minimum of the
-total energy over the gap for a smooth law with the wall (:mod:`.energy_cg`) — after checking that the method
-solves the law and takes every option given."""
+total energy over the gap for a smooth law with the wall (:mod:`.energy_cg`), the deferred correction around it
+for the time-averaged attraction of an AC drive (:mod:`.ac_drive`) — after checking that the method solves the
+law and takes every option given."""
 from __future__ import annotations
 
 import warnings
@@ -15,6 +16,8 @@ from surfaces.validation import check_bool, check_choice, check_real
 from ..body import ElasticHalfSpace
 from ..interactions import Interaction
 from ..io.results import ConvergenceWarning
+from .ac_drive import METHOD as DEFERRED_CORRECTION
+from .ac_drive import driven, solve_driven
 from .energy_cg import METHOD as ENERGY_CG
 from .energy_cg import solve_smooth
 from .inputs import _check_body, _checked_interaction, default_tolerance
@@ -47,21 +50,24 @@ class Method:
 
 #: The contact methods by name.
 METHODS = {POLONSKY_KEER: Method(POLONSKY_KEER, False, solve_hard_wall, ("cold_start", "preconditioned")),
-           ENERGY_CG: Method(ENERGY_CG, True, solve_smooth)}
+           ENERGY_CG: Method(ENERGY_CG, True, solve_smooth),
+           DEFERRED_CORRECTION: Method(DEFERRED_CORRECTION, True, solve_driven)}
 
 
 def method_for(interaction: Interaction, method=None) -> Method:
     """The method that solves ``interaction``: ``method`` by name (checked against the law), or by default the
     one for the law (Polonsky–Keer for the hard wall and a law that vanishes, e.g. at 0 V; the energy method
-    for a smooth law)."""
+    for a smooth law; the deferred correction for an AC drive through a leaky stratum corneum)."""
     smooth = interaction.smooth and not interaction.vanishes
+    needed = METHODS[(DEFERRED_CORRECTION if driven(interaction) else ENERGY_CG) if smooth else POLONSKY_KEER]
     if method is None:
-        return METHODS[ENERGY_CG if smooth else POLONSKY_KEER]
+        return needed
     chosen = METHODS[check_choice("method", method, tuple(METHODS))]
-    if chosen.smooth != smooth:
-        solves = "a smooth law that attracts" if chosen.smooth else "the hard wall (or a law that vanishes)"
+    if chosen is not needed:
+        solves = {POLONSKY_KEER: "the hard wall (or a law that vanishes)", ENERGY_CG: "a smooth law that attracts",
+                  DEFERRED_CORRECTION: "an AC drive through a leaky stratum corneum"}[chosen.name]
         raise ValueError(f"method = {method!r} solves {solves}; the interaction {type(interaction).__name__} needs "
-                         f"method = {METHODS[ENERGY_CG if smooth else POLONSKY_KEER].name!r}")
+                         f"method = {needed.name!r}")
     return chosen
 
 
@@ -85,7 +91,8 @@ def solve_contact(height_field, body: ElasticHalfSpace, *, mean_pressure=None, t
         (the default) or a smooth law acting with the wall. A law that vanishes (0 V) is solved as the hard wall.
     method : str, optional
         A name of :data:`METHODS`: ``"polonsky-keer"`` (:mod:`.polonsky_keer`; the hard wall) or
-        ``"projected-cg-gap"`` (:mod:`.energy_cg`; smooth laws). By default the one that solves ``interaction``;
+        ``"projected-cg-gap"`` (:mod:`.energy_cg`; smooth laws) or ``"deferred-correction"`` (:mod:`.ac_drive`; an
+        ``ElectrostaticInteraction`` with a ``frequency``). By default the one that solves ``interaction``;
         a method that does not solve it raises ``ValueError``.
     tol : float, optional
         Relative tolerance of the method's convergence criterion (its module docstring), in (0, 1); by default

@@ -12,13 +12,31 @@ def sweep(fast_run, read_csv):
 def test_sweep_runs_from_dc_to_the_dielectric_limit(sweep):
     frequencies = [float(row["frequency_Hz"]) for row in sweep]
     assert frequencies[0] == 0.0 and frequencies[-1] == math.inf and frequencies == sorted(frequencies)
-    means = [float(row["mean_pressure_Pa"]) for row in sweep]
-    assert all(a >= b for a, b in zip(means, means[1:])) and means[0] > means[-1]
-    assert float(sweep[-1]["ratio_to_dielectric"]) == 1.0
-    # the dielectric limit's AC-equivalent gap is its field-equivalent gap; the crossover lies inside the sweep
+    assert all(row["converged"] == "True" for row in sweep)
+    # DC: its surrogate is the DC law, no correction; a lossy drive corrects at least once; ∞ is the energy solve
+    assert sweep[0]["corrections"] == "0" == sweep[-1]["corrections"]
+    assert all(int(row["corrections"]) >= 1 for row in sweep[1:-1])
+    for column in ("mean_pressure_Pa", "fixed_mean_pressure_Pa"):        # solved and fixed gap: both fall
+        means = [float(row[column]) for row in sweep]
+        assert all(a >= b for a, b in zip(means, means[1:])) and means[0] > means[-1]
+    assert float(sweep[-1]["ratio_to_dielectric"]) == 1.0 == float(sweep[-1]["fixed_ratio_to_dielectric"])
+    # the dielectric limit's AC-equivalent gap is its field-equivalent gap; the crossovers lie inside the sweep
     assert float(sweep[-1]["ac_equivalent_gap_m"]) == pytest.approx(float(sweep[-1]["field_equivalent_gap_m"]))
-    measured, circuit = float(sweep[0]["measured_crossover_Hz"]), float(sweep[0]["circuit_crossover_Hz"])
+    measured, circuit = float(sweep[0]["fixed_measured_crossover_Hz"]), float(sweep[0]["fixed_circuit_crossover_Hz"])
     assert 10 < measured < 1e4 and circuit == pytest.approx(measured, rel=0.05)
+    # the solved equilibria's halfway point: on 64² a snap-in between 1 and 3 kHz moves it (1586 Hz, circuit 1173)
+    assert 10 < float(sweep[0]["measured_crossover_Hz"]) < 1e4
+
+
+def test_bench_of_the_drive_reports_every_solve(fast_run, read_csv):
+    rows = read_csv(fast_run("bench_ac_drive") / "bench_ac_drive.csv")
+    assert [row["solve"] for row in rows] == ["dielectric", "dc-direct", "ac-drive", "surrogate"]
+    assert all(row["converged"] == "True" for row in rows)
+    for row in rows:
+        corrections = float(row["correction_fft_pairs"])
+        assert (corrections > 0) == (row["solve"] == "ac-drive") and corrections < float(row["fft_pairs"])
+    drive = rows[2]
+    assert sum(int(i) for i in drive["solve_iterations"].split()) == int(drive["iterations"])
 
 
 def test_bench_counts_two_fft_pairs_per_cocg_iteration(fast_run, read_csv):

@@ -57,7 +57,7 @@ def test_an_option_the_method_does_not_take_raises():
     zero = solve_contact(surface, body, mean_pressure=0.1, interaction=ElectrostaticInteraction(STACK, 0.0),
                          cold_start="pk", preconditioned=False)
     assert zero.solver.method == "polonsky-keer" and zero.solver.details["preconditioned"] is False
-    assert set(METHODS) == {"polonsky-keer", "projected-cg-gap"}
+    assert set(METHODS) == {"polonsky-keer", "projected-cg-gap", "deferred-correction"}
 
 
 def test_the_report_is_typed_and_the_former_params_read_the_same():

@@ -1,0 +1,234 @@
+"""The contact equilibrium under the time-averaged attraction of an AC drive: deferred correction.
+
+Under a sinusoidal drive at a frequency f (``ElectrostaticInteraction(stack, U, frequency=f)``, U the RMS
+voltage) a leaky stratum corneum makes the layered field's time-averaged attraction σ̄(g)
+(:mod:`roughcontact.electrostatics.ac`) a non-conservative traction t(g) = −σ̄(g): its Jacobian is not
+symmetric (``docs/dev/roadmap.md``), so there is no energy for :mod:`.energy_cg` to minimise. A conservative
+**surrogate** law S carries the gap dependence and the rest of the true traction is frozen at the last gap:
+
+    g_{n+1} = argmin Π_S(g) − ⟨c_n g⟩,   c_n = t(g_n) − t_S(g_n),
+
+from c_0 = 0 (the surrogate alone) to a fixed point, where the solve's traction t_S(g) + c equals t(g): an
+equilibrium of the true time-averaged traction (complementarity and force balance with p = p_S + c). t_S(g_n)
+is the traction the solve balanced (its last field evaluation), t(g_n) one AC field solve (COCG,
+:class:`~roughcontact.electrostatics.ac.ACStackField`, warm-started from the last gap's flux). S is the
+dielectric layered law with a real ε_eff matched to the uniform mode of the circuit,
+
+    |h_rest + d_sc/ε*_sc| = h_rest + d_sc/ε_eff,   h_rest = 1/⟨1/(g/(ε_a (1 + |∇g|²/3)) + d_i/ε_i)⟩,
+
+h_rest the DC capacitance thickness of the air + insulator columns at the starting gap, so S has nearly the true
+law's uniform response there and is the true law itself at DC (ε_eff → ∞). Any real ε_eff gives the same fixed
+point; the match makes the corrections small. A frozen traction field c acts on the body like a change of its
+heights by −K c and of the external load by −⟨c⟩ (g = s − h + K p_S + K c with ⟨p_S⟩ = P̄ − ⟨c⟩; the flat keeps
+its position, so the penetration δ = max(h) − s becomes δ + max(h − K c) − max(h)): each step is an ordinary
+warm-started energy solve of the surrogate, and nothing of that solver changes.
+
+Stopping rule: the change of the correction between the last two gaps, measured as the displacement it
+causes, sqrt(⟨(K Δc̃)²⟩ + (Φ_L ⟨Δc⟩)²) ≤ tol · gap_scale (the energy solve's own criterion,
+:mod:`.energy_cg`; Φ_L the compliance of the longest wavelength, gap_scale the rms height). The returned gap then solves the surrogate problem to ``tol`` and
+the true one to within that change: its true residual is at most about twice ``tol``.
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+import warnings
+
+import numpy as np
+
+from surfaces.validation import check_real
+
+from ..electrostatics import EPSILON_0
+from ..electrostatics.ac import ACStackField, inverse_permittivity
+from ..interactions import ElectrostaticInteraction
+from ..io.results import ConvergenceWarning
+from .energy_cg import FIELD_TOL_FLOOR, START_TOL, solve_smooth
+from .inputs import _heights
+from .polonsky_keer import solve_hard_wall
+from .result import ContactResult
+
+METHOD = "deferred-correction"
+MAX_CORRECTIONS = 20       # corrections before the fixed point is reported as not converged
+FIELD_TOL_FACTOR = 1e-2    # the corrections' field solves to this times tol (no tighter than FIELD_TOL_FLOOR)
+#: ε_eff of a stratum corneum without elastance (DC): d_sc/ε_eff vanishes beside d_i/ε_i in float64
+NO_ELASTANCE = 1e300
+
+
+def driven(law) -> bool:
+    """Whether ``law`` is an AC drive that dissipates in the stratum corneum (0 ≤ f < ∞, σ_sc > 0): the laws this
+    module solves. ``frequency`` None or ∞, or σ_sc = 0, is the dielectric law (the energy solve)."""
+    return (isinstance(law, ElectrostaticInteraction) and law.frequency is not None and law.frequency != math.inf
+            and law.stack.sigma_sc > 0.0)
+
+
+def surrogate_permittivity(stack, rest_thickness: float, frequency: float) -> float:
+    """ε_eff with |h_rest + d_sc/ε*_sc| = h_rest + d_sc/ε_eff for the air + insulator thickness ``rest_thickness``
+    h_rest [m] at ``frequency`` [Hz]: the real permittivity whose uniform mode has the drive's |D̂|
+    (:data:`NO_ELASTANCE` at DC)."""
+    excess = abs(rest_thickness + stack.d_sc * inverse_permittivity(stack, frequency)) - rest_thickness
+    return stack.d_sc / excess if excess > stack.d_sc / NO_ELASTANCE else NO_ELASTANCE
+
+
+class _Correction:
+    """The true time-averaged traction t(g) on one grid (the drive's operator built once, each field solve
+    warm-started from the last, to ``tol``) and the surrogate law, its ε_eff matched at ``gap`` with
+    h_rest = 1/⟨1/(ε0 R + d_i/ε_i)⟩, the DC capacitance thickness of the air + insulator columns (at DC the
+    conducting stratum corneum is an equipotential and the thin insulator barely couples the columns: within
+    1.1 % of the DC field's ε0 U/⟨D_DC⟩ on the default scene's 128² patch)."""
+
+    def __init__(self, law: ElectrostaticInteraction, grid, gap, tol: float):
+        stack = law.stack
+        self.drive = ACStackField(stack, grid, law.frequency)
+        columns = EPSILON_0 * self.drive.column_elastance(gap) + stack.d_i / stack.eps_i
+        self.rest_thickness = 1.0 / float(np.mean(1.0 / columns))
+        self.permittivity = surrogate_permittivity(stack, self.rest_thickness, law.frequency)
+        self.surrogate = ElectrostaticInteraction(dataclasses.replace(stack, eps_sc=self.permittivity), law.voltage)
+        self.squared_voltage, self.tol = law.voltage ** 2, tol
+        self.flux = None
+        self.residual = 0.0                              # the largest relative residual of a field solve
+
+    def __call__(self, result) -> tuple:
+        """(t(g), c(g)) [Pa] at the gap of the surrogate solve ``result``: c = t − t_S with t_S the traction that
+        solve balanced (its last field evaluation)."""
+        gap = np.asarray(result.gap, dtype=np.float64)
+        self.flux, _, residual = self.drive.solve(gap, initial=self.flux, tol=self.tol)
+        self.residual = max(self.residual, residual)
+        traction = -self.squared_voltage * self.drive.attraction_phasors(gap, self.flux)[0]
+        return traction, traction - np.asarray(result.interaction_traction, dtype=np.float64)
+
+
+def _corrections(count: int) -> str:
+    return f"{count} correction" + ("" if count == 1 else "s")
+
+
+def _correction_size(half, change, gap_scale: float) -> float:
+    """sqrt(⟨(K Δc̃)²⟩ + (Φ_L ⟨Δc⟩)²)/gap_scale for a change Δc [Pa] of the frozen traction (a free window: the
+    rms of K Δc over it): the displacement it would cause, in the energy solve's units of its tolerance."""
+    if not half.periodic:
+        return float(np.sqrt(np.mean(half.displacement(change) ** 2))) / gap_scale
+    mean = float(np.mean(change))
+    longest = max(float(half.compliance(2 * math.pi / max(half.grid.lengths))), half.uniform_compliance)
+    fluctuation = half.displacement(change - mean)
+    return float(np.sqrt(np.mean(fluctuation ** 2) + (longest * mean) ** 2)) / gap_scale
+
+
+def _start(heights, half, load, penetration, x0, tol, maxiter):
+    """(the result the first solve starts from or None, its gap, its name, its FFT pairs): ``x0``; else the
+    hard-wall solution at the same control where one exists (what the energy solve would start from, solved
+    here once since its gap also matches ε_eff); else None and the rigid gap (the energy solve starts itself)."""
+    if x0 is not None:
+        if not isinstance(x0, ContactResult):
+            raise TypeError(f"x0 of an AC drive must be a ContactResult (its gap starts the solve), got "
+                            f"{type(x0).__name__}")
+        if x0.gap.shape != heights.shape:
+            raise ValueError(f"x0 has shape {x0.gap.shape}, but the grid has shape {heights.shape}")
+        return x0, np.asarray(x0.gap, dtype=np.float64), "x0", 0.0
+    options = dict(tol=max(tol, START_TOL), maxiter=maxiter, warn=False)
+    if load is not None and load > 0:
+        begin = solve_hard_wall(heights, half, mean_pressure=load, **options)
+    elif penetration is not None and penetration > 0:
+        begin = solve_hard_wall(heights, half, penetration=penetration, **options)
+    else:
+        shift = 0.0 if penetration is None else penetration
+        return None, np.maximum(float(heights.max()) - shift - heights, 0.0).astype(np.float64), "rigid", 0.0
+    return begin, np.asarray(begin.gap, dtype=np.float64), "hard wall", begin.solver.fft_pairs
+
+
+def solve_driven(height_field, half, law, *, mean_pressure=None, total_force=None, penetration=None, tol,
+                 maxiter=10000, x0=None, callback=None, warn=True) -> ContactResult:
+    """The equilibrium of ``height_field`` on the flat under the time-averaged attraction of the AC drive ``law``
+    (module docstring); load control (``mean_pressure`` [Pa] or ``total_force`` [N]) or ``penetration`` [m], as
+    for :func:`~roughcontact.solvers.energy_cg.solve_smooth`, whose ``tol``, ``maxiter``, ``callback`` and
+    ``warn`` every energy solve takes.
+
+    The result's ``interaction_traction`` is the true t(g) = −σ̄(g) at the returned gap and ``pressure`` the
+    solved traction p_S + c (their difference on the open gap is the last correction's change);
+    ``interaction_energy`` is ``nan`` where the stack dissipates (f > 0: no energy exists), the DC law's at f = 0.
+    ``solver.details`` holds ``frequency`` [Hz], ``voltage`` (RMS) [V], ``corrections`` (the energy solves after
+    the first, the surrogate's alone), ``correction_size`` (the last change of c, in units of ``tol``'s measure)
+    with ``correction_sizes`` (one per solve, the first is c itself), ``surrogate_eps_sc`` ε_eff,
+    ``rest_thickness`` h_rest [m], ``solve_iterations`` per solve and ``correction_fft_pairs``, the real FFT pairs
+    of the AC field solves (``fft_pairs`` counts them with the solves' and the hard-wall start's).
+    """
+    began = time.perf_counter()
+    grid = half.grid
+    given = {"mean_pressure": mean_pressure, "total_force": total_force, "penetration": penetration}
+    given = {name: value for name, value in given.items() if value is not None}
+    if len(given) != 1:
+        raise ValueError(f"give exactly one of mean_pressure, total_force, penetration; got {sorted(given) or 'none'}")
+    (control, requested), = given.items()
+    requested = check_real(control, requested)
+    heights = _heights(height_field, half).astype(np.float64)
+    load = requested / grid.area if control == "total_force" else requested if control == "mean_pressure" else None
+    begin, gap, start_kind, pairs = _start(heights, half, load, None if load is not None else requested, x0, tol,
+                                           maxiter)
+    deviation = heights - float(heights.mean())
+    gap_scale = float(np.sqrt(np.mean(deviation ** 2))) or law.length
+    correction = _Correction(law, grid, gap, max(FIELD_TOL_FLOOR, FIELD_TOL_FACTOR * tol))
+    frozen = np.zeros(grid.shape)                       # the first solve: the surrogate alone
+    sizes, iterations, result, traction, message = [], [], begin, None, ""
+    while True:
+        shift = half.displacement(frozen.astype(half.dtype))                # K c: the frozen traction's displacement
+        shifted = heights - shift
+        target = dict(mean_pressure=load - float(np.mean(frozen))) if load is not None else \
+            dict(penetration=requested + float(shifted.max()) - float(heights.max()))
+        result = solve_smooth(shifted, half, correction.surrogate, tol=tol, maxiter=maxiter, x0=result,
+                              callback=callback, warn=False, **target)
+        pairs += result.solver.fft_pairs + 2                                 # and K c, K Δc
+        start_kind = result.solver.start if begin is None and not iterations else start_kind   # the solve's own
+        iterations.append(result.iterations)
+        if not result.converged:
+            message = f"solve {len(iterations)} (after {_corrections(len(sizes))}) stopped: {result.message}"
+            break
+        traction, update = correction(result)
+        sizes.append(_correction_size(half, update - frozen, gap_scale))
+        if sizes[-1] <= tol:
+            message = (f"converged after {_corrections(len(sizes) - 1)}: the correction changed by "
+                       f"{sizes[-1]:.3g} <= tol {tol:g}; the last solve {result.message}")
+            break
+        if len(sizes) > MAX_CORRECTIONS:
+            message = (f"not converged: the deferred correction changed by {sizes[-1]:.3g} > tol {tol:g} after "
+                       f"{_corrections(len(sizes) - 1)}")
+            break
+        frozen = update
+    converged = result.converged and bool(sizes) and sizes[-1] <= tol and correction.residual <= correction.tol
+    if result.converged and correction.residual > correction.tol:
+        message = (f"not converged: an AC field solve stopped at relative residual {correction.residual:.3g} "
+                   f"> {correction.tol:g}")
+    message += f" (AC drive {law.frequency:g} Hz, {law.voltage:g} V RMS)"
+    if not converged and warn:
+        warnings.warn(message, ConvergenceWarning, stacklevel=3)
+    correction_pairs = correction.drive.fft_pairs
+    details = {"frequency": law.frequency, "voltage": law.voltage, "corrections": len(iterations) - 1,
+               "correction_size": sizes[-1] if sizes else math.inf, "correction_sizes": sizes,
+               "surrogate_eps_sc": correction.permittivity, "rest_thickness": correction.rest_thickness,
+               "solve_iterations": iterations, "correction_fft_pairs": float(correction_pairs)}
+    report = dataclasses.replace(result.solver, method=METHOD, converged=converged, message=message,
+                                 iterations=sum(iterations), start=start_kind, fft_pairs=float(pairs + correction_pairs),
+                                 wall_time=time.perf_counter() - began, details={**result.solver.details, **details})
+    return _driven_result(result, half, heights, law, frozen, traction if result.converged else None, report,
+                          control, requested)
+
+
+def _driven_result(result, half, heights, law, frozen, traction, report, control, requested) -> ContactResult:
+    """The ContactResult of the original problem from the last surrogate solve ``result`` (which had the traction
+    ``frozen`` c added) with the ``report``: p = p_S + c, u = u_S + K c, the true traction ``traction`` t(g) at
+    its gap (None where that solve did not converge: the solve's own t_S + c)."""
+    dtype = half.dtype
+    if traction is None:
+        traction = np.asarray(result.interaction_traction, dtype=np.float64) + frozen
+    pressure = np.asarray(result.pressure, dtype=np.float64) + frozen
+    displacement = np.asarray(result.displacement, dtype=np.float64) + half.displacement(frozen.astype(dtype))
+    contact_pressure = np.where(result.contact, pressure - traction, 0.0)
+    arrays = {name: values.astype(dtype) for name, values in (("pressure", pressure), ("displacement", displacement),
+                                                              ("interaction_traction", traction),
+                                                              ("contact_pressure", contact_pressure))}
+    for values in arrays.values():
+        values.flags.writeable = False
+    energy = result.interaction_energy if law.frequency == 0.0 else math.nan
+    return dataclasses.replace(
+        result, **arrays, mean_pressure=result.mean_pressure + float(np.mean(frozen)),
+        penetration=float(heights.max()) - result.flat_position,
+        elastic_energy=half.elastic_energy(arrays["pressure"], arrays["displacement"]), interaction_energy=energy,
+        interaction=law, control=control, requested=float(requested), solver=report)
