@@ -138,11 +138,13 @@ def _point_rows(result: StudyResult) -> list:
 
 def _rows(result: StudyResult, rows_of) -> list:
     """The CSV rows ``rows_of(result)`` of a loads × voltages study; of a frequency sweep those of each frequency
-    with a ``frequency_Hz`` column after ``voltage_V``."""
+    with a ``frequency_Hz`` column after ``voltage_V``, in the order load, voltage, frequency (as the netCDF's
+    dimensions)."""
     if not result.frequencies:
         return rows_of(result)
-    return [{"normal_force_N": row["normal_force_N"], "voltage_V": row["voltage_V"], "frequency_Hz": frequency,
+    rows = [{"normal_force_N": row["normal_force_N"], "voltage_V": row["voltage_V"], "frequency_Hz": frequency,
              **row} for k, frequency in enumerate(result.frequencies) for row in rows_of(result.at_frequency(k))]
+    return sorted(rows, key=lambda row: (row["normal_force_N"], row["voltage_V"]))     # stable: frequencies in order
 
 
 def _sensitivity_rows(result: StudyResult) -> list:
@@ -639,10 +641,13 @@ def _sweep_figure(result: StudyResult, out, provenance) -> list:
     figure, axes = plt.subplots(len(voltages), 3, figsize=(14, 3.6 * len(voltages)), squeeze=False)
     for row, j in zip(axes, voltages):
         for (label, values), axis in zip(samples.items(), row):
+            upper = 100.0 if label.startswith("A_R") else np.inf
             for i, force in enumerate(result.normal_forces):
-                mean, half = confidence_interval(values[i, j])
+                mean = confidence_interval(values[i, j])[0]
+                low, high = positive_interval(values[i, j], upper)
+                bars = np.nan_to_num(np.maximum(np.stack([mean - low, high - mean]), 0.0))
                 colour = f"C{i}"
-                axis.errorbar(frequencies[ac], mean[ac], yerr=np.nan_to_num(half[ac]), marker="o", capsize=3,
+                axis.errorbar(frequencies[ac], mean[ac], yerr=bars[:, ac], marker="o", capsize=3,
                               color=colour, label=f"{force:g} N")
                 if not ac.all():
                     axis.axhline(mean[0], color=colour, ls=":", lw=1, label=f"{force:g} N, DC")
