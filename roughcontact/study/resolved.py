@@ -15,8 +15,9 @@ from .scene import Scene
 def solve_chain(scene: Scene, realisation: int, voltage_index: int, threads: int | None = None,
                 apparent: tuple | None = None, frequency_index: int | None = None) -> tuple:
     """One task of the study: the patch of ``realisation`` at voltage ``loads.voltages[voltage_index]`` (under
-    the drive at ``screen.frequency[frequency_index]`` where the scene sets a frequency) under every load of the scene in order, each ring's solve warm-started from its result at the previous load (cold
-    with the preset's ``warm_start`` false; a warm start that fails is repeated cold). ``threads`` FFT threads
+    the drive at ``screen.frequency[frequency_index]`` where the scene sets a frequency) under every load of the
+    scene in order, each ring's solve warm-started from its result at the previous load (cold with the preset's
+    ``warm_start`` false; a warm start that fails is repeated cold). ``threads`` FFT threads
     (default: ``roughcontact.fft.default_threads``); ``apparent``, the scene's :func:`apparent_scale` (computed
     when not given). Returns one :class:`PatchRecord` per load; deterministic, so the records do not depend on
     where the task runs."""

@@ -125,7 +125,7 @@ field = "layered"
 # The drive (docs/guide/ac_drive.md): without a frequency key the stratum corneum is a perfect dielectric (the
 # seed's model, its high-frequency limit). frequency = 1000.0 (Hz, RMS voltages) drives the layered field through
 # the leaky stratum corneum, 0.0 is DC; a strictly increasing list (frequency = [10.0, 100.0, 1000.0]) sweeps it.
-# sigma_sc (S/m, default 2e-4, references.md §1.1) is the stratum corneum's conductivity, used only with a frequency.
+# sigma_sc (S/m, default 2e-4, references.md §11): the stratum corneum's conductivity, used only with a frequency.
 
 [loads]
 # The seed's range: 0.5-2 N and 0-200 V (seed Table 1, Fig. 9).
