@@ -2,7 +2,9 @@
 bottom-up (:mod:`roughcontact.study.friction`).
 
 :func:`write_results` writes ``results.nc`` (xarray + h5netcdf, the ``io`` dependencies; skipped
-with a message when missing), the CSV tables, the PNG figures and ``report.md`` into a results directory.
+with a message when missing), the CSV tables, the PNG figures and ``report.md`` into a results directory; for
+a drive-frequency sweep (``[screen] frequency``) the tables gain a frequency column, ``results.nc`` a frequency
+dimension, and the figure and report show the sweep (:func:`sweep_report_text`).
 """
 from __future__ import annotations
 
@@ -392,6 +394,19 @@ def _patch_sentence(result: StudyResult, realisations: int) -> str:
             f"short cut-off in use {result.short_cutoff * MICRO:.3g} µm")
 
 
+def _run_sentence(result: StudyResult, seconds: float | None) -> str:
+    """The report's first paragraph: version, preset, patch, tolerance, convergence, instabilities, run time."""
+    scene, converged = result.scene, result.array("converged")
+    return (f"roughcontact {__version__}, preset `{scene.study.preset}`: "
+            + _patch_sentence(result, converged.shape[-1])
+            + f", solver tolerance {scene.preset.tolerance:g}. Scene: `scene.toml` in this directory. "
+            f"{converged.size - int(converged.sum())} of {converged.size} patch results did not converge (also "
+            "from the solver's own start) and are left out of the means. " + _unstable_sentence(result)
+            + (f" Run time {seconds:.0f} s, tables and figures included ({result.computed} points computed with "
+               f"{result.solves} solves, "
+               f"{result.array('seconds').size - result.computed} read back)." if seconds is not None else ""))
+
+
 def report_text(result: StudyResult, nc_written: bool, seconds: float | None = None) -> str:
     """The Markdown report: what was computed, tables with intervals, and where the equivalent-gap
     assumption holds and where it fails, with numbers."""
@@ -404,16 +419,8 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
     a_mean = result.summary("ridge_area_fractions")[0]
     slope = result.summary("gap_slope")[0]
     errors = assumption_errors(result)
-    realisations = result.array("equivalent_gap").shape[-1]
-    converged = result.array("converged")
     text = ["# Multiscale fingerpad study", "",
-            f"roughcontact {__version__}, preset `{scene.study.preset}`: " + _patch_sentence(result, realisations)
-            + f", solver tolerance {preset.tolerance:g}. Scene: `scene.toml` in this directory. "
-            f"{converged.size - int(converged.sum())} of {converged.size} patch results did not converge (also "
-            "from the solver's own start) and are left out of the means. " + _unstable_sentence(result)
-            + (f" Run time {seconds:.0f} s, tables and figures included ({result.computed} points computed with "
-               f"{result.solves} solves, "
-               f"{result.array('seconds').size - result.computed} read back)." if seconds is not None else ""), "",
+            _run_sentence(result, seconds), "",
             describe(preset, scene.study.preset) + applicability(scene) if not scene.roughness.topography else
             "The presets' measured errors (`docs/guide/presets.md`) are those of synthetic patches on the preset's "
             "grid and do not apply here: the measured patch is solved on the scan's own pixels, so its resolution "
@@ -673,20 +680,12 @@ def sweep_report_text(result: StudyResult, nc_written: bool, seconds: float | No
     """The Markdown report of a drive-frequency sweep: what was solved, and F_el, d_eq, d_field and A_R/A0
     against frequency per load and voltage with the circuit's crossover."""
     scene, preset = result.scene, result.scene.preset
-    converged = result.array("converged")
-    realisations = converged.shape[-1]
     crossover, rest = sweep_crossover(result)
     samples = _sweep_samples(result)
     field_gap = _realisations(result, "field_equivalent_gap")
     contact = _realisations(result, "contact_fraction")
     text = ["# Multiscale fingerpad study: drive-frequency sweep", "",
-            f"roughcontact {__version__}, preset `{scene.study.preset}`: " + _patch_sentence(result, realisations)
-            + f", solver tolerance {preset.tolerance:g}. Scene: `scene.toml` in this directory. "
-            f"{converged.size - int(converged.sum())} of {converged.size} patch results did not converge (also "
-            "from the solver's own start) and are left out of the means. " + _unstable_sentence(result)
-            + (f" Run time {seconds:.0f} s, tables and figures included ({result.computed} points computed with "
-               f"{result.solves} solves, {converged[..., 0].size - result.computed} read back)."
-               if seconds is not None else ""), "",
+            _run_sentence(result, seconds), "",
             describe(preset, scene.study.preset) + applicability(scene), "",
             "The drive (`[screen] frequency`, `docs/guide/ac_drive.md`): each voltage is the RMS value of a "
             "sinusoid at each frequency (0 Hz: DC), the stratum corneum conducts with σ_sc = "
