@@ -24,13 +24,14 @@ SWEEP = TINY.replace("[loads]", f"[screen]\nfrequency = {FREQUENCIES}\nsigma_sc 
 
 
 @pytest.fixture(scope="module")
-def sweep():
-    return load_scene(text=SWEEP, preset="draft")
+def sweep_result():
+    """The tiny sweep solved in this process (its scene: ``sweep_result.scene``)."""
+    return run_study(load_scene(text=SWEEP, preset="draft"), workers=1)
 
 
 @pytest.fixture(scope="module")
-def sweep_result(sweep):
-    return run_study(sweep, workers=1)
+def sweep(sweep_result):
+    return sweep_result.scene
 
 
 # ---------------------------------------------------------------------------------------------------------
