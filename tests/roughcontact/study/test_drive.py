@@ -15,7 +15,7 @@ from roughcontact.solvers import solve_contact
 from roughcontact.study.apparent import apparent_scale
 from roughcontact.study.execution import SceneMismatch, scene_fingerprint
 from roughcontact.study.patch import patch_body, patch_surface
-from roughcontact.study.run import run_study
+from roughcontact.study.run import open_results, run_study
 from roughcontact.study.scene import load_scene
 from study_scenes import TINY
 
@@ -157,6 +157,7 @@ def test_resume_with_the_drive_keys(sweep, sweep_result, tmp_path):
     assert resumed.computed == 2 and resumed.solves == 2             # one task: two loads, one solve each
     assert [p.equivalent_gap for row in resumed.points for cell in row for p in cell] == \
         [p.equivalent_gap for row in first.points for cell in row for p in cell]
+    assert open_results(tmp_path).points == resumed.points and open_results(tmp_path).frequencies == tuple(FREQUENCIES)
     for changed in (SWEEP.replace("sigma_sc = 3e-4", "sigma_sc = 2e-4"),
                     SWEEP.replace("3000.0]", "3000.0, 10000.0]"), TINY):
         with pytest.raises(SceneMismatch):
