@@ -111,7 +111,7 @@ def _cmd_run(args, provenance) -> int:
         print("roughcontact run: results.nc not written: xarray and h5netcdf are not installed "
               "(pip install 'roughcontact[io]'); the CSV tables hold the results", file=sys.stderr)
     print(f"{result.computed} points computed ({result.solves} contact solves), "
-          f"{len(result.points) * len(result.points[0]) - result.computed} resumed; "
+          f"{result.array('seconds').size - result.computed} resumed; "
           f"{written['seconds']:.0f} s")
     print(f"report, figures and tables written to {output.resolve()}")
     return 0

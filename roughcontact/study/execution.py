@@ -88,13 +88,15 @@ class TaskStore:
             os.close(self._descriptor)
             self._descriptor = None
 
-    def _path(self, realisation: int, voltage_index: int) -> Path:
-        return self.tasks / f"R{realisation:03d}_U{voltage_index:03d}.json"
+    def _path(self, realisation: int, voltage_index: int, frequency_index: int | None = None) -> Path:
+        drive = "" if frequency_index is None else f"_F{frequency_index:03d}"
+        return self.tasks / f"R{realisation:03d}_U{voltage_index:03d}{drive}.json"
 
-    def load(self, realisation: int, voltage_index: int) -> tuple | None:
-        """The records of task (r, j), or None if it has not finished, or if its file cannot be reused (a
+    def load(self, realisation: int, voltage_index: int, frequency_index: int | None = None) -> tuple | None:
+        """The records of task (r, j) (with the drive's frequency index k in a frequency sweep: file
+        ``R{r}_U{j}_F{k}.json``), or None if it has not finished, or if its file cannot be reused (a
         :class:`StaleTaskWarning` names the file and the reason)."""
-        path = self._path(realisation, voltage_index)
+        path = self._path(realisation, voltage_index, frequency_index)
         try:
             text = path.read_text(encoding="utf-8")
         except FileNotFoundError:
@@ -119,9 +121,9 @@ class TaskStore:
         return tuple(PatchRecord(**{key: tuple(value) if isinstance(value, list) else value
                                     for key, value in record.items()}) for record in stored["records"])
 
-    def save(self, realisation: int, voltage_index: int, records: tuple) -> None:
+    def save(self, realisation: int, voltage_index: int, records: tuple, frequency_index: int | None = None) -> None:
         stored = [dataclasses.asdict(record) for record in records]
-        write_atomic(self._path(realisation, voltage_index),
+        write_atomic(self._path(realisation, voltage_index, frequency_index),
                      json.dumps({"scene": self.fingerprint, "digest": _digest(stored), "records": stored}))
 
 

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import stdtrit
 
-from ..electrostatics import solve_field
+from ..electrostatics import solve_ac_field, solve_field
 from .patch import gap_slope, ridge_area_fraction, ridge_equivalent_gap
 
 #: Two-sided confidence level of every reported interval.
@@ -29,14 +29,18 @@ def confidence_interval(samples) -> tuple:
     return mean, half
 
 
-def unit_attraction(stack, field: str, result, voltage: float) -> float:
+def unit_attraction(stack, field: str, result, voltage: float, frequency: float | None = None) -> float:
     """⟨σ_el⟩/U² [Pa/V²] over the window of a solved patch ``result`` in the ``field`` model: from the solve's
-    own attraction at ``voltage`` > 0 (F_el/(A0 U²)), at 0 V from the field of the hard-wall gap at 1 V
-    (σ_el ∝ U², so this is the small-voltage limit)."""
+    own attraction at ``voltage`` > 0 (F_el/(A0 U²), time-averaged under a drive of ``frequency`` [Hz]), at 0 V
+    from the field of the hard-wall gap at 1 V (σ_el ∝ U², so this is the small-voltage limit; under the drive
+    at that frequency)."""
     grid = result.params["grid"]
     if voltage > 0:
         return result.electrostatic_force / grid.area / voltage ** 2
     gap = np.asarray(result.gap, dtype=np.float64)
+    if frequency is not None:
+        return solve_ac_field(stack, gap, grid.lengths, 1.0, frequency=frequency, model=field,
+                              periodic=grid.periodic).mean_pressure
     return solve_field(stack, gap, grid.lengths, 1.0, model=field, periodic=grid.periodic).mean_pressure
 
 
@@ -81,16 +85,18 @@ class PatchRecord:
 RECORD_FIELDS = {f.name for f in dataclasses.fields(PatchRecord)}
 
 
-def patch_record(stack, field, voltage, results, lengths, spacing, solves, seconds) -> PatchRecord:
-    """Average the solved rings ``results`` of one patch (solved with the ``field`` model at ``voltage``) over the
-    apparent area (gaps in float64)."""
+def patch_record(stack, field, voltage, results, lengths, spacing, solves, seconds,
+                 frequency: float | None = None) -> PatchRecord:
+    """Average the solved rings ``results`` of one patch (solved with the ``field`` model at ``voltage``, under a
+    drive of ``frequency`` [Hz] or dielectric) over the apparent area (gaps in float64)."""
     gaps = np.stack([np.asarray(res.gap, dtype=np.float64) for res in results])
     d_eq = stack.equivalent_gap(gaps)
     periodic = results[0].params["grid"].periodic
     fractions = tuple(float(np.mean([ridge_area_fraction(np.asarray(res.contact), spacing[0], length, periodic)
                                      for res in results])) for length in lengths)
     offset = stack.eps_a * stack.dielectric_offset
-    attraction = float(np.mean([unit_attraction(stack, field, res, voltage) for res in results]))  # rings: equal area
+    attraction = float(np.mean([unit_attraction(stack, field, res, voltage, frequency)   # rings: equal area
+                                for res in results]))
     d_field = stack.gap_for_pressure(attraction, 1.0)
     return PatchRecord(
         equivalent_gap=float(d_eq), field_equivalent_gap=d_field,

@@ -2,7 +2,9 @@
 bottom-up (:mod:`roughcontact.study.friction`).
 
 :func:`write_results` writes ``results.nc`` (xarray + h5netcdf, the ``io`` dependencies; skipped
-with a message when missing), the CSV tables, the PNG figures and ``report.md`` into a results directory.
+with a message when missing), the CSV tables, the PNG figures and ``report.md`` into a results directory; for
+a drive-frequency sweep (``[screen] frequency``) the tables gain a frequency column, ``results.nc`` a frequency
+dimension, and the figure and report show the sweep (:func:`sweep_report_text`).
 """
 from __future__ import annotations
 
@@ -13,6 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from .._version import __version__
+from ..electrostatics import crossover_frequency
 from ..fe.feed import fe_friction_columns
 from ..io.provenance import save_figure, write_csv
 from ..macro import LinearGap, PowerLawGap, SlidingFrictionModel
@@ -135,6 +138,17 @@ def _point_rows(result: StudyResult) -> list:
     return rows
 
 
+def _rows(result: StudyResult, rows_of) -> list:
+    """The CSV rows ``rows_of(result)`` of a loads × voltages study; of a frequency sweep those of each frequency
+    with a ``frequency_Hz`` column after ``voltage_V``, in the order load, voltage, frequency (as the netCDF's
+    dimensions)."""
+    if not result.frequencies:
+        return rows_of(result)
+    rows = [{"normal_force_N": row["normal_force_N"], "voltage_V": row["voltage_V"], "frequency_Hz": frequency,
+             **row} for k, frequency in enumerate(result.frequencies) for row in rows_of(result.at_frequency(k))]
+    return sorted(rows, key=lambda row: (row["normal_force_N"], row["voltage_V"]))     # stable: frequencies in order
+
+
 def _sensitivity_rows(result: StudyResult) -> list:
     mean, half = result.summary("ridge_area_fractions")
     return [{"normal_force_N": force, "voltage_V": voltage, "coarse_graining_um": length * MICRO,
@@ -161,10 +175,18 @@ def _realisation_rows(result: StudyResult) -> list:
 # ---------------------------------------------------------------------------------------------------------
 # netCDF
 # ---------------------------------------------------------------------------------------------------------
-def dataset(result: StudyResult):
+def dataset(result: StudyResult, friction: bool = True):
     """The study as an ``xarray.Dataset`` (SI units in every variable's ``units``; scene, preset, seed and
-    version in the attributes)."""
+    version in the attributes); a frequency sweep with a ``frequency`` dimension [Hz] after ``voltage`` (and no
+    friction variables); ``friction`` False leaves the friction variables out."""
     import xarray as xr
+    if result.frequencies:
+        frequency = xr.DataArray(np.array(result.frequencies), dims="frequency", name="frequency",
+                                 attrs={"units": "Hz"})
+        parts = [dataset(result.at_frequency(k), friction=False) for k in range(len(result.frequencies))]
+        data = xr.concat(parts, dim=frequency)
+        data["apparent_area"] = parts[0]["apparent_area"]                 # one per load
+        return data.transpose("normal_force", "voltage", "frequency", ...)
     scene = result.scene
     coords = {"normal_force": ("normal_force", result.normal_forces, {"units": "N"}),
               "voltage": ("voltage", result.voltages, {"units": "V"}),
@@ -183,7 +205,7 @@ def dataset(result: StudyResult):
                                         {"units": "1", "long_name": "A_R / A0 after closing at coarse_graining"})
     variables["apparent_area"] = (("normal_force",), result.array("apparent_area")[:, 0], {"units": "m2"})
     variables["solve_seconds"] = (("normal_force", "voltage"), result.array("seconds"), {"units": "s"})
-    friction = _friction_rows(result) if friction_computed(result) else []
+    friction = _friction_rows(result) if friction and friction_computed(result) else []
     for key, unit in (("bottom_up_tangential_force_N", "N"), ("bottom_up_tangential_force_ci95_N", "N"),
                       ("seed_tangential_force_N", "N"), ("bottom_up_friction_coefficient", "1"),
                       ("bottom_up_friction_coefficient_ci95", "1"), ("seed_friction_coefficient", "1")):
@@ -347,10 +369,11 @@ def _table(result, samples, scale=1.0, digits=2, unit="", upper=np.inf) -> list:
 
 def _unstable_sentence(result: StudyResult) -> str:
     """How many patch results crossed an instability on the way (concave solver steps), and from which voltage."""
-    crossed = result.array("unstable_steps") > 0                 # (forces, voltages, realisations)
+    crossed = result.array("unstable_steps") > 0                 # (forces, voltages, [frequencies,] realisations)
     if not crossed.any():
         return "No solve crossed an instability."
-    lowest = result.voltages[int(np.flatnonzero(crossed.any(axis=(0, 2)))[0])]
+    per_voltage = crossed.reshape(*crossed.shape[:2], -1).any(axis=(0, 2))
+    lowest = result.voltages[int(np.flatnonzero(per_voltage)[0])]
     return (f"{int(crossed.sum())} of {crossed.size} patch results came from solves that crossed an instability "
             f"(concave steps, from {lowest:g} V on): where the attraction snaps regions into contact the "
             "equilibrium may depend on the path to it (`docs/guide/interactions.md`, \"Several equilibria\").")
@@ -371,6 +394,19 @@ def _patch_sentence(result: StudyResult, realisations: int) -> str:
             f"short cut-off in use {result.short_cutoff * MICRO:.3g} µm")
 
 
+def _run_sentence(result: StudyResult, seconds: float | None) -> str:
+    """The report's first paragraph: version, preset, patch, tolerance, convergence, instabilities, run time."""
+    scene, converged = result.scene, result.array("converged")
+    return (f"roughcontact {__version__}, preset `{scene.study.preset}`: "
+            + _patch_sentence(result, converged.shape[-1])
+            + f", solver tolerance {scene.preset.tolerance:g}. Scene: `scene.toml` in this directory. "
+            f"{converged.size - int(converged.sum())} of {converged.size} patch results did not converge (also "
+            "from the solver's own start) and are left out of the means. " + _unstable_sentence(result)
+            + (f" Run time {seconds:.0f} s, tables and figures included ({result.computed} points computed with "
+               f"{result.solves} solves, "
+               f"{result.array('seconds').size - result.computed} read back)." if seconds is not None else ""))
+
+
 def report_text(result: StudyResult, nc_written: bool, seconds: float | None = None) -> str:
     """The Markdown report: what was computed, tables with intervals, and where the equivalent-gap
     assumption holds and where it fails, with numbers."""
@@ -383,16 +419,8 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
     a_mean = result.summary("ridge_area_fractions")[0]
     slope = result.summary("gap_slope")[0]
     errors = assumption_errors(result)
-    realisations = result.array("equivalent_gap").shape[-1]
-    converged = result.array("converged")
     text = ["# Multiscale fingerpad study", "",
-            f"roughcontact {__version__}, preset `{scene.study.preset}`: " + _patch_sentence(result, realisations)
-            + f", solver tolerance {preset.tolerance:g}. Scene: `scene.toml` in this directory. "
-            f"{converged.size - int(converged.sum())} of {converged.size} patch results did not converge (also "
-            "from the solver's own start) and are left out of the means. " + _unstable_sentence(result)
-            + (f" Run time {seconds:.0f} s, tables and figures included ({result.computed} points computed with "
-               f"{result.solves} solves, "
-               f"{result.array('seconds').size - result.computed} read back)." if seconds is not None else ""), "",
+            _run_sentence(result, seconds), "",
             describe(preset, scene.study.preset) + applicability(scene) if not scene.roughness.topography else
             "The presets' measured errors (`docs/guide/presets.md`) are those of synthetic patches on the preset's "
             "grid and do not apply here: the measured patch is solved on the scan's own pixels, so its resolution "
@@ -581,18 +609,141 @@ def _error_table(forces, voltages, values) -> list:
     return lines
 
 
+# ---------------------------------------------------------------------------------------------------------
+# A drive-frequency sweep
+# ---------------------------------------------------------------------------------------------------------
+def sweep_crossover(result: StudyResult) -> tuple:
+    """``(f_c [Hz], h_rest [m])`` per load and voltage of a frequency sweep: the series circuit's crossover
+    (``crossover_frequency``) with h_rest = d_field/ε_a + d_i/ε_i, d_field the field-equivalent gap at the sweep's
+    highest frequency (realisation mean), the air and insulator's share of the nearly dielectric stack."""
+    stack = result.scene.screen.stack()
+    field_gap = result.summary("field_equivalent_gap")[0][:, :, -1]
+    rest = np.maximum(field_gap, 0.0) / stack.eps_a + stack.d_i / stack.eps_i
+    return np.vectorize(lambda thickness: crossover_frequency(stack, thickness))(rest), rest
+
+
+def _sweep_samples(result: StudyResult) -> dict:
+    """Per-realisation F_el [N], F_el over that of the same realisation at the highest frequency (the paired
+    ratio: the realisations' spread cancels), d_eq [µm] and A_R/A0 [%] of a sweep, shape (loads, voltages,
+    frequencies, realisations), NaN where a solve did not converge."""
+    area = result.array("apparent_area")[..., None]
+    force = area * _realisations(result, "electrostatic_pressure")
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ratio = force / force[:, :, -1:, :]
+    return {"F_el [N]": force, f"F_el / F_el({result.frequencies[-1]:g} Hz)": ratio,
+            "d_eq (Eq. 25) [µm]": MICRO * _realisations(result, "equivalent_gap"),
+            "A_R/A0 [%]": 100.0 * _realisations(result, "ridge_area_fractions")}
+
+
+def _sweep_figure(result: StudyResult, out, provenance) -> list:
+    """``frequency_sweep.png``: F_el, its paired ratio to the highest frequency's, d_eq and A_R/A0 against
+    frequency (log axis) per load, a row per voltage
+    above 0 V, DC as a dotted line, the circuit's crossover (:func:`sweep_crossover`) as a dashed line."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    voltages = [j for j, voltage in enumerate(result.voltages) if voltage > 0]
+    frequencies = np.array(result.frequencies)
+    ac = frequencies > 0
+    if not voltages or not ac.any():
+        return []
+    crossover = sweep_crossover(result)[0]
+    samples = _sweep_samples(result)
+    figure, axes = plt.subplots(len(voltages), 4, figsize=(18, 3.6 * len(voltages)), squeeze=False)
+    for row, j in zip(axes, voltages):
+        for (label, values), axis in zip(samples.items(), row):
+            upper = 100.0 if label.startswith("A_R") else np.inf
+            for i, force in enumerate(result.normal_forces):
+                mean = confidence_interval(values[i, j])[0]
+                low, high = positive_interval(values[i, j], upper)
+                bars = np.nan_to_num(np.maximum(np.stack([mean - low, high - mean]), 0.0))
+                colour = f"C{i}"
+                axis.errorbar(frequencies[ac], mean[ac], yerr=bars[:, ac], marker="o", capsize=3,
+                              color=colour, label=f"{force:g} N")
+                if not ac.all():
+                    axis.axhline(mean[0], color=colour, ls=":", lw=1, label=f"{force:g} N, DC")
+                axis.axvline(crossover[i, j], color=colour, ls="--", lw=0.8)
+            axis.set(xscale="log", xlabel="drive frequency f [Hz]", ylabel=label,
+                     title=f"{label.split(' [')[0]} at {result.voltages[j]:g} V RMS")
+            axis.legend(fontsize=6)
+    figure.text(0.5, 0.005, "dashed: crossover f_c of the series circuit, h_rest = field-equivalent gap at the "
+                "highest frequency + d_i/ε_i; dotted: DC; " + bars_note(result), ha="center", va="bottom",
+                fontsize=7, style="italic")
+    figure.tight_layout(rect=(0, 0.03, 1, 1))
+    written = [save_figure(figure, out / "frequency_sweep.png", provenance)]
+    plt.close(figure)
+    return written
+
+
+def sweep_report_text(result: StudyResult, nc_written: bool, seconds: float | None = None) -> str:
+    """The Markdown report of a drive-frequency sweep: what was solved, and F_el, d_eq, d_field and A_R/A0
+    against frequency per load and voltage with the circuit's crossover."""
+    scene, preset = result.scene, result.scene.preset
+    crossover, rest = sweep_crossover(result)
+    samples = _sweep_samples(result)
+    field_gap = _realisations(result, "field_equivalent_gap")
+    contact = _realisations(result, "contact_fraction")
+    text = ["# Multiscale fingerpad study: drive-frequency sweep", "",
+            _run_sentence(result, seconds), "",
+            describe(preset, scene.study.preset) + applicability(scene), "",
+            "The drive (`[screen] frequency`, `docs/guide/ac_drive.md`): each voltage is the RMS value of a "
+            "sinusoid at each frequency (0 Hz: DC), the stratum corneum conducts with σ_sc = "
+            f"{scene.screen.sigma_sc:g} S/m, and every patch is the skin's quasi-static equilibrium under the "
+            "time-averaged attraction of the layered field (the 2ω oscillation and the skin's viscoelasticity are "
+            "not modelled). F_el is that time average; d_eq is seed Eq. 25 of the solved gap, d_field the uniform "
+            "gap whose dielectric Eq. 21 attraction is the solved one, A_R the real contact closed with a disc of "
+            f"{scene.ridge_area.coarse_graining * MICRO:g} µm diameter. The crossover f_c is the series circuit's "
+            "(stratum corneum R‖C, air and insulator a capacitor of air-equivalent thickness h_rest): "
+            "f_c = σ_sc/(2π ε0 (ε_sc + d_sc/h_rest)), with h_rest = d_field/ε_a + d_i/ε_i at the sweep's highest "
+            "frequency.", "",
+            "Figure: `frequency_sweep.png`. Tables: `points.csv`, `realisations.csv`, `ridge_area_sensitivity.csv`, "
+            "each with a `frequency_Hz` column"
+            + (", all of it in `results.nc` (dimension `frequency`)." if nc_written else
+               "; `results.nc` was not written (xarray/h5netcdf missing: `pip install 'roughcontact[io]'`)."), "",
+            "Not produced for a frequency sweep: the figures and sections against load and voltage and the "
+            "friction step (the seed's friction law has no drive frequency); every per-point number is in the "
+            "tables above, and `StudyResult.at_frequency(k)` gives the loads × voltages study at one frequency.",
+            ""]
+    labels = ("DC" if f == 0 else f"{f:g}" for f in result.frequencies)
+    labels = list(labels)
+    for j, voltage in enumerate(result.voltages):
+        if voltage == 0:
+            continue
+        for i, force in enumerate(result.normal_forces):
+            text += [f"## F_N = {force:g} N, U = {voltage:g} V RMS: crossover f_c = {crossover[i, j]:.0f} Hz "
+                     f"(h_rest = {rest[i, j] * MICRO:.3f} µm)", "",
+                     f"| f [Hz] | F_el [N] | F_el / F_el({labels[-1]} Hz), paired | d_eq [µm] | d_field [µm] "
+                     "| A_R/A0 [%] | real contact [%] |", "|---" * 7 + "|"]
+            for k, label in enumerate(labels):
+                fel = samples["F_el [N]"][i, j, k]
+                ratio = samples[f"F_el / F_el({result.frequencies[-1]:g} Hz)"][i, j, k]
+                text.append(f"| {label} | {_cell(fel, 1.0, 4)} | {_cell(ratio, 1.0, 4)} | "
+                            f"{_cell(samples['d_eq (Eq. 25) [µm]'][i, j, k], 1.0, 3)} | "
+                            f"{_cell(field_gap[i, j, k], MICRO, 3)} | "
+                            f"{_cell(samples['A_R/A0 [%]'][i, j, k] / 100.0, 100.0, 2, 1.0)} | "
+                            f"{_cell(contact[i, j, k], 100.0, 3, 1.0)} |")
+            text += ["", f"(realisation mean [{bars_note(result).removeprefix('bars: ')}])", ""]
+    if all(voltage == 0 for voltage in result.voltages):
+        text += ["Every voltage is 0 V: the hard wall, the same at every frequency; no sweep to show.", ""]
+    return "\n".join(text) + "\n"
+
+
 def write_results(result: StudyResult, out, provenance, seconds: float | None = None) -> dict:
     """Write ``results.nc`` (when xarray and h5netcdf are installed), the CSV tables, the figures and
     ``report.md`` into the directory ``out``; ``seconds`` the run time so far (the study's). Returns
     ``{"netcdf": written?, "files": [paths], "seconds": the run time the report states}``, the writing
     included, so that a command can print the report's number."""
     start = time.perf_counter()
-    files = [write_csv(out / "points.csv", _point_rows(result), provenance),
-             write_csv(out / "realisations.csv", _realisation_rows(result), provenance),
-             write_csv(out / "ridge_area_sensitivity.csv", _sensitivity_rows(result), provenance)]
-    if friction_computed(result):
-        files.append(write_csv(out / "friction.csv", _friction_rows(result), provenance))
-    files += _figures(result, out, provenance)
+    files = [write_csv(out / "points.csv", _rows(result, _point_rows), provenance),
+             write_csv(out / "realisations.csv", _rows(result, _realisation_rows), provenance),
+             write_csv(out / "ridge_area_sensitivity.csv", _rows(result, _sensitivity_rows), provenance)]
+    if result.frequencies:
+        files += _sweep_figure(result, out, provenance)
+    else:
+        if friction_computed(result):
+            files.append(write_csv(out / "friction.csv", _friction_rows(result), provenance))
+        files += _figures(result, out, provenance)
     netcdf = all(importlib.util.find_spec(name) is not None for name in NETCDF_MODULES)
     if netcdf:
         data = dataset(result)
@@ -602,5 +753,5 @@ def write_results(result: StudyResult, out, provenance, seconds: float | None = 
     report = out / "report.md"
     if seconds is not None:
         seconds += time.perf_counter() - start
-    report.write_text(report_text(result, netcdf, seconds))
+    report.write_text((sweep_report_text if result.frequencies else report_text)(result, netcdf, seconds))
     return {"netcdf": netcdf, "files": files + [report], "seconds": seconds}

@@ -13,16 +13,18 @@ from .scene import Scene
 
 
 def solve_chain(scene: Scene, realisation: int, voltage_index: int, threads: int | None = None,
-                apparent: tuple | None = None) -> tuple:
-    """One task of the study: the patch of ``realisation`` at voltage ``loads.voltages[voltage_index]`` under
-    every load of the scene in order, each ring's solve warm-started from its result at the previous load (cold
-    with the preset's ``warm_start`` false; a warm start that fails is repeated cold). ``threads`` FFT threads
+                apparent: tuple | None = None, frequency_index: int | None = None) -> tuple:
+    """One task of the study: the patch of ``realisation`` at voltage ``loads.voltages[voltage_index]`` (under
+    the drive at ``screen.frequency[frequency_index]`` where the scene sets a frequency) under every load of the
+    scene in order, each ring's solve warm-started from its result at the previous load (cold with the preset's
+    ``warm_start`` false; a warm start that fails is repeated cold). ``threads`` FFT threads
     (default: ``roughcontact.fft.default_threads``); ``apparent``, the scene's :func:`apparent_scale` (computed
     when not given). Returns one :class:`PatchRecord` per load; deterministic, so the records do not depend on
     where the task runs."""
     stack = scene.screen.stack()
     voltage = scene.loads.voltages[voltage_index]
-    law = scene.screen.interaction(voltage)                  # the scene's field model; None at 0 V: the hard wall
+    frequency = None if frequency_index is None else scene.screen.frequency[frequency_index]
+    law = scene.screen.interaction(voltage, frequency)       # the scene's field model; None at 0 V: the hard wall
     heights, body = patch_surface(scene, realisation), patch_body(scene, threads=threads)
     lengths, spacing = closing_lengths(scene), patch_grid(scene).spacing
     warm_start = scene.preset.warm_start
@@ -41,5 +43,5 @@ def solve_chain(scene: Scene, realisation: int, voltage_index: int, threads: int
                 solves += 1
             latest[k] = result
         records.append(patch_record(stack, scene.screen.field, voltage, latest, lengths, spacing, solves,
-                                     time.perf_counter() - start))
+                                     time.perf_counter() - start, frequency))
     return tuple(records)

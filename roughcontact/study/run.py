@@ -20,6 +20,10 @@ For each normal force F_N and voltage U:
    Student-t confidence interval (:func:`~.records.confidence_interval`) over the realisations whose solves
    converged (a solve that fails from its warm start is repeated from the solver's own start first).
 
+**Drive frequency.** A scene with ``[screen] frequency`` solves every (F_N, U) at each drive frequency f (the
+AC drive of ``docs/guide/ac_drive.md``, the time-averaged attraction at RMS U): one task per (r, j, k) and a
+frequency axis on every point (:meth:`StudyResult.at_frequency` gives the loads × voltages study at one of them).
+
 **Tasks.** The sweep is split into independent, deterministic tasks, one per (realisation r, voltage index j)
 (:func:`~.resolved.solve_chain`): every load in order, each solve warm-started from the previous load's result
 (``x0=``; cold solves with the preset's ``warm_start`` false). A task takes the scene, r, j and its FFT thread
@@ -41,6 +45,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+from surfaces.validation import check_integer
 
 from ..io.provenance import output_directory
 from .apparent import apparent_scale
@@ -58,9 +63,11 @@ SUMMARISED = (*_PER_REALISATION, "ridge_area_fractions")
 
 @dataclass(frozen=True)
 class StudyResult:
-    """All points of a study; ``points[i][j]`` at ``normal_forces[i]``, ``voltages[j]``; ``coarse_graining``
-    the A_R closing diameters [m] (the scene's first); ``computed`` points with a task solved in this run and
-    ``solves`` the contact solves of this run; ``short_cutoff`` the micro-roughness cut-off in use [m]."""
+    """All points of a study; ``points[i][j]`` at ``normal_forces[i]``, ``voltages[j]`` (``points[i][j][k]`` at
+    ``frequencies[k]`` [Hz] too where the scene sets a drive frequency; ``frequencies`` is empty otherwise);
+    ``coarse_graining`` the A_R closing diameters [m] (the scene's first); ``computed`` points with a task solved
+    in this run and ``solves`` the contact solves of this run; ``short_cutoff`` the micro-roughness cut-off in
+    use [m]."""
 
     scene: Scene
     points: tuple
@@ -68,6 +75,7 @@ class StudyResult:
     short_cutoff: float
     computed: int
     solves: int
+    frequencies: tuple = ()
 
     @property
     def normal_forces(self) -> np.ndarray:
@@ -80,11 +88,22 @@ class StudyResult:
     def array(self, name: str) -> np.ndarray:
         """Field ``name`` of every point (a field of :class:`~.records.PointResult`): shape (loads, voltages,
         realisations), or (…, lengths, realisations) for ``ridge_area_fractions``, or (loads, voltages) for
-        scalars."""
+        scalars; with a frequency axis (loads, voltages, frequencies, …)."""
         names = [field.name for field in dataclasses.fields(PointResult)]
         if name not in names:
             raise ValueError(f"name = {name!r} is not a field of the study's points; valid: {', '.join(names)}")
+        if self.frequencies:
+            return np.array([[[getattr(point, name) for point in cell] for cell in row] for row in self.points],
+                            dtype=float)
         return np.array([[getattr(point, name) for point in row] for row in self.points], dtype=float)
+
+    def at_frequency(self, index: int) -> StudyResult:
+        """The loads × voltages study at drive frequency ``frequencies[index]`` (no frequency axis)."""
+        if not self.frequencies:
+            raise ValueError("the study has no frequency axis (its scene sets no [screen] frequency)")
+        check_integer("index", index, low=0, high=len(self.frequencies) - 1)
+        return dataclasses.replace(self, points=tuple(tuple(cell[index] for cell in row) for row in self.points),
+                                   frequencies=())
 
     def summary(self, name: str) -> tuple:
         """``(mean, 95 % half-width)`` of field ``name`` (one value per realisation) over the realisations whose
@@ -94,13 +113,13 @@ class StudyResult:
                              f"{', '.join(SUMMARISED)} (array(name) gives any field of the points)")
         values, converged = self.array(name), self.array("converged").astype(bool)
         if converged.ndim < values.ndim:                       # ridge_area_fractions: (…, lengths, realisations)
-            converged = converged[:, :, None, :]
+            converged = converged[..., None, :]
         return confidence_interval(np.where(converged, values, np.nan))
 
     @property
     def ridge_area(self) -> np.ndarray:
-        """A_R/A0 at the scene's coarse-graining length, shape (loads, voltages, realisations)."""
-        return self.array("ridge_area_fractions")[:, :, 0, :]
+        """A_R/A0 at the scene's coarse-graining length, shape (loads, voltages, [frequencies,] realisations)."""
+        return self.array("ridge_area_fractions")[..., 0, :]
 
 
 def run_study(scene: Scene, directory=None, progress: bool = False, workers: int | None = None,
@@ -123,10 +142,13 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
     if not isinstance(progress, bool):
         raise TypeError(f"progress must be True or False, got {progress!r}")
     check_executor(workers, dask)
+    if scene.screen.frequency is not None and scene.preset.scales == "coupled":
+        raise ValueError(f"screen.frequency = {list(scene.screen.frequency)!r} Hz with presets."
+                         f"{scene.study.preset}.scales = 'coupled': the interface law of the micro-roughness is the "
+                         "dielectric one; a drive frequency needs scales = \"resolved\"")
     store = None if directory is None else TaskStore(output_directory(directory), scene)
-    forces, voltages = scene.loads.normal_forces, scene.loads.voltages
-    count = realisation_count(scene)
-    order = [(r, j) for j in range(len(voltages)) for r in range(count)]
+    forces, count = scene.loads.normal_forces, realisation_count(scene)
+    order = task_keys(scene)
     records = {}
     if store is not None:
         records = {key: done for key in order if (done := store.load(*key)) is not None}
@@ -143,12 +165,13 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
                 from tqdm import tqdm
                 bar = tqdm(total=len(todo) * len(forces) / count, desc="roughcontact run", unit="point",
                            bar_format="{l_bar}{bar}| {n:.4g}/{total:.4g} [{elapsed}<{remaining}]")
-            futures = {executor.submit(task, scene, r, j, executor.threads, apparent): (r, j) for r, j in todo}
+            futures = {executor.submit(task, scene, *key[:2], executor.threads, apparent, *key[2:]): key
+                       for key in todo}
             for future in executor.as_completed(list(futures)):
                 key = futures[future]
                 records[key] = future.result()
                 if store is not None:
-                    store.save(*key, records[key])
+                    store.save(*key[:2], records[key], *key[2:])
                 if bar is not None:
                     bar.update(len(forces) / count)
     except BrokenProcessPool as error:
@@ -165,17 +188,36 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
     return _study_result(scene, records, apparent, todo)
 
 
+def task_keys(scene: Scene) -> list:
+    """The study's tasks in order: (r, j) per realisation and voltage index, (r, j, k) with the frequency index
+    k where the scene sets a drive frequency."""
+    realisations, voltages = range(realisation_count(scene)), range(len(scene.loads.voltages))
+    if scene.screen.frequency is None:
+        return [(r, j) for j in voltages for r in realisations]
+    return [(r, j, k) for j in voltages for k in range(len(scene.screen.frequency)) for r in realisations]
+
+
 def _study_result(scene: Scene, records: dict, apparent, todo) -> StudyResult:
-    """The :class:`StudyResult` of every task's ``records`` ({(r, j): records per load}); ``todo`` the tasks
-    solved in this run."""
+    """The :class:`StudyResult` of every task's ``records`` ({(r, j) or (r, j, k): records per load}); ``todo``
+    the tasks solved in this run."""
     forces, voltages = scene.loads.normal_forces, scene.loads.voltages
     count = realisation_count(scene)
     cutoff = resolved_short_cutoff(scene) if scene.roughness.enabled else float("nan")
-    table = tuple(tuple(point_result(force, voltage, *apparent[i], [records[(r, j)][i] for r in range(count)])
-                        for j, voltage in enumerate(voltages)) for i, force in enumerate(forces))
+
+    def point(i, *drive):
+        return point_result(forces[i], voltages[drive[0]], *apparent[i],
+                            [records[(r, *drive)][i] for r in range(count)])
+
+    frequencies = scene.screen.frequency or ()
+    if frequencies:
+        table = tuple(tuple(tuple(point(i, j, k) for k in range(len(frequencies))) for j in range(len(voltages)))
+                      for i in range(len(forces)))
+    else:
+        table = tuple(tuple(point(i, j) for j in range(len(voltages))) for i in range(len(forces)))
     return StudyResult(scene=scene, points=table, coarse_graining=closing_lengths(scene), short_cutoff=cutoff,
-                       computed=len({j for _, j in todo}) * len(forces),
-                       solves=sum(record.solves for key in todo for record in records[key]))
+                       computed=len({key[1:] for key in todo}) * len(forces),
+                       solves=sum(record.solves for key in todo for record in records[key]),
+                       frequencies=frequencies)
 
 
 def open_results(directory) -> StudyResult:
@@ -192,7 +234,7 @@ def open_results(directory) -> StudyResult:
     scene = load_scene(stored)
     store = TaskStore(path, scene)
     try:
-        order = [(r, j) for j in range(len(scene.loads.voltages)) for r in range(realisation_count(scene))]
+        order = task_keys(scene)
         records = {key: done for key in order if (done := store.load(*key)) is not None}
     finally:
         store.release()

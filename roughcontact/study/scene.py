@@ -29,6 +29,7 @@ from surfaces.ridges import ridge_fraction
 from surfaces.validation import check_integer, check_real
 
 from ..electrostatics import DielectricStack
+from ..electrostatics.stack import SIGMA_SC
 from ..interactions import FIELDS, ElectrostaticInteraction
 
 if sys.version_info >= (3, 11):
@@ -121,6 +122,10 @@ eps_a = 1.0
 # insulator couple the columns; validated against a finite-element solve) or "parallel_plate" (seed Eq. 21 pixel
 # by pixel, the seed's assumption). The report compares the two on every solved gap either way.
 field = "layered"
+# The drive (docs/guide/ac_drive.md): without a frequency key the stratum corneum is a perfect dielectric (the
+# seed's model, its high-frequency limit). frequency = 1000.0 (Hz, RMS voltages) drives the layered field through
+# the leaky stratum corneum, 0.0 is DC; a strictly increasing list (frequency = [10.0, 100.0, 1000.0]) sweeps it.
+# sigma_sc (S/m, default 2e-4, references.md §11): the stratum corneum's conductivity, used only with a frequency.
 
 [loads]
 # The seed's range: 0.5-2 N and 0-200 V (seed Table 1, Fig. 9).
@@ -259,8 +264,22 @@ class _Increasing:
         return values
 
 
-def _field(check):
-    return field(metadata={"check": check})
+@dataclass(frozen=True)
+class _Frequencies:
+    """The drive frequency [Hz]: absent (None: the dielectric model), one number >= 0 or a strictly increasing
+    list of them (a sweep), held as a tuple."""
+    valid = "a number in [0, inf) [Hz] (0: DC) or a non-empty, strictly increasing list of them"
+
+    def __call__(self, name, value):
+        if value is None:
+            return None
+        if isinstance(value, (list, tuple)):
+            return _Increasing(_Real(0.0))(name, value)
+        return (_Real(0.0)(name, value),)
+
+
+def _field(check, **default):
+    return field(metadata={"check": check}, **default)
 
 
 class _Section:
@@ -358,15 +377,37 @@ class Screen(_Section):
     eps_i: float = _field(_Real(0.0, low_open=True))
     eps_a: float = _field(_Real(0.0, low_open=True))
     field: str = _field(_Choice(FIELDS))
+    frequency: tuple | None = _field(_Frequencies(), default=None)
+    sigma_sc: float = _field(_Real(0.0), default=SIGMA_SC)
+
+    def __post_init__(self):
+        super().__post_init__()
+        if self.frequency is None and self.sigma_sc != SIGMA_SC:
+            raise ValueError(f"screen.sigma_sc = {self.sigma_sc!r} S/m acts only under a drive, but screen.frequency "
+                             "is not set (the dielectric model); valid: set screen.frequency, or leave sigma_sc out")
+        if self.frequency is not None and self.field != "layered":
+            raise ValueError(f"screen.frequency = {list(self.frequency)!r} Hz needs screen.field = \"layered\" (the "
+                             f"drive acts through the layered field), got field = {self.field!r}")
 
     def stack(self):
-        return DielectricStack(**{key: value for key, value in dataclasses.asdict(self).items() if key != "field"})
+        """The :class:`DielectricStack` of the screen, with the stratum corneum's conductivity ``sigma_sc``."""
+        return DielectricStack(**{key: value for key, value in dataclasses.asdict(self).items()
+                                  if key not in ("field", "frequency")})
 
-    def interaction(self, voltage: float):
-        """The attraction at ``voltage`` [V] with the scene's field model; None at 0 V (the hard wall)."""
+    def interaction(self, voltage: float, frequency: float | None = None):
+        """The attraction at ``voltage`` [V] (RMS under a drive of ``frequency`` [Hz]; None: the dielectric model)
+        with the scene's field model; None at 0 V (the hard wall)."""
         if voltage == 0:
             return None
-        return ElectrostaticInteraction(self.stack(), voltage=voltage, field=self.field)
+        return ElectrostaticInteraction(self.stack(), voltage=voltage, field=self.field, frequency=frequency)
+
+    def items(self) -> dict:
+        """The keys as written in a scene file: ``frequency`` and ``sigma_sc`` only where a frequency is set (a
+        scene without the drive reads and writes as before it existed)."""
+        data = dataclasses.asdict(self)
+        if self.frequency is None:
+            del data["frequency"], data["sigma_sc"]
+        return data
 
 
 @dataclass(frozen=True)
@@ -451,7 +492,7 @@ class Scene:
     def to_dict(self) -> dict:
         """Plain nested dict of the scene (tuples as lists), as in the TOML file."""
         data = {name: {key: list(value) if isinstance(value, tuple) else value
-                       for key, value in dataclasses.asdict(getattr(self, name)).items()} for name in SECTIONS}
+                       for key, value in _items(getattr(self, name)).items()} for name in SECTIONS}
         data["presets"] = {name: dataclasses.asdict(preset) for name, preset in self.presets.items()}
         return data
 
@@ -476,6 +517,11 @@ class Scene:
                 else:
                     flat[f"{name}.{key}"] = value
         return flat
+
+
+def _items(section) -> dict:
+    """A section's keys and values as written in a scene file."""
+    return section.items() if isinstance(section, Screen) else dataclasses.asdict(section)
 
 
 def measured_topography(roughness: Roughness):
