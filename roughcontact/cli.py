@@ -85,8 +85,10 @@ def _cmd_scene(args, provenance) -> int:
     if args.show:
         print(scene.to_toml() if hasattr(args, "scene") else study.DEFAULT_SCENE_TOML, end="")
     else:
+        frequencies = scene.screen.frequency or ()
+        sweep = f" x {len(frequencies)} drive frequencies" if frequencies else ""
         print(f"{getattr(args, 'scene', 'the default scene')}: valid (preset {scene.study.preset}, "
-              f"{len(scene.loads.normal_forces)} loads x {len(scene.loads.voltages)} voltages)")
+              f"{len(scene.loads.normal_forces)} loads x {len(scene.loads.voltages)} voltages{sweep})")
     return 0
 
 

@@ -62,6 +62,9 @@ def bottom_up_friction(result: StudyResult, c2: float | None = None,
     """:func:`friction_recipe` fed by a study: its d_eq,R and A_R = (A_R/A0) A0, realisation means over the
     converged solves (or those of ``realisation`` r alone); ``ValueError`` for a study of one load."""
     forces, voltages = result.normal_forces, result.voltages
+    if result.frequencies:
+        raise ValueError(f"screen.frequency = {list(result.frequencies)} Hz: the seed's friction law has no drive "
+                         "frequency; pass result.at_frequency(k), the study at one frequency")
     if not friction_computed(result):
         raise ValueError(f"loads.normal_forces = {forces.tolist()}: the bottom-up friction law interpolates d_eq,R and "
                          f"A_R in F_N and needs at least {FRICTION_MIN_LOADS} loads")

@@ -14,6 +14,7 @@ from roughcontact.io import read_csv
 from roughcontact.solvers import solve_contact
 from roughcontact.study.apparent import apparent_scale
 from roughcontact.study.execution import SceneMismatch, scene_fingerprint
+from roughcontact.study.friction import bottom_up_friction
 from roughcontact.study.patch import patch_body, patch_surface
 from roughcontact.study.run import open_results, run_study
 from roughcontact.study.scene import load_scene
@@ -145,6 +146,9 @@ def test_at_frequency_is_the_loads_by_voltages_study(sweep_result):
     assert np.array_equal(mean[:, :, 2], view.summary("ridge_area_fractions")[0], equal_nan=True)
     with pytest.raises(ValueError, match=r"index must be an integer in \[0, 2\], got 3"):
         sweep_result.at_frequency(3)
+    # the friction law has no drive frequency: a sweep is refused, one frequency of it is a study like any other
+    with pytest.raises(ValueError, match=r"screen.frequency = .*at_frequency"):
+        bottom_up_friction(sweep_result)
 
 
 def test_resume_with_the_drive_keys(sweep, sweep_result, tmp_path):
