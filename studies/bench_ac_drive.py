@@ -4,7 +4,7 @@
     python studies/bench_ac_drive.py --sizes 256 --frequencies 1000 --repeat 3 --output out
     python studies/bench_ac_drive.py --fast           # 64², one frequency, one timing: a test run
 
-The default scene's patch (realisation 0) at the apparent pressure of ``--force`` (the Hertz mean over the
+The default scene's patch (realisation 0, or 0 … R−1) at the apparent pressure of ``--force`` (the Hertz mean over the
 footprint) and ``--voltage`` RMS, solved cold to ``--tol``. The reference is the dielectric layered solve
 (``ElectrostaticInteraction(stack, U)``, the energy method); beside it:
 
@@ -20,7 +20,9 @@ Printed per solve: energy-solve iterations (per correction), real FFT pairs (all
 the field solves inside the solves, the corrections' AC field solves, listed apart) and CPU time (best of
 ``--repeat``; CPU, not wall time, so that the ratios hold on a shared machine: run with one FFT thread), their
 ratios to the reference, F_el and A/A0, and the ε_sc of the law solved (a surrogate's ε_eff). Writes
-``bench_ac_drive.csv`` with its provenance into ``--output``.
+``bench_ac_drive.csv`` with its provenance into ``--output``; with ``--realisations R`` > 1 every solve is repeated on
+the patch realisations 0 … R−1 and ``bench_ac_drive_totals.csv`` holds the FFT pairs and CPU summed over them, as
+ratios to the dielectric solve's sums (a single solve's cost moves by about ±30 % with its path).
 """
 from __future__ import annotations
 
@@ -36,14 +38,14 @@ from roughcontact.study.apparent import apparent_contact
 from roughcontact.study.patch import patch_body, patch_surface
 from roughcontact.study.scene import load_scene
 
-COLUMNS = ("n", "solve", "frequency_Hz", "eps_sc", "iterations", "solve_iterations", "fft_pairs", "correction_fft_pairs",
+COLUMNS = ("n", "realisation", "solve", "frequency_Hz", "eps_sc", "iterations", "solve_iterations", "fft_pairs", "correction_fft_pairs",
            "time_s", "fft_pair_ratio", "time_ratio", "electrostatic_force_N", "contact_fraction", "converged")
 
 
-def rows_for(n: int, args) -> list:
+def rows_for(n: int, args, realisation: int = 0) -> list:
     scene = load_scene(text=f"[presets.standard]\ngrid = {n}\n", preset="standard")
     _, (pressure,) = apparent_contact(scene.fingerpad, args.force, 1)
-    heights, body, stack = patch_surface(scene, 0), patch_body(scene), scene.screen.stack()
+    heights, body, stack = patch_surface(scene, realisation), patch_body(scene), scene.screen.stack()
     laws = [("dielectric", math.inf, ElectrostaticInteraction(stack, args.voltage))]
     laws += [(f"dielectric x{factor:g}", math.inf,
               ElectrostaticInteraction(dataclasses.replace(stack, eps_sc=factor * stack.eps_sc), args.voltage))
@@ -62,7 +64,7 @@ def rows_for(n: int, args) -> list:
         if name == "ac-drive":                                  # next: its surrogate law alone, solved directly
             surrogate = dataclasses.replace(stack, eps_sc=details["surrogate_eps_sc"])
             laws.insert(0, ("surrogate", frequency, ElectrostaticInteraction(surrogate, args.voltage)))
-        rows.append(dict(n=n, solve=name, frequency_Hz=frequency, eps_sc=law.stack.eps_sc, iterations=result.iterations,
+        rows.append(dict(n=n, realisation=realisation, solve=name, frequency_Hz=frequency, eps_sc=law.stack.eps_sc, iterations=result.iterations,
                          solve_iterations=" ".join(str(i) for i in details.get("solve_iterations", [result.iterations])),
                          fft_pairs=result.solver.fft_pairs, correction_fft_pairs=details.get("correction_fft_pairs", 0.0),
                          time_s=seconds, electrostatic_force_N=result.electrostatic_force,
@@ -70,7 +72,7 @@ def rows_for(n: int, args) -> list:
     reference = rows[0]
     for row in rows:
         row.update(fft_pair_ratio=row["fft_pairs"] / reference["fft_pairs"], time_ratio=row["time_s"] / reference["time_s"])
-        print(f"{n:4d}² {row['solve']:15s} {row['frequency_Hz']:7.4g} Hz  eps_sc {row['eps_sc']:8.4g}  "
+        print(f"{n:4d}² r{realisation} {row['solve']:15s} {row['frequency_Hz']:7.4g} Hz  eps_sc {row['eps_sc']:8.4g}  "
               f"{row['iterations']:4d} it "
               f"({row['solve_iterations']:>9s})  {row['fft_pairs']:7.1f} FFT pairs x{row['fft_pair_ratio']:.2f} "
               f"(corrections {row['correction_fft_pairs']:5.1f})  {row['time_s']:6.3f} s CPU x{row['time_ratio']:.2f}  "
@@ -90,14 +92,43 @@ def main(argv=None):
     parser.add_argument("--voltage", type=float, default=100.0, help="RMS voltage U [V]")
     parser.add_argument("--tol", type=float, default=1e-8, help="relative tolerance of every contact solve")
     parser.add_argument("--repeat", type=count_argument, default=3, help="timings per solve; the best is kept")
+    parser.add_argument("--realisations", type=count_argument, default=1,
+                        help="patch realisations 0 … R−1; with R > 1 also the ratios of the sums over them")
     parser.add_argument("--fast", action="store_true", help="64², 1 kHz, one timing: a test that the script runs")
     parser.add_argument("--output", default="out", help="directory for bench_ac_drive.csv")
     args, provenance = parse_arguments(parser, argv, "studies/bench_ac_drive.py")
     if args.fast:
         args.sizes, args.frequencies, args.spread, args.repeat = [64], [1000.0], [], 1
     directory = output_directory(args.output)
-    rows = [row for n in args.sizes for row in rows_for(n, args)]
+    rows = [row for n in args.sizes for realisation in range(args.realisations)
+            for row in rows_for(n, args, realisation)]
     write_csv(directory / "bench_ac_drive.csv", rows, provenance, COLUMNS)
+    if args.realisations > 1:
+        totals = realisation_totals(rows)
+        write_csv(directory / "bench_ac_drive_totals.csv", totals, provenance)
+        for row in totals:
+            print(f"{row['n']:4d}² over {row['realisations']} realisations: {row['solve']:15s} "
+                  f"{row['frequency_Hz']:7.4g} Hz  FFT pairs x{row['fft_pair_ratio']:.2f}  CPU x{row['time_ratio']:.2f}")
+
+
+def realisation_totals(rows) -> list:
+    """Per grid, solve and frequency: FFT pairs and CPU summed over the realisations, as ratios to the dielectric
+    solve's sums (one solve's cost moves by about ±30 % with its path through the snap-ins; the sums average it)."""
+    totals = {}
+    for row in rows:
+        key = (row["n"], row["solve"], row["frequency_Hz"])
+        total = totals.setdefault(key, {"fft_pairs": 0.0, "time_s": 0.0, "realisations": 0})
+        total["fft_pairs"] += row["fft_pairs"]
+        total["time_s"] += row["time_s"]
+        total["realisations"] += 1
+    out = []
+    for (n, solve, frequency), total in totals.items():
+        reference = totals[(n, "dielectric", math.inf)]
+        out.append({"n": n, "solve": solve, "frequency_Hz": frequency, "realisations": total["realisations"],
+                    "fft_pairs": total["fft_pairs"], "time_s": total["time_s"],
+                    "fft_pair_ratio": total["fft_pairs"] / reference["fft_pairs"],
+                    "time_ratio": total["time_s"] / reference["time_s"]})
+    return out
 
 
 if __name__ == "__main__":
