@@ -426,6 +426,11 @@ def _grid_and_gap(gap, lengths, periodic) -> tuple:
     return Grid(values.shape, tuple(lengths), periodic=periodic), values
 
 
+class FieldSolveStalled(FloatingPointError):
+    """A field solve of :class:`FieldLaw` did not reach its tolerance: the contact solver reports it (not converged,
+    warned) with the last accepted state."""
+
+
 class FieldLaw:
     """The layered attraction as a non-local interaction law on one grid, for the energy-based contact solver.
 
@@ -458,8 +463,8 @@ class FieldLaw:
         iterations, residual = field.conjugate_gradients(column, inverse_diagonal, unit_flux, self.tol,
                                                          10 * unit_flux.size)
         if residual > self.tol:
-            raise FloatingPointError(f"the field solve stalled at relative residual {residual:.3g} "
-                                     f"(tol {self.tol:g}) after {iterations} iterations")
+            raise FieldSolveStalled(f"the layered field's solve stalled at relative residual {residual:.3g} "
+                                    f"(tol {self.tol:g}) after {iterations} iterations")
         self.fft_pairs += iterations + 1
         self.evaluations += 1
         squared_voltage = self.voltage ** 2

@@ -47,7 +47,7 @@ from surfaces.validation import check_integer, check_real
 from .._version import __version__
 from ..body.elastic import apply_inverse_multiplier, apply_multiplier
 from ..electrostatics import EPSILON_0
-from ..electrostatics.field import FieldLaw
+from ..electrostatics.field import FieldLaw, FieldSolveStalled
 from ..interactions import ElectrostaticInteraction, ExponentialAdhesion, MaugisDugdale
 from ..io.results import ConvergenceWarning
 from .inputs import _heights
@@ -589,72 +589,76 @@ class _Solver:
         history, residuals = [value], []
         iterations, converged, message, detached = 0, False, "", False
         previous_rz, tau, since_exact = 0.0, 0.0, 0
-        while True:
-            g, d, r, free = self.g, self.d, self.r, self.free
-            traction = self.law_now[0]
-            load = energy.external_load(g, pel, traction)
-            n_free, sum_r, at_wall, largest_pull = _residual(g, pel, traction, load, self.window, r, free)
-            # preconditioned residual z = K r on F (+ the largest compliance for the mean mode); zero mean on F
-            # under the ⟨g⟩ constraint
-            z = body._displacement_into(r.reshape(self.z_field.shape), self.z_field).reshape(-1)
-            self.transforms += 2
-            sum_z, zz, rz, prz = _mask_shift(z, free, (self.largest_compliance - energy.uniform) * sum_r / n, r,
-                                             self.r_prev)
-            if energy.constrained and n_free:           # centred on F, and the moments of the centred z
-                _, zz, rz, prz = _mask_shift(z, free, -sum_z / n_free, r, self.r_prev)
-            residual = math.sqrt(zz / n) / self.gap_scale
-            residuals.append(residual)
-            if self.field is not None:                  # the field solves as accurate as the step needs
-                self.field.tol = min(FIELD_TOL_CEILING, max(FIELD_TOL_FLOOR, FIELD_TOL_FACTOR * residual))
-            if callback is not None and iterations:
-                try:
-                    callback(SolverState(iterations, residual, at_wall / heights.size))
-                except StopIteration:
-                    message = f"halted by callback after {iterations} iterations (relative residual {residual:.3g})"
+        try:
+            while True:
+                g, d, r, free = self.g, self.d, self.r, self.free
+                traction = self.law_now[0]
+                load = energy.external_load(g, pel, traction)
+                n_free, sum_r, at_wall, largest_pull = _residual(g, pel, traction, load, self.window, r, free)
+                # preconditioned residual z = K r on F (+ the largest compliance for the mean mode); zero mean on F
+                # under the ⟨g⟩ constraint
+                z = body._displacement_into(r.reshape(self.z_field.shape), self.z_field).reshape(-1)
+                self.transforms += 2
+                sum_z, zz, rz, prz = _mask_shift(z, free, (self.largest_compliance - energy.uniform) * sum_r / n, r,
+                                                 self.r_prev)
+                if energy.constrained and n_free:           # centred on F, and the moments of the centred z
+                    _, zz, rz, prz = _mask_shift(z, free, -sum_z / n_free, r, self.r_prev)
+                residual = math.sqrt(zz / n) / self.gap_scale
+                residuals.append(residual)
+                if self.field is not None:                  # the field solves as accurate as the step needs
+                    self.field.tol = min(FIELD_TOL_CEILING, max(FIELD_TOL_FLOOR, FIELD_TOL_FACTOR * residual))
+                if callback is not None and iterations:
+                    try:
+                        callback(SolverState(iterations, residual, at_wall / heights.size))
+                    except StopIteration:
+                        message = f"halted by callback after {iterations} iterations (relative residual {residual:.3g})"
+                        break
+                if residual <= tol:
+                    if since_exact:                             # accept only on an exactly recomputed p_el
+                        pel, since_exact = self.elastic(g, self.pel_field), 0
+                        residuals.pop()
+                        continue
+                    converged, message = True, f"converged: relative residual {residual:.3g} <= tol {tol:g}"
                     break
-            if residual <= tol:
-                if since_exact:                             # accept only on an exactly recomputed p_el
-                    pel, since_exact = self.elastic(g, self.pel_field), 0
-                    residuals.pop()
-                    continue
-                converged, message = True, f"converged: relative residual {residual:.3g} <= tol {tol:g}"
-                break
-            message = self.detachment(at_wall, largest_pull, start_kind)
-            if message:
-                detached = True
-                break
-            if iterations >= maxiter:
-                message = f"not converged after {iterations} iterations: relative residual {residual:.3g} (tol {tol:g})"
-                break
-            iterations += 1
-            beta = max(0.0, (rz - prz) / previous_rz) if previous_rz > 0 else 0.0     # Polak–Ribière⁺
-            accepted, step = False, None
-            for attempt_beta in ((beta, 0.0) if beta > 0 else (0.0,)):
-                if attempt_beta == 0.0 and beta > 0:        # retry along the preconditioned steepest descent
-                    d[:] = 0.0
-                sum_d, slope = _direction(d, z, free, attempt_beta, r)
-                if energy.constrained and n_free:       # centred on F: Σ r (d − m) = slope − m Σ r
-                    _centre_on_free(d, free, sum_d / n_free)
-                    slope -= sum_d / n_free * sum_r
-                    sum_d = 0.0
-                if slope >= 0:                              # not a descent direction
-                    continue
-                accepted, tau, step, since_exact, step_value = self.line_search(slope, sum_d, pel, value, magnitude,
-                                                                                tau, since_exact)
-                if accepted:
+                message = self.detachment(at_wall, largest_pull, start_kind)
+                if message:
+                    detached = True
                     break
-            if not accepted:
-                message = (f"stalled after {iterations} iterations: no decrease of the energy along the steepest "
-                           f"descent (relative residual {residual:.3g}, tol {tol:g})")
-                break
-            self.g, self.trial = self.trial, self.g
-            self.pel_field, self.trial_field = self.trial_field, self.pel_field
-            self.law_now, self.law_trial = self.law_trial, self.law_now
-            self.r, self.r_prev = self.r_prev, self.r
-            previous_rz = rz
-            pel = step
-            value, magnitude, interaction = step_value
-            history.append(value)
+                if iterations >= maxiter:
+                    message = (f"not converged after {iterations} iterations: relative residual {residual:.3g} "
+                               f"(tol {tol:g})")
+                    break
+                iterations += 1
+                beta = max(0.0, (rz - prz) / previous_rz) if previous_rz > 0 else 0.0     # Polak–Ribière⁺
+                accepted, step = False, None
+                for attempt_beta in ((beta, 0.0) if beta > 0 else (0.0,)):
+                    if attempt_beta == 0.0 and beta > 0:        # retry along the preconditioned steepest descent
+                        d[:] = 0.0
+                    sum_d, slope = _direction(d, z, free, attempt_beta, r)
+                    if energy.constrained and n_free:       # centred on F: Σ r (d − m) = slope − m Σ r
+                        _centre_on_free(d, free, sum_d / n_free)
+                        slope -= sum_d / n_free * sum_r
+                        sum_d = 0.0
+                    if slope >= 0:                              # not a descent direction
+                        continue
+                    accepted, tau, step, since_exact, step_value = self.line_search(slope, sum_d, pel, value, magnitude,
+                                                                                    tau, since_exact)
+                    if accepted:
+                        break
+                if not accepted:
+                    message = (f"stalled after {iterations} iterations: no decrease of the energy along the steepest "
+                               f"descent (relative residual {residual:.3g}, tol {tol:g})")
+                    break
+                self.g, self.trial = self.trial, self.g
+                self.pel_field, self.trial_field = self.trial_field, self.pel_field
+                self.law_now, self.law_trial = self.law_trial, self.law_now
+                self.r, self.r_prev = self.r_prev, self.r
+                previous_rz = rz
+                pel = step
+                value, magnitude, interaction = step_value
+                history.append(value)
+        except FieldSolveStalled as error:              # a trial's field solve: report the last accepted state
+            message = f"stopped after {iterations} iterations: {error}"
         if not converged and warn:
             warnings.warn(message, ConvergenceWarning, stacklevel=4)
         return self.result(pel, interaction, half, heights, control, requested, iterations, residuals, converged,

@@ -5,6 +5,7 @@ import pytest
 
 from roughcontact import ElasticHalfSpace, ElectrostaticInteraction, solve_contact
 from roughcontact.electrostatics import DielectricStack, solve_field
+from roughcontact.io import ConvergenceWarning
 from roughcontact.study.apparent import apparent_scale
 from roughcontact.study.patch import patch_body, patch_surface
 from roughcontact.study.scene import load_scene
@@ -81,6 +82,28 @@ def test_equilibrium_check_fails_on_an_unconverged_solve():
     surface, half = rough_patch()
     res = solve_contact(surface, half, mean_pressure=1e3, interaction=layered(30.0), maxiter=3, warn=False)
     assert not res.converged
+    imbalance, _ = field_equilibrium(res, surface.heights, half)
+    assert imbalance > 1e-3
+
+
+def test_a_stalled_field_solve_is_reported_with_the_last_accepted_state(monkeypatch):
+    """A field solve that misses its tolerance inside the contact solve (forced here after 12 evaluations) ends
+    the solve as not converged, warned, its message naming the field solve, every field finite, and the returned
+    state the last accepted step's (its equilibrium check fails as an unconverged solve's does)."""
+    from roughcontact.electrostatics.field import FieldLaw, FieldSolveStalled
+    original, calls = FieldLaw.evaluate, []
+
+    def evaluate(self, *args, **kwargs):
+        calls.append(1)
+        if len(calls) > 12:
+            raise FieldSolveStalled("the layered field's solve stalled (forced by the test)")
+        return original(self, *args, **kwargs)
+    monkeypatch.setattr(FieldLaw, "evaluate", evaluate)
+    surface, half = rough_patch()
+    with pytest.warns(ConvergenceWarning, match="stalled"):
+        res = solve_contact(surface, half, mean_pressure=1e3, interaction=layered(30.0))
+    assert not res.converged and "field's solve stalled" in res.message and res.iterations > 0
+    assert all(np.all(np.isfinite(np.asarray(field))) for field in (res.gap, res.pressure, res.interaction_traction))
     imbalance, _ = field_equilibrium(res, surface.heights, half)
     assert imbalance > 1e-3
 
