@@ -34,9 +34,7 @@ from roughcontact import ElectrostaticInteraction, solve_contact
 from roughcontact.electrostatics import EPSILON_0, solve_ac_field, solve_field
 from roughcontact.io import output_directory, parse_arguments, write_csv
 from roughcontact.solvers.ac_drive import NO_ELASTANCE, surrogate_permittivity
-from roughcontact.study.apparent import apparent_contact
-from roughcontact.study.patch import patch_body, patch_grid, patch_surface
-from roughcontact.study.scene import load_scene
+from roughcontact.study.patch import default_scene_patch
 
 COLUMNS = ("frequency_Hz", "surrogate", "eps_eff", "step", "gap_change", "mean_pressure_Pa", "contact_fraction",
            "field_equivalent_gap_m", "solver_iterations", "converged")
@@ -106,9 +104,8 @@ def main(argv=None):
     if args.fast:
         args.grid, args.steps = 64, 3
     directory = output_directory(args.output)
-    scene = load_scene(text=f"[presets.standard]\ngrid = {args.grid}\n", preset="standard")
-    _, (pressure,) = apparent_contact(scene.fingerpad, args.force, 1)
-    stack, grid, heights, body = scene.screen.stack(), patch_grid(scene), patch_surface(scene, 0), patch_body(scene)
+    patch = default_scene_patch(args.grid, args.force)
+    stack, grid, heights, body, pressure = patch.stack, patch.grid, patch.surface, patch.body, patch.pressure
     start = solve_contact(heights, body, mean_pressure=pressure, tol=args.tol,
                           interaction=ElectrostaticInteraction(stack, args.voltage, field="layered"))
     parts = (stack, grid, heights, body, pressure, start)

@@ -29,9 +29,7 @@ from scipy.optimize import brentq
 from roughcontact import ElectrostaticInteraction, solve_contact
 from roughcontact.electrostatics import EPSILON_0, crossover_frequency, solve_ac_field
 from roughcontact.io import output_directory, parse_arguments, write_csv
-from roughcontact.study.apparent import apparent_contact
-from roughcontact.study.patch import patch_body, patch_grid, patch_surface
-from roughcontact.study.scene import load_scene
+from roughcontact.study.patch import default_scene_patch
 
 COLUMNS = ("frequency_Hz", "mean_pressure_Pa", "ratio_to_dielectric", "contact_fraction", "equivalent_gap_m",
            "field_equivalent_gap_m", "ac_equivalent_gap_m", "modulation_depth", "corrections", "converged",
@@ -44,10 +42,9 @@ class Patch:
     """The default scene's patch on ``grid_size``² pixels at ``force`` [N] and ``voltage`` [V RMS]: its solves."""
 
     def __init__(self, grid_size: int, force: float, voltage: float, tol: float):
-        scene = load_scene(text=f"[presets.standard]\ngrid = {grid_size}\n", preset="standard")
-        self.area, (self.pressure,) = apparent_contact(scene.fingerpad, force, 1)
-        self.stack, self.grid = scene.screen.stack(), patch_grid(scene)
-        self.heights, self.body = patch_surface(scene, 0), patch_body(scene)
+        patch = default_scene_patch(grid_size, force)
+        self.area, self.pressure, self.stack, self.grid = patch.area, patch.pressure, patch.stack, patch.grid
+        self.heights, self.body = patch.surface, patch.body
         self.voltage, self.tol = voltage, tol
 
     def solve(self, frequency):

@@ -32,9 +32,7 @@ from roughcontact import solve_contact
 from roughcontact.electrostatics import ACStackField, StackField
 from roughcontact.fft import default_planner, make_backend
 from roughcontact.io import best_of, count_argument, output_directory, parse_arguments, write_csv
-from roughcontact.study.apparent import apparent_contact
-from roughcontact.study.patch import patch_body, patch_grid, patch_surface
-from roughcontact.study.scene import load_scene
+from roughcontact.study.patch import default_scene_patch
 
 COLUMNS = ("n", "method", "frequency_Hz", "iterations", "fft_pairs", "time_s", "fft_pair_ratio", "time_ratio",
            "residual")
@@ -42,10 +40,9 @@ COLUMNS = ("n", "method", "frequency_Hz", "iterations", "fft_pairs", "time_s", "
 
 def hard_wall_gap(n: int) -> tuple:
     """(stack, grid, gap [m]) of the default scene's patch on n² pixels against the hard wall at 1 N."""
-    scene = load_scene(text=f"[presets.standard]\ngrid = {n}\n", preset="standard")
-    _, (pressure,) = apparent_contact(scene.fingerpad, 1.0, 1)
-    result = solve_contact(patch_surface(scene, 0), patch_body(scene), mean_pressure=pressure)
-    return scene.screen.stack(), patch_grid(scene), result.gap
+    patch = default_scene_patch(n, 1.0)
+    result = solve_contact(patch.surface, patch.body, mean_pressure=patch.pressure)
+    return patch.stack, patch.grid, result.gap
 
 
 def block_solve(field: ACStackField, columns: np.ndarray, method: str, tol: float) -> tuple:

@@ -34,18 +34,15 @@ import time
 from roughcontact import ElectrostaticInteraction, solve_contact
 from roughcontact.io import best_of, count_argument, output_directory, parse_arguments, write_csv
 from roughcontact.solvers.ac_drive import NO_ELASTANCE
-from roughcontact.study.apparent import apparent_contact
-from roughcontact.study.patch import patch_body, patch_surface
-from roughcontact.study.scene import load_scene
+from roughcontact.study.patch import default_scene_patch
 
 COLUMNS = ("n", "realisation", "solve", "frequency_Hz", "eps_sc", "iterations", "solve_iterations", "fft_pairs", "correction_fft_pairs",
            "time_s", "fft_pair_ratio", "time_ratio", "electrostatic_force_N", "contact_fraction", "converged")
 
 
 def rows_for(n: int, args, realisation: int = 0) -> list:
-    scene = load_scene(text=f"[presets.standard]\ngrid = {n}\n", preset="standard")
-    _, (pressure,) = apparent_contact(scene.fingerpad, args.force, 1)
-    heights, body, stack = patch_surface(scene, realisation), patch_body(scene), scene.screen.stack()
+    patch = default_scene_patch(n, args.force, realisation)
+    heights, body, stack, pressure = patch.surface, patch.body, patch.stack, patch.pressure
     laws = [("dielectric", math.inf, ElectrostaticInteraction(stack, args.voltage))]
     laws += [(f"dielectric x{factor:g}", math.inf,
               ElectrostaticInteraction(dataclasses.replace(stack, eps_sc=factor * stack.eps_sc), args.voltage))

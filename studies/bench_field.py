@@ -22,6 +22,7 @@ from surfaces import Grid, self_affine
 from roughcontact import ElasticHalfSpace, ElectrostaticInteraction, solve_contact
 from roughcontact.electrostatics import DielectricStack
 from roughcontact.io import best_of, count_argument, output_directory, parse_arguments, write_csv
+from roughcontact.study.patch import default_scene_patch
 
 COLUMNS = ("patch", "n", "voltage_V", "field", "time_s", "time_ratio", "iterations", "unstable_steps", "fft_pairs",
            "field_fft_pairs", "field_evaluations", "fft_pair_ratio", "contact_fraction", "electrostatic_force_N",
@@ -37,12 +38,8 @@ def bench_patch(n):
 
 def scene_patch(n):
     """The default scene's patch on n² pixels, its skin body and the first ring's apparent pressure at 0.5 N."""
-    from roughcontact.study.apparent import apparent_contact
-    from roughcontact.study.patch import patch_body, patch_surface
-    from roughcontact.study.scene import load_scene
-    scene = load_scene(text=f"[presets.standard]\ngrid = {n}\n", preset="standard")
-    _, (pressure,) = apparent_contact(scene.fingerpad, 0.5, 1)
-    return patch_surface(scene, 0), patch_body(scene), pressure, scene.screen.stack()
+    patch = default_scene_patch(n, 0.5)
+    return patch.surface, patch.body, patch.pressure, patch.stack
 
 
 

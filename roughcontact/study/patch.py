@@ -1,8 +1,11 @@
 """The ridge and roughness scales of the study: the periodic patch (grid, ridge and roughness heights, the skin
 under it), its 1-D profile across the ridges (:func:`profile_surface`, for resolution studies down to
-sub-µm pixels), and what is measured on its solved gap — the ridge contact fraction A_R/A0 by morphological
-closing, the weighted gap slope, the ridge-area equivalent gap d_eq,R."""
+sub-µm pixels), the default scene's patch as a test case (:func:`default_scene_patch`), and what is measured on
+its solved gap — the ridge contact fraction A_R/A0 by morphological closing, the weighted gap slope, the
+ridge-area equivalent gap d_eq,R."""
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 import scipy.fft
@@ -11,8 +14,9 @@ from surfaces import Grid, fourier_synthesis, parallel_ridges, self_affine
 from surfaces.selfaffine import SelfAffinePSD
 from surfaces.validation import check_positive
 
+from .apparent import apparent_contact
 from .fingertip import skin_body
-from .scene import Scene, measured_topography
+from .scene import Scene, load_scene, measured_topography
 
 
 def closing_lengths(scene: Scene) -> tuple:
@@ -91,6 +95,30 @@ def patch_body(scene: Scene, grid=None, threads=None):
     layer bonded on it; in the preset's dtype, with ``threads`` FFT threads (default: ``roughcontact.fft``'s)."""
     grid = patch_grid(scene) if grid is None else grid
     return skin_body(grid, scene.skin, scene.skin.E_star, threads=threads, dtype=scene.preset.dtype)
+
+
+@dataclass(frozen=True)
+class ScenePatch:
+    """The default scene's patch as a test case (:func:`default_scene_patch`): ``surface`` heights [m] on ``grid``,
+    the skin ``body``, the screen's ``stack``, the apparent ``pressure`` [Pa] and ``area`` [m²] of the footprint."""
+
+    scene: Scene
+    grid: object
+    surface: np.ndarray
+    body: object
+    stack: object
+    pressure: float
+    area: float
+
+
+def default_scene_patch(grid_size: int, force: float, realisation: int = 0) -> ScenePatch:
+    """The default scene's patch at the standard preset on ``grid_size``² pixels (one ridge period), loaded at the
+    mean apparent pressure of its fingertip footprint at the normal force ``force`` [N] (one ring): the case of the
+    benchmark and study scripts."""
+    scene = load_scene(text=f"[presets.standard]\ngrid = {grid_size}\n", preset="standard")
+    area, (pressure,) = apparent_contact(scene.fingerpad, force, 1)
+    return ScenePatch(scene=scene, grid=patch_grid(scene), surface=patch_surface(scene, realisation),
+                      body=patch_body(scene), stack=scene.screen.stack(), pressure=float(pressure), area=float(area))
 
 
 def realisation_count(scene: Scene) -> int:
