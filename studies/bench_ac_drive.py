@@ -32,7 +32,7 @@ import math
 import time
 
 from roughcontact import ElectrostaticInteraction, solve_contact
-from roughcontact.io import best_of, count_argument, output_directory, parse_arguments, write_csv
+from roughcontact.io import best_of, count_argument, output_directory, parse_arguments, summed_ratios, write_csv
 from roughcontact.solvers.ac_drive import NO_ELASTANCE
 from roughcontact.study.patch import default_scene_patch
 
@@ -101,31 +101,12 @@ def main(argv=None):
             for row in rows_for(n, args, realisation)]
     write_csv(directory / "bench_ac_drive.csv", rows, provenance, COLUMNS)
     if args.realisations > 1:
-        totals = realisation_totals(rows)
+        # one solve's cost moves by about ±30 % with its path through the snap-ins: the sums average it
+        totals = summed_ratios(rows, ("n", "solve", "frequency_Hz"), lambda key: (key[0], "dielectric", math.inf))
         write_csv(directory / "bench_ac_drive_totals.csv", totals, provenance)
         for row in totals:
-            print(f"{row['n']:4d}² over {row['realisations']} realisations: {row['solve']:15s} "
-                  f"{row['frequency_Hz']:7.4g} Hz  FFT pairs x{row['fft_pair_ratio']:.2f}  CPU x{row['time_ratio']:.2f}")
-
-
-def realisation_totals(rows) -> list:
-    """Per grid, solve and frequency: FFT pairs and CPU summed over the realisations, as ratios to the dielectric
-    solve's sums (one solve's cost moves by about ±30 % with its path through the snap-ins; the sums average it)."""
-    totals = {}
-    for row in rows:
-        key = (row["n"], row["solve"], row["frequency_Hz"])
-        total = totals.setdefault(key, {"fft_pairs": 0.0, "time_s": 0.0, "realisations": 0})
-        total["fft_pairs"] += row["fft_pairs"]
-        total["time_s"] += row["time_s"]
-        total["realisations"] += 1
-    out = []
-    for (n, solve, frequency), total in totals.items():
-        reference = totals[(n, "dielectric", math.inf)]
-        out.append({"n": n, "solve": solve, "frequency_Hz": frequency, "realisations": total["realisations"],
-                    "fft_pairs": total["fft_pairs"], "time_s": total["time_s"],
-                    "fft_pair_ratio": total["fft_pairs"] / reference["fft_pairs"],
-                    "time_ratio": total["time_s"] / reference["time_s"]})
-    return out
+            print(f"{row['n']:4d}² over {row['count']} realisations: {row['solve']:15s} "
+                  f"{row['frequency_Hz']:7.4g} Hz  FFT pairs x{row['fft_pairs_ratio']:.2f}  CPU x{row['time_s_ratio']:.2f}")
 
 
 if __name__ == "__main__":

@@ -96,6 +96,23 @@ def best_of(solve, repeat: int = 1, clock=time.perf_counter) -> tuple:
     return result, best
 
 
+def summed_ratios(rows, group: tuple, reference, columns=("fft_pairs", "time_s")) -> list:
+    """Benchmark rows (dicts) summed over everything not in ``group`` (e.g. over patch realisations), one row per
+    group with the count, the sums of ``columns`` and each sum's ratio to the sum of the group ``reference(key)``
+    (``key`` the group's values): the cost of solves whose single runs scatter with their path."""
+    sums = {}
+    for row in rows:
+        key = tuple(row[name] for name in group)
+        total = sums.setdefault(key, dict.fromkeys(columns, 0.0) | {"count": 0})
+        for name in columns:
+            total[name] += row[name]
+        total["count"] += 1
+    return [dict(zip(group, key), count=total["count"],
+                 **{name: total[name] for name in columns},
+                 **{f"{name}_ratio": total[name] / sums[reference(key)][name] for name in columns})
+            for key, total in sums.items()]
+
+
 def output_directory(path) -> Path:
     """``path`` as a writable directory, created if missing (only its last level). Raises
     :class:`OutputPathError` for an empty path, a file, a missing parent or a directory without write access."""
