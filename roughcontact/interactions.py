@@ -33,7 +33,7 @@ import numpy as np
 from surfaces.validation import check_choice, check_finite_array, check_positive, check_real
 
 from .electrostatics import DielectricStack
-from .electrostatics.ac import check_frequency
+from .electrostatics.stack import check_frequency
 from .io.results import savable_field
 
 #: Relative step of a stiffness taken by differences of the traction (ε^(1/3) of float64; :meth:`Interaction.stiffness`).

@@ -33,7 +33,6 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass
-from numbers import Real
 
 import numpy as np
 from numba import njit
@@ -44,14 +43,7 @@ from surfaces.validation import check_real
 from ..io.results import ConvergenceWarning
 from .field import (DEFAULT_TOL, FieldSolution, StackField, _cg_curvature, _cg_direction, _cg_start, _cg_update,
                     _grid_and_gap)
-from .stack import EPSILON_0, DielectricStack
-
-
-def check_frequency(frequency) -> float:
-    """``frequency`` [Hz] as a float in [0, inf] (inf: the dielectric limit), or ``ValueError``/``TypeError``."""
-    if isinstance(frequency, (Real, np.floating)) and not isinstance(frequency, bool) and frequency == math.inf:
-        return math.inf
-    return check_real("frequency", frequency, low=0.0)
+from .stack import EPSILON_0, DielectricStack, check_frequency, slab_elastance
 
 
 def inverse_permittivity(stack: DielectricStack, frequency) -> complex:
@@ -76,21 +68,13 @@ def crossover_frequency(stack: DielectricStack, rest_thickness: float) -> float:
     return stack.sigma_sc / (2 * math.pi * EPSILON_0 * (stack.eps_sc + stack.d_sc / rest_thickness))
 
 
-def _slab_response(q: np.ndarray, thickness: float) -> np.ndarray:
-    """tanh(q d)/q [m] (d at q = 0): a slab's potential per unit flux mode q, times its permittivity ε0 ε."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        out = np.tanh(q * thickness) / q
-    out[q == 0] = thickness
-    return out
-
-
 def complex_elastance(stack: DielectricStack, q: np.ndarray, frequency, model: str = "layered") -> np.ndarray:
     """M̂(q, ω) ε0 [m] (complex): the solid layers' air-equivalent thickness seen by the flux mode q at
     ``frequency`` [Hz]; ``model="parallel_plate"`` its uniform value d_sc/ε*_sc + d_i/eps_i."""
     factor = inverse_permittivity(stack, frequency)
     if model == "parallel_plate":
         return np.full(q.shape, factor * stack.d_sc + stack.d_i / stack.eps_i)
-    return factor * _slab_response(q, stack.d_sc) + _slab_response(q, stack.d_i) / stack.eps_i
+    return factor * slab_elastance(q, stack.d_sc, 1.0) + slab_elastance(q, stack.d_i, stack.eps_i)
 
 
 class ACStackField(StackField):

@@ -32,27 +32,17 @@ check on fixed gaps, not a law inside the contact solve. Periodic grids only.
 from __future__ import annotations
 
 import numpy as np
-from scipy.sparse.linalg import LinearOperator, cg
 
 from surfaces import Grid
 
 from ..fft import make_backend
-from .stack import EPSILON_0, DielectricStack
+from .stack import EPSILON_0, DielectricStack, slab_elastance
 
 #: relative residual of the inner column-model solves inside the preconditioner (it must act as a fixed operator)
 INNER_TOL = 1e-13
 #: outer conjugate-gradient steps before the solve is reported as stalled, and restarts from the last iterate
 MAX_OUTER = 2000
 RESTARTS = 4
-
-
-def slab_elastance(q, thickness: float, permittivity: float) -> np.ndarray:
-    """tanh(q d)/(eps q) [m]: a flat slab's surface potential per unit flux (×ε0) for the mode q on a conductor
-    at its far face; d/eps at q = 0."""
-    q = np.asarray(q, dtype=float)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        out = np.tanh(q * thickness) / (permittivity * q)
-    return np.where(q == 0, thickness / permittivity, out)
 
 
 class LateralAirField:
@@ -75,9 +65,9 @@ class LateralAirField:
         n = grid.size
         self._elastance = (insulator / n, stratum_corneum / n, (insulator + stratum_corneum) / n)
         self._stiffness = (1 / (insulator * n), 1 / (stratum_corneum * n))
-        self._pixel_elastance = float(np.mean(slab_elastance(np.hypot(*grid.wavevectors()), stack.d_i, stack.eps_i)
-                                              + slab_elastance(np.hypot(*grid.wavevectors()), stack.d_sc,
-                                                               stack.eps_sc)))
+        full = np.hypot(*grid.wavevectors())
+        self._pixel_elastance = float(np.mean(slab_elastance(full, stack.d_i, stack.eps_i)
+                                              + slab_elastance(full, stack.d_sc, stack.eps_sc)))
         self._fft = make_backend(backend, grid.shape, threads=1)
         self._axes = [axis for axis, n_axis in enumerate(grid.shape) if n_axis > 2]
 
@@ -121,6 +111,8 @@ class LateralAirField:
     def solve(self, gap: np.ndarray, voltage: float, tol: float, maxiter=None) -> tuple:
         """(D [C/m²], σ_el [Pa], outer steps, relative residual) of the gap field ``gap`` [m] (checked by the
         caller) at ``voltage`` [V]."""
+        # scipy's CG only here: a fixed-gap check, so importing the field model does not load scipy.sparse
+        from scipy.sparse.linalg import LinearOperator, cg
         shape, n = self.grid.shape, self.grid.size
         eps_a = self.stack.eps_a
         open_ = gap > 0

@@ -46,8 +46,8 @@ from surfaces.validation import check_choice, check_finite_array, check_integer,
 
 from ..fft import make_backend
 from ..io.results import ConvergenceWarning
-from .air import LateralAirField, slab_elastance
-from .stack import EPSILON_0, DielectricStack
+from .air import LateralAirField
+from .stack import EPSILON_0, DielectricStack, slab_elastance
 
 MODELS = ("layered", "parallel_plate")
 #: the models of :func:`solve_field`: also the air's lateral field on fixed gaps (:mod:`.air`)

@@ -12,7 +12,9 @@ Pure numpy: importing this module loads neither numba nor an FFT library.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from numbers import Real
 
 import numpy as np
 
@@ -30,6 +32,22 @@ class ElectricFields:
     air: np.ndarray
     insulator: np.ndarray
     displacement: np.ndarray
+
+
+def slab_elastance(q, thickness: float, permittivity: float) -> np.ndarray:
+    """tanh(q d)/(eps q) [m]: a flat slab's surface potential per unit flux (×ε0) for the mode q on a conductor
+    at its far face; d/eps at q = 0."""
+    q = np.asarray(q, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = np.tanh(q * thickness) / (permittivity * q)
+    return np.where(q == 0, thickness / permittivity, out)
+
+
+def check_frequency(frequency) -> float:
+    """A drive ``frequency`` [Hz] as a float in [0, inf] (inf: the dielectric limit), or ``ValueError``/``TypeError``."""
+    if isinstance(frequency, (Real, np.floating)) and not isinstance(frequency, bool) and frequency == math.inf:
+        return math.inf
+    return check_real("frequency", frequency, low=0.0)
 
 
 #: Conductivity of the stratum corneum [S/m]: the static conduction term of dry skin's dielectric spectrum

@@ -13,7 +13,7 @@ HEAVY = ("numba", "llvmlite", "pyfftw", "scipy.fft", "matplotlib")
 
 
 @pytest.mark.parametrize("module", ["roughcontact", "roughcontact.electrostatics", "roughcontact.macro",
-                                    "surfaces"])
+                                    "roughcontact.interactions", "surfaces"])
 def test_import_is_light(module):
     code = ("import sys; import {m}; "
             "heavy = sorted(n for n in sys.modules if n.startswith({heavy!r})); print({m!r} in sys.modules); "

@@ -191,13 +191,13 @@ def test_rough_gap_crossover_is_the_circuits_for_a_laterally_uniform_stratum_cor
     one scalar, so ⟨σ̄⟩(f) is exactly the series circuit's Lorentzian with h_rest the DC capacitance thickness:
     measured f_c to 1e-13, asserted 1e-9 (the root finder's 1e-12 in log f and the 1e-12 solves)."""
     grid, gap = rough
-    slab_response = ac._slab_response
+    slab_elastance = ac.slab_elastance
 
-    def uniform_mode_only(q, thickness):
-        response = slab_response(q, thickness)
+    def uniform_mode_only(q, thickness, permittivity):
+        response = slab_elastance(q, thickness, permittivity)
         return np.where(q == 0, response, 0.0) if thickness == TABLE1.d_sc else response
 
-    monkeypatch.setattr(ac, "_slab_response", uniform_mode_only)
+    monkeypatch.setattr(ac, "slab_elastance", uniform_mode_only)
     predicted = crossover_frequency(TABLE1, capacitance_thickness(TABLE1, gap, grid.lengths))
     assert measured_crossover(TABLE1, gap, grid.lengths) == pytest.approx(predicted, rel=1e-9)
 
