@@ -43,9 +43,8 @@ from ..electrostatics import EPSILON_0
 from ..electrostatics.ac import ACStackField, inverse_permittivity
 from ..interactions import ElectrostaticInteraction
 from ..io.results import ConvergenceWarning
-from .energy_cg import FIELD_TOL_FLOOR, START_TOL, solve_smooth
+from .energy_cg import FIELD_TOL_FLOOR, _start as energy_start, solve_smooth
 from .inputs import _heights
-from .polonsky_keer import solve_hard_wall
 from .result import ContactResult
 
 METHOD = "deferred-correction"
@@ -114,25 +113,15 @@ def _correction_size(half, change, gap_scale: float) -> float:
 
 
 def _start(heights, half, load, penetration, x0, tol, maxiter):
-    """(the result the first solve starts from or None, its gap, its name, its FFT pairs): ``x0``; else the
-    hard-wall solution at the same control where one exists (what the energy solve would start from, solved
-    here once since its gap also matches ε_eff); else None and the rigid gap (the energy solve starts itself)."""
-    if x0 is not None:
-        if not isinstance(x0, ContactResult):
-            raise TypeError(f"x0 of an AC drive must be a ContactResult (its gap starts the solve), got "
-                            f"{type(x0).__name__}")
-        if x0.gap.shape != heights.shape:
-            raise ValueError(f"x0 has shape {x0.gap.shape}, but the grid has shape {heights.shape}")
-        return x0, np.asarray(x0.gap, dtype=np.float64), "x0", 0.0
-    options = dict(tol=max(tol, START_TOL), maxiter=maxiter, warn=False)
-    if load is not None and load > 0:
-        begin = solve_hard_wall(heights, half, mean_pressure=load, **options)
-    elif penetration is not None and penetration > 0:
-        begin = solve_hard_wall(heights, half, penetration=penetration, **options)
-    else:
-        shift = 0.0 if penetration is None else penetration
-        return None, np.maximum(float(heights.max()) - shift - heights, 0.0).astype(np.float64), "rigid", 0.0
-    return begin, np.asarray(begin.gap, dtype=np.float64), "hard wall", begin.solver.fft_pairs
+    """(the result the first solve starts from or None, its gap, its name, its FFT pairs): the energy solve's own
+    start (``x0``, else the hard-wall solution at the same control where one exists), solved here once since its
+    gap also matches ε_eff; else None and the rigid gap (the energy solve starts itself)."""
+    h_max = float(heights.max())
+    flat_position = None if penetration is None else h_max - penetration
+    begin, kind, pairs = energy_start(heights, half, load, flat_position, x0, tol, maxiter)
+    if begin is None:
+        return None, np.maximum((h_max if flat_position is None else flat_position) - heights, 0.0), kind, pairs
+    return begin, np.asarray(begin.gap, dtype=np.float64), kind, pairs
 
 
 def solve_driven(height_field, half, law, *, mean_pressure=None, total_force=None, penetration=None, tol,
