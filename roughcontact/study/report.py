@@ -705,8 +705,7 @@ def sweep_report_text(result: StudyResult, nc_written: bool, seconds: float | No
             "friction step (the seed's friction law has no drive frequency); every per-point number is in the "
             "tables above, and `StudyResult.at_frequency(k)` gives the loads × voltages study at one frequency.",
             ""]
-    labels = ("DC" if f == 0 else f"{f:g}" for f in result.frequencies)
-    labels = list(labels)
+    labels = ["DC" if f == 0 else f"{f:g}" for f in result.frequencies]
     for j, voltage in enumerate(result.voltages):
         if voltage == 0:
             continue
