@@ -8,6 +8,9 @@ attractive electrostatic stress σ_el >= 0. As a surface traction in the contact
 (positive = compressive) it enters as ``-σ_el``. The interaction energy per unit area is
 ``V(d) = -w(d)`` (:meth:`DielectricStack.energy`) and ``σ_el = dV/dd``.
 
+The layers' shared pieces of the field models live here too: :func:`slab_elastance`, a flat slab's exact
+response per Fourier mode, and :func:`check_frequency`, a drive frequency's validation.
+
 Pure numpy: importing this module loads neither numba nor an FFT library.
 """
 from __future__ import annotations
