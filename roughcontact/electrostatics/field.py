@@ -113,7 +113,7 @@ class StackField:
     def slope_factor(self, gap: np.ndarray) -> np.ndarray:
         """1 + |∇g|²/3 per pixel (central differences; one-sided at a free window's edges); 1 for the plate."""
         factor = np.empty(gap.shape)
-        _slope_factor_into(np.ascontiguousarray(gap, dtype=float), self._stencil, factor, False)
+        _slope_factor_into(np.ascontiguousarray(gap, dtype=float), self._stencil, factor)
         return factor
 
     def column_elastance(self, gap: np.ndarray, factor=None) -> np.ndarray:
@@ -192,54 +192,77 @@ def _stencil(grid: Grid, enabled: bool) -> tuple:
     return tuple(stencil)
 
 
+THIRD = 1.0 / 3.0
+
+
 @njit(cache=True)
-def _slope_factor_into(gap, stencil, factor, inverse):
-    """factor ← f = 1 + |∇g|²/3 by the central differences of ``stencil`` (:func:`_stencil`), or 1/f where
-    ``inverse``."""
+def _slope_squares_into(gap, stencil, out):
+    """out ← |∇g|² by the central differences of ``stencil`` (:func:`_stencil`), row by row: the x neighbours are
+    whole rows, the y neighbours of a row's inner pixels its own next ones (contiguous, so the loops vectorise);
+    only each row's two end pixels take the stencil's indices (the wrap of a periodic axis, the one-sided
+    differences of a free one)."""
     ahead_x, behind_x, inverse_x, ahead_y, behind_y, inverse_y = stencil
     nx, ny = gap.shape
+    inner = inverse_y[1] if ny > 2 else 0.0
     for i in range(nx):
-        ahead, behind, width = ahead_x[i], behind_x[i], inverse_x[i]
+        row, up, down, squares, width = gap[i], gap[ahead_x[i]], gap[behind_x[i]], out[i], inverse_x[i]
         for j in range(ny):
-            slope_x = (gap[ahead, j] - gap[behind, j]) * width
-            slope_y = (gap[i, ahead_y[j]] - gap[i, behind_y[j]]) * inverse_y[j]
-            value = 1.0 + (slope_x * slope_x + slope_y * slope_y) / 3.0
-            factor[i, j] = 1.0 / value if inverse else value
+            slope = (up[j] - down[j]) * width
+            squares[j] = slope * slope
+        for j in range(1, ny - 1):
+            slope = (row[j + 1] - row[j - 1]) * inner
+            squares[j] += slope * slope
+        for j in (0, ny - 1):
+            slope = (row[ahead_y[j]] - row[behind_y[j]]) * inverse_y[j]
+            squares[j] += slope * slope
+
+
+@njit(cache=True)
+def _slope_factor_into(gap, stencil, factor):
+    """factor ← f = 1 + |∇g|²/3 (:func:`_slope_squares_into`)."""
+    _slope_squares_into(gap, stencil, factor)
+    for i in range(gap.shape[0]):
+        row = factor[i]
+        for j in range(gap.shape[1]):
+            row[j] = 1.0 + row[j] * THIRD
 
 
 @njit(cache=True)
 def _attraction_into(gap, flux, inverse_factor, stencil, own, slope, out):
     """out ← own D²/f + Aᵀ(w A g) with w = slope D² g/f² (A the central differences of ``stencil``): with
     own = 1/(2ε) and slope = −1/(3ε), ½ Σ_k D_k² ∂R_k/∂g per pixel for R = g/(ε f) (the column's own D²/(2 ε f)
-    and its neighbours' through their slopes). Multiplications only; row by row, the neighbour rows' sums
-    contiguous, each pixel's sum in the order of a pixel-by-pixel pass."""
+    and its neighbours' through their slopes). Multiplications only; row by row, each neighbour sum a contiguous
+    pass (the y terms of a row's inner pixels shifted by one, its two end pixels by the stencil's indices)."""
     ahead_x, behind_x, inverse_x, ahead_y, behind_y, inverse_y = stencil
     nx, ny = gap.shape
-    weight = np.empty(ny)
+    inner = inverse_y[1] * inverse_y[1] if ny > 2 else 0.0
+    weight, along = np.empty(ny), np.empty(ny)
     for i in range(nx):
+        target, d, f = out[i], flux[i], inverse_factor[i]
         for j in range(ny):
-            out[i, j] = own * flux[i, j] ** 2 * inverse_factor[i, j]
+            target[j] = own * d[j] * d[j] * f[j]
     for i in range(nx):
-        ahead, behind, width = ahead_x[i], behind_x[i], inverse_x[i] * inverse_x[i]
+        row, d, f = gap[i], flux[i], inverse_factor[i]
+        up, down, width = gap[ahead_x[i]], gap[behind_x[i]], inverse_x[i] * inverse_x[i]
         for j in range(ny):
-            weight[j] = slope * flux[i, j] ** 2 * gap[i, j] * inverse_factor[i, j] ** 2
-        if ahead == i or behind == i:                   # a free axis's end row: its own sums in turn
-            for j in range(ny):
-                value = weight[j] * (gap[ahead, j] - gap[behind, j]) * width
-                out[ahead, j] += value
-                out[behind, j] -= value
-                value = weight[j] * (gap[i, ahead_y[j]] - gap[i, behind_y[j]]) * (inverse_y[j] * inverse_y[j])
-                out[i, ahead_y[j]] += value
-                out[i, behind_y[j]] -= value
-            continue
-        for j in range(ny):                             # the neighbour rows' sums (contiguous)
-            value = weight[j] * (gap[ahead, j] - gap[behind, j]) * width
-            out[ahead, j] += value
-            out[behind, j] -= value
-        for j in range(ny):                             # the row's own
-            value = weight[j] * (gap[i, ahead_y[j]] - gap[i, behind_y[j]]) * (inverse_y[j] * inverse_y[j])
-            out[i, ahead_y[j]] += value
-            out[i, behind_y[j]] -= value
+            weight[j] = slope * d[j] * d[j] * row[j] * f[j] * f[j]
+        target = out[ahead_x[i]]                        # the x neighbours: whole rows
+        for j in range(ny):
+            target[j] += weight[j] * (up[j] - down[j]) * width
+        target = out[behind_x[i]]
+        for j in range(ny):
+            target[j] -= weight[j] * (up[j] - down[j]) * width
+        for j in range(1, ny - 1):                      # the y neighbours of the row's own pixels
+            along[j] = weight[j] * (row[j + 1] - row[j - 1]) * inner
+        for j in (0, ny - 1):
+            along[j] = weight[j] * (row[ahead_y[j]] - row[behind_y[j]]) * (inverse_y[j] * inverse_y[j])
+        target = out[i]
+        for j in range(ny - 1):                         # ahead_y[j] = j + 1 below the last pixel
+            target[j + 1] += along[j]
+        for j in range(1, ny):                          # behind_y[j] = j − 1 above the first
+            target[j - 1] -= along[j]
+        target[ahead_y[ny - 1]] += along[ny - 1]
+        target[behind_y[0]] -= along[0]
 
 
 @njit(cache=True)
@@ -247,16 +270,27 @@ def _law_start_into(gap, stencil, inverse_permittivity, diagonal, warm, start_co
                     column, inverse_diagonal, flux):
     """1/f, the column R = g/(ε f), 1/(M_ii + R_ii) and the starting flux of :class:`FieldLaw` in one pass: the
     start's flux updated column by column to first order, δD ≈ −δR D/(M_ii + R_ii), where ``warm``, else
-    D = 1/(M_ii + R_ii)."""
-    _slope_factor_into(gap, stencil, inverse_factor, True)
+    D = 1/(M_ii + R_ii). One division per pixel: with a = g/ε and b = M_ii f + a, 1/f = b/(f b) and
+    1/(M_ii + R_ii) = f/b = f²/(f b)."""
+    _slope_squares_into(gap, stencil, inverse_factor)
     nx, ny = gap.shape
     for i in range(nx):
+        g, squares, columns, inverse, d = gap[i], inverse_factor[i], column[i], inverse_diagonal[i], flux[i]
+        old_column, old_flux = start_column[i], start_flux[i]
         for j in range(ny):
-            value = gap[i, j] * inverse_permittivity * inverse_factor[i, j]
-            column[i, j] = value
-            inverse = 1.0 / (diagonal + value)
-            inverse_diagonal[i, j] = inverse
-            flux[i, j] = start_flux[i, j] * (diagonal + start_column[i, j]) * inverse if warm else inverse
+            f = 1.0 + squares[j] * THIRD
+            a = g[j] * inverse_permittivity
+            b = diagonal * f + a
+            reciprocal = 1.0 / (f * b)
+            squares[j] = b * reciprocal
+            columns[j] = a * b * reciprocal
+            inverse[j] = f * f * reciprocal
+        if warm:
+            for j in range(ny):
+                d[j] = old_flux[j] * (diagonal + old_column[j]) * inverse[j]
+        else:
+            for j in range(ny):
+                d[j] = inverse[j]
 
 
 @njit(cache=True)
