@@ -3,6 +3,7 @@
     python studies/bench_field.py                      # 256² and 512², 30/100/200 V: the table of docs/guide/electrostatics.md
     python studies/bench_field.py --repeat 3 --output out
     python studies/bench_field.py --sizes 256 --realisations 4 --output out   # costs summed over realisations
+    python studies/bench_field.py --sizes 256 --matched --output out    # also the per-pixel law at matched attraction
     python studies/bench_field.py --fast               # 64², seconds
 
 Two patches per grid size n: ``bench``, the electrostatic bar's rough patch (1 mm square, 3 µm rms self-affine
@@ -16,10 +17,17 @@ with the steps, the steps across an instability and the field solves' FFT pairs 
 With ``--realisations R`` > 1 every case is solved on R patch realisations (bench: seeds 1 … R; scene: its
 realisations 0 … R−1) and ``bench_field_totals.csv`` holds the FFT pairs and CPU summed over them, as ratios to
 the per-pixel law's sums: near instabilities one solve's cost moves by a factor 2 with its path.
+
+With ``--matched`` each case also solves the per-pixel law at the voltage where its attraction matches the layered
+solve's F_el (within ``MATCH_TOL``, by secant steps on log F_el against log U; rows ``parallel_plate_matched``,
+their voltage in ``matched_voltage_V``): the layered solve's cost over that solve's separates the stronger
+attraction (which the per-pixel law pays as well once driven to it) from what the layered law itself adds
+(``docs/guide/electrostatics.md``, "Cost"). The totals then also hold the ratios to the matched sums.
 """
 from __future__ import annotations
 
 import argparse
+import math
 import time
 
 from surfaces import Grid, self_affine
@@ -30,7 +38,9 @@ from roughcontact.study.patch import default_scene_patch
 
 COLUMNS = ("patch", "n", "realisation", "voltage_V", "field", "time_s", "time_ratio", "iterations", "unstable_steps", "fft_pairs",
            "field_fft_pairs", "field_evaluations", "fft_pair_ratio", "contact_fraction", "electrostatic_force_N",
-           "field_equivalent_gap_m", "equivalent_gap_m", "converged")
+           "field_equivalent_gap_m", "equivalent_gap_m", "converged", "matched_voltage_V", "matched_force_ratio")
+MATCH_TOL = 0.02          # |F_el(per pixel, U_m) / F_el(layered, U) − 1| at which a matched voltage is accepted
+MATCH_SOLVES = 6          # per-pixel solves of the search before the closest is taken
 
 
 def bench_patch(n, realisation=0):
@@ -47,19 +57,48 @@ def scene_patch(n, realisation=0):
 
 
 
+def matched_voltage(surface, body, pressure, stack, voltage, target, tol):
+    """The voltage U_m [V] at which the per-pixel law's F_el is within ``MATCH_TOL`` of ``target`` [N] (secant
+    steps on log F_el against log U from F ∝ U², at most ``MATCH_SOLVES`` solves; the closest one otherwise), and
+    F_el(U_m) / target."""
+    def force(u):
+        law = ElectrostaticInteraction(stack, u, field="parallel_plate")
+        return solve_contact(surface, body, mean_pressure=pressure, tol=tol, interaction=law,
+                             warn=False).electrostatic_force
+
+    tried = [(voltage, force(voltage))]
+    exponent = 2.0
+    for _ in range(MATCH_SOLVES - 1):
+        u, f = tried[-1]
+        if abs(f / target - 1) <= MATCH_TOL:
+            break
+        u_next = u * (target / f) ** (1 / exponent)
+        f_next = force(u_next)
+        if f_next != f:                        # the secant's exponent, kept within [1, 8] across jumps of the path
+            exponent = min(8.0, max(1.0, math.log(f_next / f) / math.log(u_next / u)))
+        tried.append((u_next, f_next))
+    u, f = min(tried, key=lambda pair: abs(pair[1] / target - 1))
+    return u, f / target
+
+
 def rows_for(name, n, args, realisation=0):
     surface, body, pressure, stack = {"bench": bench_patch, "scene": scene_patch}[name](n, realisation)
     rows = []
     for voltage in args.voltages:
-        reference = None
-        for field in ("parallel_plate", "layered"):
-            law = ElectrostaticInteraction(stack, voltage, field=field)
+        reference, matched = None, None
+        for field in ("parallel_plate", "layered") + (("parallel_plate_matched",) if args.matched else ()):
+            solved_voltage = voltage
+            if field == "parallel_plate_matched":
+                solved_voltage, matched = matched_voltage(surface, body, pressure, stack, voltage,
+                                                          rows[-1]["electrostatic_force_N"], args.tol)
+            law = ElectrostaticInteraction(stack, solved_voltage, field=field.removesuffix("_matched"))
             solve_contact(surface, body, mean_pressure=pressure, tol=args.tol, interaction=law, warn=False)  # warm
             result, seconds = best_of(lambda: solve_contact(surface, body, mean_pressure=pressure, tol=args.tol,
                                                             interaction=law, warn=False),
                                       args.repeat, clock=time.process_time)
             reference = reference or (seconds, result.params["fft_pairs"])
             rows.append(dict(patch=name, n=n, realisation=realisation, voltage_V=voltage, field=field, time_s=seconds,
+                             matched_voltage_V=solved_voltage if matched else "", matched_force_ratio=matched or "",
                              time_ratio=seconds / reference[0], iterations=result.iterations,
                              unstable_steps=result.unstable_steps,
                              field_fft_pairs=result.solver.details.get("field_fft_pairs", 0),
@@ -70,9 +109,10 @@ def rows_for(name, n, args, realisation=0):
                              electrostatic_force_N=result.electrostatic_force,
                              field_equivalent_gap_m=result.field_equivalent_gap,
                              equivalent_gap_m=result.equivalent_gap, converged=result.converged))
-            print(f"{name:5s} {n:4d}² r{realisation} {voltage:5.0f} V {field:14s} {seconds:8.3f} s  x{rows[-1]['time_ratio']:.2f}  "
-                  f"{result.params['fft_pairs']:7.1f} FFT pairs  x{rows[-1]['fft_pair_ratio']:.2f}  "
-                  f"A/A0 {result.contact_fraction:.4f}", flush=True)
+            at = f" (at {solved_voltage:.0f} V: F_el x{matched:.3f})" if matched else ""
+            print(f"{name:5s} {n:4d}² r{realisation} {voltage:5.0f} V {field:22s} {seconds:8.3f} s  "
+                  f"x{rows[-1]['time_ratio']:.2f}  {result.params['fft_pairs']:7.1f} FFT pairs  "
+                  f"x{rows[-1]['fft_pair_ratio']:.2f}  A/A0 {result.contact_fraction:.4f}{at}", flush=True)
     return rows
 
 
@@ -87,22 +127,32 @@ def main(argv=None):
     parser.add_argument("--repeat", type=count_argument, default=1, help="timings per solve; the best is kept")
     parser.add_argument("--realisations", type=count_argument, default=1,
                         help="patch realisations 0 … R−1; with R > 1 also the ratios of the sums over them")
-    parser.add_argument("--fast", action="store_true", help="64² and one voltage: a test that the script runs")
+    parser.add_argument("--matched", action="store_true",
+                        help="also the per-pixel law at the voltage that matches the layered law's attraction")
+    parser.add_argument("--fast", action="store_true",
+                        help="64², one voltage, with --matched: a test that the script runs")
     parser.add_argument("--output", default="out", help="directory for bench_field.csv")
     args, provenance = parse_arguments(parser, argv, "studies/bench_field.py")
     if args.fast:
-        args.sizes, args.voltages = [64], [30.0]
+        args.sizes, args.voltages, args.matched = [64], [30.0], True
     directory = output_directory(args.output)
     rows = [row for n in args.sizes for name in args.patches for realisation in range(args.realisations)
             for row in rows_for(name, n, args, realisation)]
     write_csv(directory / "bench_field.csv", rows, provenance, COLUMNS)
     if args.realisations > 1:
         # near instabilities one solve's cost moves by a factor 2 with its path: the sums average it
-        totals = summed_ratios(rows, ("patch", "n", "voltage_V", "field"), lambda key: key[:3] + ("parallel_plate",))
+        group = ("patch", "n", "voltage_V", "field")
+        totals = summed_ratios(rows, group, lambda key: key[:3] + ("parallel_plate",))
+        if args.matched:                        # the same sums as ratios to the matched per-pixel solves
+            against = summed_ratios(rows, group, lambda key: key[:3] + ("parallel_plate_matched",))
+            for row, other in zip(totals, against):
+                row.update({f"{name}_ratio_matched": other[f"{name}_ratio"] for name in ("fft_pairs", "time_s")})
         write_csv(directory / "bench_field_totals.csv", totals, provenance)
         for row in totals:
-            print(f"{row['patch']:5s} {row['n']:4d}² {row['voltage_V']:5.0f} V {row['field']:14s} over {row['count']} "
-                  f"realisations: FFT pairs x{row['fft_pairs_ratio']:.2f}  CPU x{row['time_s_ratio']:.2f}")
+            matched = (f"  (matched: x{row['fft_pairs_ratio_matched']:.2f}, CPU x{row['time_s_ratio_matched']:.2f})"
+                       if args.matched else "")
+            print(f"{row['patch']:5s} {row['n']:4d}² {row['voltage_V']:5.0f} V {row['field']:22s} over {row['count']} "
+                  f"realisations: FFT pairs x{row['fft_pairs_ratio']:.2f}  CPU x{row['time_s_ratio']:.2f}{matched}")
 
 
 if __name__ == "__main__":

@@ -7,9 +7,12 @@ def rows(fast_run, read_csv):
     return read_csv(fast_run("bench_field") / "bench_field.csv")
 
 
+FIELDS = ("parallel_plate", "layered", "parallel_plate_matched")      # --fast includes --matched
+
+
 def test_both_fields_on_both_patches(rows):
     assert {(r["patch"], r["field"]) for r in rows} == {(patch, field) for patch in ("bench", "scene")
-                                                        for field in ("parallel_plate", "layered")}
+                                                        for field in FIELDS}
     assert all(r["converged"] == "True" for r in rows)
     for patch in ("bench", "scene"):
         plate, layered = (next(r for r in rows if r["patch"] == patch and r["field"] == field)
@@ -22,7 +25,21 @@ def test_both_fields_on_both_patches(rows):
 def test_the_field_solves_are_counted_within_the_solves_fft_pairs(rows):
     for row in rows:
         field_pairs, evaluations = int(row["field_fft_pairs"]), int(row["field_evaluations"])
-        if row["field"] == "parallel_plate":
+        if row["field"] != "layered":
             assert field_pairs == evaluations == 0
         else:           # every evaluation costs its start's pair; all of them are part of the solve's count
             assert evaluations > 0 and evaluations <= field_pairs < float(row["fft_pairs"])
+
+
+def test_the_matched_solve_attracts_as_much_as_the_layered_one(rows, load_experiment):
+    """The matched per-pixel solve's own F_el (not the search's stored ratio alone) is within the search's
+    tolerance of the layered solve's, at a higher voltage than the nominal one (the layered field attracts more)."""
+    tolerance = load_experiment("bench_field").MATCH_TOL
+    for patch in ("bench", "scene"):
+        layered, matched = (next(r for r in rows if r["patch"] == patch and r["field"] == field)
+                            for field in ("layered", "parallel_plate_matched"))
+        ratio = float(matched["electrostatic_force_N"]) / float(layered["electrostatic_force_N"])
+        assert abs(ratio - 1) <= tolerance
+        assert ratio == pytest.approx(float(matched["matched_force_ratio"]), rel=1e-12)
+        assert float(matched["matched_voltage_V"]) > float(matched["voltage_V"])
+        assert layered["matched_voltage_V"] == ""
