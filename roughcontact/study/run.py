@@ -29,8 +29,9 @@ frequency axis on every point (:meth:`StudyResult.at_frequency` gives the loads 
 (``x0=``; cold solves with the preset's ``warm_start`` false). A task takes the scene, r, j and its FFT thread
 count and returns one :class:`~.records.PatchRecord` per load; nothing passes between tasks, so a point's numbers
 do not depend on where its tasks ran or in which order they finished. :func:`run_study` runs them in this
-process, in a local process pool or on a dask.distributed cluster through one loop (submit, consume as
-completed, store), and assembles the :class:`~.records.PointResult` of each (F_N, U) from the records of its
+process, in a local process pool or on a dask.distributed cluster through one loop (submit, the highest voltages
+first since their solves take longest, so that the workers end together; consume as completed, store), and
+assembles the :class:`~.records.PointResult` of each (F_N, U) from the records of its
 realisations.
 
 Finished tasks are stored as they arrive in a :class:`~.execution.TaskStore` directory, so an interrupted run
@@ -165,8 +166,9 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
                 from tqdm import tqdm
                 bar = tqdm(total=len(todo) * len(forces) / count, desc="roughcontact run", unit="point",
                            bar_format="{l_bar}{bar}| {n:.4g}/{total:.4g} [{elapsed}<{remaining}]")
+            # the highest voltages first: their solves take the longest, so the workers finish together
             futures = {executor.submit(task, scene, *key[:2], executor.threads, apparent, *key[2:]): key
-                       for key in todo}
+                       for key in sorted(todo, key=lambda key: -abs(scene.loads.voltages[key[1]]))}
             for future in executor.as_completed(list(futures)):
                 key = futures[future]
                 records[key] = future.result()

@@ -294,7 +294,8 @@ def test_resume_after_interruption_recomputes_nothing_done(tiny, tmp_path, monke
     with pytest.raises(KeyboardInterrupt):
         run_study(tiny, tmp_path / "run", workers=1)
     done = sorted(path.name for path in (tmp_path / "run" / "tasks").glob("*.json"))
-    assert done == ["R000_U000.json", "R001_U000.json"]               # 2 tasks of 2 loads = 4 solves
+    # 2 tasks of 2 loads = 4 solves, the highest voltage's first (the longest, so that a pool's workers end together)
+    assert done == ["R000_U001.json", "R001_U001.json"]
     monkeypatch.setattr(resolved, "solve_contact", solve)
     resumed = run_study(tiny, tmp_path / "run", workers=1)
     assert resumed.computed == 2 and resumed.solves == 4
