@@ -190,8 +190,11 @@ def test_ctrl_c_stops_the_command_and_its_pool_with_one_line(tmp_path):
     scene.write_text(TINY.replace("realisations = 2", "realisations = 500"))
     command = [sys.executable, "-m", "roughcontact.cli", "run", str(scene), "--preset", "draft", "--out",
                str(tmp_path / "out"), "--workers", "2"]
+    # the command as a terminal's foreground job: Ctrl-C reaches it. A shell starts a background job (a test run
+    # launched with '&') with SIGINT ignored, and the command would inherit that and run to its end.
     client = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                              cwd=Path(__file__).parents[3], start_new_session=True)
+                              cwd=Path(__file__).parents[3], start_new_session=True,
+                              preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     try:
         while not any((tmp_path / "out" / "tasks").glob("*.json")):          # the workers have started
             assert client.poll() is None
