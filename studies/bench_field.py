@@ -66,6 +66,8 @@ def matched_voltage(surface, body, pressure, stack, voltage, target, tol):
         return solve_contact(surface, body, mean_pressure=pressure, tol=tol, interaction=law,
                              warn=False).electrostatic_force
 
+    if target <= 0:                             # no attraction (0 V): the same voltage matches it
+        return voltage, 1.0
     tried = [(voltage, force(voltage))]
     exponent = 2.0
     for _ in range(MATCH_SOLVES - 1):
