@@ -1,9 +1,9 @@
 """Cost of the layered field inside the contact solve against the per-pixel law on the same patch and tolerance.
 
-    python studies/bench_field.py                      # 256² and 512², 30/100/200 V: the table of docs/guide/electrostatics.md
+    python studies/bench_field.py                      # 256² and 512², 30/100/200 V, one patch realisation
     python studies/bench_field.py --repeat 3 --output out
-    python studies/bench_field.py --sizes 256 --realisations 4 --output out   # costs summed over realisations
-    python studies/bench_field.py --sizes 256 --matched --output out    # also the per-pixel law at matched attraction
+    python studies/bench_field.py --sizes 256 --realisations 4 --matched --output out   # the tables of
+                                                       # docs/guide/electrostatics.md (and --sizes 512)
     python studies/bench_field.py --fast               # 64², seconds
 
 Two patches per grid size n: ``bench``, the electrostatic bar's rough patch (1 mm square, 3 µm rms self-affine
