@@ -187,10 +187,11 @@ class PyFFTW:
                                     flags=(self.planner_effort,), threads=self.threads)
         self._backward = pyfftw.FFTW(self.spectrum, self._scratch, axes=(0, 1), direction="FFTW_BACKWARD",
                                      flags=(self.planner_effort, "FFTW_DESTROY_INPUT"), threads=self.threads)
-        key = (wisdom_path(), self.shape, self.dtype, self.threads, self.planner_effort) if measured else None
-        if measured and key not in _planned:    # a plan made before in this process added its wisdom then
-            _save_wisdom(pyfftw)
-            _planned.add(key)
+        if measured:
+            key = (wisdom_path(), self.shape, self.dtype, self.threads, self.planner_effort)
+            if key not in _planned:             # a plan made before in this process added its wisdom then
+                _save_wisdom(pyfftw)
+                _planned.add(key)
 
     def empty(self) -> np.ndarray:
         """An uninitialised real array of ``shape`` that the plans use in place."""

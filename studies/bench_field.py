@@ -56,7 +56,6 @@ def scene_patch(n, realisation=0):
     return patch.surface, patch.body, patch.pressure, patch.stack
 
 
-
 def matched_voltage(surface, body, pressure, stack, voltage, target, tol):
     """The voltage U_m [V] at which the per-pixel law's F_el is within ``MATCH_TOL`` of ``target`` [N] (secant
     steps on log F_el against log U from F ∝ U², at most ``MATCH_SOLVES`` solves; the closest one otherwise), and
@@ -116,7 +115,6 @@ def rows_for(name, n, args, realisation=0):
                   f"x{rows[-1]['time_ratio']:.2f}  {result.params['fft_pairs']:7.1f} FFT pairs  "
                   f"x{rows[-1]['fft_pair_ratio']:.2f}  A/A0 {result.contact_fraction:.4f}{at}", flush=True)
     return rows
-
 
 
 def main(argv=None):

@@ -275,14 +275,14 @@ def _law_start_into(gap, stencil, inverse_permittivity, diagonal, warm, start_co
     _slope_squares_into(gap, stencil, inverse_factor)
     nx, ny = gap.shape
     for i in range(nx):
-        g, squares, columns, inverse, d = gap[i], inverse_factor[i], column[i], inverse_diagonal[i], flux[i]
+        g, inverse_f, columns, inverse, d = gap[i], inverse_factor[i], column[i], inverse_diagonal[i], flux[i]
         old_column, old_flux = start_column[i], start_flux[i]
         for j in range(ny):
-            f = 1.0 + squares[j] * THIRD
+            f = 1.0 + inverse_f[j] * THIRD              # (the row holds |∇g|² until it takes 1/f)
             a = g[j] * inverse_permittivity
             b = diagonal * f + a
             reciprocal = 1.0 / (f * b)
-            squares[j] = b * reciprocal
+            inverse_f[j] = b * reciprocal
             columns[j] = a * b * reciprocal
             inverse[j] = f * f * reciprocal
         if warm:
