@@ -22,17 +22,22 @@ With ``--matched`` each case also solves the per-pixel law at the voltage where 
 solve's F_el (within ``MATCH_TOL``, by secant steps on log F_el against log U; rows ``parallel_plate_matched``,
 their voltage in ``matched_voltage_V``): the layered solve's cost over that solve's separates the stronger
 attraction (which the per-pixel law pays as well once driven to it) from what the layered law itself adds
-(``docs/guide/electrostatics.md``, "Cost"). The totals then also hold the ratios to the matched sums.
+(``docs/guide/electrostatics.md``, "Cost"). It also solves, at the voltage matched the same way, the per-pixel law of
+the layered law's range (rows ``parallel_plate_local``; :func:`local_stack`): its offset is the layered field's
+pixel elastance ε0 M_ii instead of the stack's c, so that a lone pixel's attraction and stiffness are the layered
+law's; the layered solve's cost over that one is what the field's non-locality and its solves add to the physics
+of a stronger, shorter-ranged attraction near contacts. The totals then also hold the ratios to both matched sums.
 """
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import math
 import time
 
 from surfaces import Grid, self_affine
 from roughcontact import ElasticHalfSpace, ElectrostaticInteraction, solve_contact
-from roughcontact.electrostatics import DielectricStack
+from roughcontact.electrostatics import EPSILON_0, DielectricStack, StackField
 from roughcontact.io import best_of, count_argument, output_directory, parse_arguments, summed_ratios, write_csv
 from roughcontact.study.patch import default_scene_patch
 
@@ -41,6 +46,8 @@ COLUMNS = ("patch", "n", "realisation", "voltage_V", "field", "time_s", "time_ra
            "field_equivalent_gap_m", "equivalent_gap_m", "converged", "matched_voltage_V", "matched_force_ratio")
 MATCH_TOL = 0.02          # |F_el(per pixel, U_m) / F_el(layered, U) − 1| at which a matched voltage is accepted
 MATCH_SOLVES = 6          # per-pixel solves of the search before the closest is taken
+#: the per-pixel references of --matched: the stack's own law, and the law of the layered field's pixel elastance
+MATCHED = ("parallel_plate_matched", "parallel_plate_local")
 
 
 def bench_patch(n, realisation=0):
@@ -54,6 +61,14 @@ def scene_patch(n, realisation=0):
     """The default scene's patch on n² pixels, its skin body and the first ring's apparent pressure at 0.5 N."""
     patch = default_scene_patch(n, 0.5, realisation)
     return patch.surface, patch.body, patch.pressure, patch.stack
+
+
+def local_stack(stack, grid):
+    """``stack`` with both layers' permittivities scaled by c/(ε0 M_ii), so that the per-pixel law's offset c becomes
+    the layered field's pixel elastance ε0 M_ii on ``grid`` (the air-equivalent thickness the layers present to one
+    pixel's flux): the per-pixel law with the layered law's attraction and stiffness at a lone pixel."""
+    scale = stack.dielectric_offset / (StackField(stack, grid).pixel_elastance * EPSILON_0)
+    return dataclasses.replace(stack, eps_sc=stack.eps_sc * scale, eps_i=stack.eps_i * scale)
 
 
 def matched_voltage(surface, body, pressure, stack, voltage, target, tol):
@@ -86,13 +101,16 @@ def rows_for(name, n, args, realisation=0):
     surface, body, pressure, stack = {"bench": bench_patch, "scene": scene_patch}[name](n, realisation)
     rows = []
     for voltage in args.voltages:
-        reference, matched = None, None
-        for field in ("parallel_plate", "layered") + (("parallel_plate_matched",) if args.matched else ()):
-            solved_voltage = voltage
-            if field == "parallel_plate_matched":
-                solved_voltage, matched = matched_voltage(surface, body, pressure, stack, voltage,
-                                                          rows[-1]["electrostatic_force_N"], args.tol)
-            law = ElectrostaticInteraction(stack, solved_voltage, field=field.removesuffix("_matched"))
+        reference, matched, layered_force = None, None, None
+        for field in ("parallel_plate", "layered") + (MATCHED if args.matched else ()):
+            law_field, solved_stack, solved_voltage = field, stack, voltage
+            if field in MATCHED:
+                law_field = "parallel_plate"
+                if field == "parallel_plate_local":
+                    solved_stack = local_stack(stack, body.grid)
+                solved_voltage, matched = matched_voltage(surface, body, pressure, solved_stack, voltage,
+                                                          layered_force, args.tol)
+            law = ElectrostaticInteraction(solved_stack, solved_voltage, field=law_field)
             solve_contact(surface, body, mean_pressure=pressure, tol=args.tol, interaction=law, warn=False)  # warm
             result, seconds = best_of(lambda: solve_contact(surface, body, mean_pressure=pressure, tol=args.tol,
                                                             interaction=law, warn=False),
@@ -110,6 +128,8 @@ def rows_for(name, n, args, realisation=0):
                              electrostatic_force_N=result.electrostatic_force,
                              field_equivalent_gap_m=result.field_equivalent_gap,
                              equivalent_gap_m=result.equivalent_gap, converged=result.converged))
+            if field == "layered":
+                layered_force = result.electrostatic_force
             at = f" (at {solved_voltage:.0f} V: F_el x{matched:.3f})" if matched else ""
             print(f"{name:5s} {n:4d}² r{realisation} {voltage:5.0f} V {field:22s} {seconds:8.3f} s  "
                   f"x{rows[-1]['time_ratio']:.2f}  {result.params['fft_pairs']:7.1f} FFT pairs  "
@@ -128,7 +148,8 @@ def main(argv=None):
     parser.add_argument("--realisations", type=count_argument, default=1,
                         help="patch realisations 0 … R−1; with R > 1 also the ratios of the sums over them")
     parser.add_argument("--matched", action="store_true",
-                        help="also the per-pixel law at the voltage that matches the layered law's attraction")
+                        help="also the per-pixel law, with the stack's offset and with the layered law's pixel "
+                             "elastance, at the voltages that match the layered law's attraction")
     parser.add_argument("--fast", action="store_true",
                         help="64², one voltage, with --matched: a test that the script runs")
     parser.add_argument("--output", default="out", help="directory for bench_field.csv")
@@ -143,14 +164,16 @@ def main(argv=None):
         # near instabilities one solve's cost moves by a factor 2 with its path: the sums average it
         group = ("patch", "n", "voltage_V", "field")
         totals = summed_ratios(rows, group, lambda key: key[:3] + ("parallel_plate",))
-        if args.matched:                        # the same sums as ratios to the matched per-pixel solves
-            against = summed_ratios(rows, group, lambda key: key[:3] + ("parallel_plate_matched",))
+        for reference in MATCHED if args.matched else ():  # the same sums as ratios to each matched reference
+            against = summed_ratios(rows, group, lambda key: key[:3] + (reference,))
+            suffix = reference.removeprefix("parallel_plate_")
             for row, other in zip(totals, against):
-                row.update({f"{name}_ratio_matched": other[f"{name}_ratio"] for name in ("fft_pairs", "time_s")})
+                row.update({f"{name}_ratio_{suffix}": other[f"{name}_ratio"] for name in ("fft_pairs", "time_s")})
         write_csv(directory / "bench_field_totals.csv", totals, provenance)
         for row in totals:
-            matched = (f"  (matched: x{row['fft_pairs_ratio_matched']:.2f}, CPU x{row['time_s_ratio_matched']:.2f})"
-                       if args.matched else "")
+            matched = "".join(f"  ({suffix}: x{row[f'fft_pairs_ratio_{suffix}']:.2f}, CPU "
+                              f"x{row[f'time_s_ratio_{suffix}']:.2f})" for suffix in ("matched", "local")
+                              if args.matched)
             print(f"{row['patch']:5s} {row['n']:4d}² {row['voltage_V']:5.0f} V {row['field']:22s} over {row['count']} "
                   f"realisations: FFT pairs x{row['fft_pairs_ratio']:.2f}  CPU x{row['time_s_ratio']:.2f}{matched}")
 
