@@ -62,7 +62,7 @@ ENERGY_ROUND_OFF = 1e-12  # relative round-off of the energy sums (float64), bel
 START_TOL = 1e-2          # tolerance of the hard-wall solve that starts a cold solve (a guess, not the answer)
 FIELD_TOL_FACTOR = 0.1   # the layered field's solves to this times the solve's relative residual,
 FIELD_TOL_FLOOR = 1e-12  # but no tighter than this
-FIELD_TOL_CEILING = 1e-4 # and no looser
+FIELD_TOL_CEILING = 1e-4 # and no looser (the start's, whose residual is not known yet)
 _REFRESH = 50             # exact recomputation of p_el at least every _REFRESH incremental steps
 RETRACT_HALVINGS = 10     # halvings of a cold tensile solve's retract step before its branch is said to end
 
@@ -548,7 +548,7 @@ class _Solver:
         self.window_view = tuple(slice(0, m) for m in grid.shape)  # the grid in the corner of the body's fields
         # the layered law, evaluated by field solves on the window; it also carries its unit-voltage flux and
         # column elastance per point (zero outside the window)
-        self.field = FieldLaw(law.stack, law.voltage, grid) \
+        self.field = FieldLaw(law.stack, law.voltage, grid, tol=FIELD_TOL_CEILING) \
             if isinstance(law, ElectrostaticInteraction) and not law.local else None
         arrays = 2 if self.field is None else 4
         self.law_now = [np.zeros(n, dtype) for _ in range(arrays)]     # p_int, k at g (and D₁, R)
@@ -589,6 +589,7 @@ class _Solver:
         history, residuals = [value], []
         iterations, converged, message, detached = 0, False, "", False
         previous_rz, tau, since_exact = 0.0, 0.0, 0
+        start_tol = FIELD_TOL_CEILING                   # the field's at the start (FieldLaw's first tolerance)
         try:
             while True:
                 g, d, r, free = self.g, self.d, self.r, self.free
@@ -607,6 +608,14 @@ class _Solver:
                 residuals.append(residual)
                 if self.field is not None:                  # the field solves as accurate as the step needs
                     self.field.tol = min(FIELD_TOL_CEILING, max(FIELD_TOL_FLOOR, FIELD_TOL_FACTOR * residual))
+                    if self.field.tol < start_tol and not iterations:
+                        # a start near its equilibrium (x0): its law solved again, warm, as tightly as its residual
+                        # asks, before that residual is trusted (once)
+                        value, magnitude, interaction = self.evaluate(g, pel, self.law_now)
+                        start_tol = 0.0
+                        history[-1] = value
+                        residuals.pop()
+                        continue
                 if callback is not None and iterations:
                     try:
                         callback(SolverState(iterations, residual, at_wall / heights.size))

@@ -381,16 +381,19 @@ def test_approach_retract_cycle_hysteresis_and_jumps():
 
 def test_float32_electrostatic_solve():
     # float32's default tolerance is 1e-5 (its energy's round-off stops the line search a decade or so below), and
-    # at that tolerance it gives float64's answer
+    # at that tolerance its answer is an equilibrium of float64's problem: float64 started from it stays there.
+    # (Not float64's own cold answer: this path crosses 7-8 instabilities and the patch holds several equilibria
+    # one contact pixel apart, which the two precisions' round-off picks between; docs/dev/investigations.md.)
     surface, half = rough_patch()
     single = ElasticHalfSpace(surface.grid, E_star=1e6, dtype=np.float32)
     law = ElectrostaticInteraction(STACK, 30.0)
-    reference = solve_contact(surface, half, mean_pressure=1e3, interaction=law, tol=1e-5)
     res = solve_contact(surface, single, mean_pressure=1e3, interaction=law)
     assert res.converged and res.params["tol"] == 1e-5 and res.gap.dtype == np.float32
-    # measured: mean gaps 1.4e-6 apart (relative), the same contact set
-    assert res.mean_gap == pytest.approx(reference.mean_gap, rel=1e-5)
-    np.testing.assert_array_equal(res.contact, reference.contact)
+    polished = solve_contact(surface, half, mean_pressure=1e3, interaction=law, tol=1e-8, x0=res)
+    assert polished.converged
+    np.testing.assert_array_equal(polished.contact, res.contact)
+    # tol 1e-5 bounds the displacement error by 1e-5 of the rms height; the mean gap moved 2.0e-11 m (measured)
+    assert abs(polished.mean_gap - res.mean_gap) < 1e-5 * np.std(surface.heights)
 
 
 def test_float32_on_the_layered_skin_at_200_volts():
