@@ -66,8 +66,7 @@ class LateralAirField:
         self._elastance = (insulator / n, stratum_corneum / n, (insulator + stratum_corneum) / n)
         self._stiffness = (1 / (insulator * n), 1 / (stratum_corneum * n))
         full = np.hypot(*grid.wavevectors())
-        self._pixel_elastance = float(np.mean(slab_elastance(full, stack.d_i, stack.eps_i)
-                                              + slab_elastance(full, stack.d_sc, stack.eps_sc)))
+        self._pixel_elastance = float(np.mean(stack.elastance(full)))
         self._fft = make_backend(backend, grid.shape, threads=1)
         self._axes = [axis for axis, n_axis in enumerate(grid.shape) if n_axis > 2]
 

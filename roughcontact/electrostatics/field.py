@@ -47,7 +47,7 @@ from surfaces.validation import check_choice, check_finite_array, check_integer,
 from ..fft import make_backend
 from ..io.results import ConvergenceWarning
 from .air import LateralAirField
-from .stack import EPSILON_0, DielectricStack, slab_elastance
+from .stack import EPSILON_0, DielectricStack
 
 MODELS = ("layered", "parallel_plate")
 #: the models of :func:`solve_field`: also the air's lateral field on fixed gaps (:mod:`.air`)
@@ -59,7 +59,7 @@ def _elastance(stack: DielectricStack, q: np.ndarray, model: str) -> np.ndarray:
     """M̂(q) ε0 [m]: the solid layers' air-equivalent thickness seen by the flux mode q (q = 0: c)."""
     if model == "parallel_plate":
         return np.full(q.shape, stack.dielectric_offset)
-    return slab_elastance(q, stack.d_sc, stack.eps_sc) + slab_elastance(q, stack.d_i, stack.eps_i)
+    return stack.elastance(q)
 
 
 class StackField:

@@ -86,6 +86,12 @@ class DielectricStack:
         """``c = d_sc/eps_sc + d_i/eps_i`` [m]: the solid layers' air-equivalent thickness (ε_ra = 1)."""
         return self.d_sc / self.eps_sc + self.d_i / self.eps_i
 
+    def elastance(self, q) -> np.ndarray:
+        """M̂(q) ε0 = tanh(q d_sc)/(eps_sc q) + tanh(q d_i)/(eps_i q) [m]: the solid layers' air-equivalent thickness
+        seen by a flux mode of wavenumber ``q`` [1/m] (each a flat slab, :func:`slab_elastance`); c at q = 0, the
+        layers' (1/eps_sc + 1/eps_i)/q where q ≫ 1/d_i (``docs/guide/electrostatics.md``)."""
+        return slab_elastance(q, self.d_sc, self.eps_sc) + slab_elastance(q, self.d_i, self.eps_i)
+
     def electrical_thickness(self, gap) -> np.ndarray:
         """``h(d) = d_sc/eps_sc + d/eps_a + d_i/eps_i`` [m], the bracket of Eqs. 20–22."""
         gap = check_finite_array("gap", gap, nonnegative=True)

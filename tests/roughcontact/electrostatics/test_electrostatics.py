@@ -199,6 +199,21 @@ def test_electrical_thickness_values():
         HUMID.electrical_thickness(-1e-9)
 
 
+@pytest.mark.parametrize("stack", [TABLE1, HUMID])
+def test_layers_elastance_limits(stack):
+    """M̂(q) ε0 is c at q = 0; for q d ≪ 1 each slab loses d³q²/(3 eps) (tanh x / x = 1 − x²/3 + 2x⁴/15); for
+    q d_i ≫ 1 both slabs are thick, (1/eps_sc + 1/eps_i)/q; it falls monotonically between. The bounds are the
+    next terms of the series: 2x⁴/15 relative at x = q d_sc = 1e-2, and 2 e^(−2 q d_i) at q d_i = 20."""
+    assert stack.elastance(0.0) == stack.dielectric_offset
+    small = 1e-2 / stack.d_sc
+    expected = stack.dielectric_offset - small ** 2 * (stack.d_sc ** 3 / stack.eps_sc + stack.d_i ** 3 / stack.eps_i) / 3
+    assert stack.elastance(small) == pytest.approx(expected, rel=1e-9)
+    large = 20.0 / stack.d_i
+    assert stack.elastance(large) == pytest.approx((1 / stack.eps_sc + 1 / stack.eps_i) / large, rel=1e-15)
+    q = np.geomspace(1e-2, 1e3, 200) / stack.d_i
+    assert np.all(np.diff(stack.elastance(q)) < 0)
+
+
 def test_pickle_round_trip_is_exact():
     clone = pickle.loads(pickle.dumps(HUMID))
     assert clone == HUMID
