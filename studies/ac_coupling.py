@@ -58,7 +58,7 @@ def deferred_correction(scene_parts, frequency, surrogate_eps, args) -> list:
         gap = result.gap
         true = solve_ac_field(stack, gap, grid.lengths, args.voltage, frequency=frequency, tol=1e-12)
         rows.append(dict(frequency_Hz=frequency, eps_eff=surrogate_eps, step=step, mean_pressure_Pa=true.mean_pressure,
-                         contact_fraction=result.contact_fraction, field_equivalent_gap_m=true.equivalent_gap,
+                         contact_fraction=result.contact_fraction, field_equivalent_gap_m=true.field_equivalent_gap,
                          solver_iterations=result.iterations, converged=result.converged))
         if step == args.steps:
             break

@@ -93,7 +93,7 @@ def sweep(patch: Patch, frequencies) -> list:
         rows.append(dict(common, frequency_Hz=frequency, mean_pressure_Pa=field.mean_pressure,
                          ratio_to_dielectric=field.mean_pressure / fixed[math.inf].mean_pressure,
                          contact_fraction=result.contact_fraction, equivalent_gap_m=result.equivalent_gap,
-                         field_equivalent_gap_m=field.equivalent_gap, ac_equivalent_gap_m=field.ac_equivalent_gap,
+                         field_equivalent_gap_m=field.field_equivalent_gap, ac_equivalent_gap_m=field.ac_equivalent_gap,
                          modulation_depth=field.mean_oscillation / field.mean_pressure,
                          corrections=details.get("corrections", 0), converged=result.converged,
                          electrostatic_force_N=field.mean_pressure * patch.area,

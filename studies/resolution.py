@@ -87,7 +87,7 @@ def gap_quantities(stack, gap: np.ndarray, length: float) -> dict:
     field = solve_field(stack, gap, length if gap.ndim == 1 else (length, length), FIELD_VOLTAGE, tol=1e-11)
     return {"fel_layered_Pa": field.mean_pressure,
             "fel_per_pixel_Pa": float(np.mean(stack.pressure(gap, FIELD_VOLTAGE))),
-            "deq_um": stack.equivalent_gap(gap) * 1e6, "field_deq_um": field.equivalent_gap * 1e6}
+            "deq_um": stack.equivalent_gap(gap) * 1e6, "field_deq_um": field.field_equivalent_gap * 1e6}
 
 
 def pressed(heights, body, pressure: float, voltage: float, law: str, stack):

@@ -47,7 +47,7 @@ def _value(record, name):
 
 def _thinned(law):
     """The same law on every other node."""
-    columns = ("separations", "tractions", "equivalent_gaps", "contact_fractions", "slopes", "field_gaps")
+    columns = ("separations", "tractions", "equivalent_gaps", "contact_fractions", "slopes", "field_equivalent_gaps")
     return dataclasses.replace(law, **{name: getattr(law, name)[::2] for name in columns},
                                ridge_area_fractions=tuple(column[::2] for column in law.ridge_area_fractions))
 

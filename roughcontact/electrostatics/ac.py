@@ -198,8 +198,8 @@ class ACFieldSolution(FieldSolution):
 
     ``flux`` is the RMS phasor D̂ [C/m²] (complex), ``pressure`` the time-averaged attraction σ̄ [Pa] per pixel
     and ``oscillation`` the complex amplitude σ̂₂ [Pa] of its 2ω component, σ(t) = σ̄ + Re(σ̂₂ e^{2iωt}) (zero at
-    DC). ``mean_pressure``, ``electrostatic_force`` and ``equivalent_gap`` are those of σ̄ (the uniform gap whose
-    Eq. 21 attraction at U is ⟨σ̄⟩)."""
+    DC). ``mean_pressure``, ``electrostatic_force`` and ``field_equivalent_gap`` are those of σ̄ (the uniform gap
+    whose Eq. 21 attraction at U is ⟨σ̄⟩)."""
 
     frequency: float
     oscillation: np.ndarray
@@ -217,8 +217,9 @@ class ACFieldSolution(FieldSolution):
     @property
     def ac_equivalent_gap(self) -> float:
         """The uniform gap d [m] whose time-averaged attraction under the same drive equals ⟨σ̄⟩: the series circuit
-        |a + d/ε_a| = U √(ε0/(2 ε_a ⟨σ̄⟩)) with a = d_sc/ε*_sc + d_i/ε_i solved for d (``equivalent_gap`` at ω = ∞).
-        Negative above full contact's attraction; ``nan`` at U = 0 and where not even a negative d reaches ⟨σ̄⟩."""
+        |a + d/ε_a| = U √(ε0/(2 ε_a ⟨σ̄⟩)) with a = d_sc/ε*_sc + d_i/ε_i solved for d (``field_equivalent_gap`` at
+        ω = ∞). Negative above full contact's attraction; ``nan`` at U = 0 and where not even a negative d reaches
+        ⟨σ̄⟩."""
         if self.voltage == 0.0:
             return float("nan")
         stack = self.stack

@@ -397,7 +397,7 @@ class FieldSolution:
         return float(-0.5 * self.voltage * np.mean(self.flux))
 
     @property
-    def equivalent_gap(self) -> float:
+    def field_equivalent_gap(self) -> float:
         """The uniform gap d [m] whose Eq. 21 attraction equals ⟨σ_el⟩ (independent of the voltage).
 
         Negative where the mean attraction exceeds full contact's (Eq. 23); ``nan`` only at U = 0 (no field).

@@ -70,7 +70,7 @@ class InterfaceLaw(Interaction):
     equivalent_gaps: tuple
     contact_fractions: tuple
     slopes: tuple
-    field_gaps: tuple
+    field_equivalent_gaps: tuple
     stack: object
     voltage: float
     length: float
@@ -85,7 +85,8 @@ class InterfaceLaw(Interaction):
         if x.ndim != 1 or x.size < 3 or (np.diff(x) <= 0).any():
             raise ValueError(f"separations must be >= 3 strictly increasing values, got {self.separations!r}")
         columns = {"tractions": self.tractions, "equivalent_gaps": self.equivalent_gaps,
-                   "contact_fractions": self.contact_fractions, "slopes": self.slopes, "field_gaps": self.field_gaps,
+                   "contact_fractions": self.contact_fractions, "slopes": self.slopes,
+                   "field_equivalent_gaps": self.field_equivalent_gaps,
                    **{f"ridge_area_fractions[{k}]": column for k, column in enumerate(self.ridge_area_fractions)}}
         for name, column in columns.items():
             if np.shape(column) != x.shape:
@@ -137,10 +138,10 @@ class InterfaceLaw(Interaction):
         """e(ū) [m]: the Eq. 25 gap of the micro patch at mean separation ū."""
         return self._gap_column("equivalent_gaps", gap)
 
-    def field_gap(self, gap) -> np.ndarray:
+    def field_equivalent_gap(self, gap) -> np.ndarray:
         """f(ū) [m]: the micro patch's field-equivalent gap at mean separation ū (clipped at 0, where the mean
         attraction would exceed full contact's)."""
-        return self._gap_column("field_gaps", gap)
+        return self._gap_column("field_equivalent_gaps", gap)
 
     def contact_fraction(self, gap) -> np.ndarray:
         """φ(ū): the real contact fraction of the micro patch at mean separation ū."""
@@ -188,7 +189,7 @@ def interface_law(heights, body, stack, voltage: float, nodes: int = LAW_NODES, 
     columns = [tuple(float(v) for v in column[::-1]) for column in zip(*rows)]
     return InterfaceLaw(separations=tuple(float(s) for s in separations), tractions=columns[0],
                         equivalent_gaps=columns[1], contact_fractions=columns[2], slopes=columns[3],
-                        field_gaps=columns[4], stack=stack, voltage=float(voltage), length=float(rms),
+                        field_equivalent_gaps=columns[4], stack=stack, voltage=float(voltage), length=float(rms),
                         coarse_graining=tuple(float(v) for v in coarse_graining),
                         ridge_area_fractions=tuple(columns[5:]), converged=converged)
 
@@ -271,7 +272,7 @@ def coupled_point(ridges, body, law: InterfaceLaw, pressure: float, tol: float =
                     + np.sum(weights * law.slope_squared(separation)) / np.sum(weights))
     point = CoupledPoint(
         pressure=float(pressure), voltage=law.voltage, equivalent_gap=law.stack.equivalent_gap(gaps),
-        field_equivalent_gap=law.stack.equivalent_gap(law.field_gap(separation)),
+        field_equivalent_gap=law.stack.equivalent_gap(law.field_equivalent_gap(separation)),
         mean_gap=float(separation.mean()), contact_fraction=float(np.mean(law.contact_fraction(separation))),
         ridge_area_fractions=tuple(float(np.mean(law.ridge_area_fraction(separation, k)))
                                    for k in range(len(law.coarse_graining))),

@@ -44,12 +44,12 @@ def unit_attraction(stack, field: str, result, voltage: float, frequency: float 
     return solve_field(stack, gap, grid.lengths, 1.0, model=field, periodic=grid.periodic).mean_pressure
 
 
-def field_ratio(stack, field_gap: float, equivalent_gap: float) -> float:
+def field_ratio(stack, field_equivalent_gap: float, equivalent_gap: float) -> float:
     """F_el of the field over F_el of Eq. 21 per pixel on the same gap field: σ_el(d_field)/σ_el(d_eq) =
     (h(d_eq)/h(d_field))², h(d) = c + d/ε_a (seed Eq. 21 at the two equivalent gaps; independent of U)."""
     def thickness(gap):
         return stack.dielectric_offset + gap / stack.eps_a
-    return float((thickness(equivalent_gap) / thickness(field_gap)) ** 2)
+    return float((thickness(equivalent_gap) / thickness(field_equivalent_gap)) ** 2)
 
 
 @dataclass(frozen=True)

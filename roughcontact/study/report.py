@@ -617,8 +617,8 @@ def sweep_crossover(result: StudyResult) -> tuple:
     (``crossover_frequency``) with h_rest = d_field/ε_a + d_i/ε_i, d_field the field-equivalent gap at the sweep's
     highest frequency (realisation mean), the air and insulator's share of the nearly dielectric stack."""
     stack = result.scene.screen.stack()
-    field_gap = result.summary("field_equivalent_gap")[0][:, :, -1]
-    rest = np.maximum(field_gap, 0.0) / stack.eps_a + stack.d_i / stack.eps_i
+    field_equivalent_gap = result.summary("field_equivalent_gap")[0][:, :, -1]
+    rest = np.maximum(field_equivalent_gap, 0.0) / stack.eps_a + stack.d_i / stack.eps_i
     return np.vectorize(lambda thickness: crossover_frequency(stack, thickness))(rest), rest
 
 
@@ -682,7 +682,7 @@ def sweep_report_text(result: StudyResult, nc_written: bool, seconds: float | No
     scene, preset = result.scene, result.scene.preset
     crossover, rest = sweep_crossover(result)
     samples = _sweep_samples(result)
-    field_gap = _realisations(result, "field_equivalent_gap")
+    field_equivalent_gap = _realisations(result, "field_equivalent_gap")
     contact = _realisations(result, "contact_fraction")
     text = ["# Multiscale fingerpad study: drive-frequency sweep", "",
             _run_sentence(result, seconds), "",
@@ -719,7 +719,7 @@ def sweep_report_text(result: StudyResult, nc_written: bool, seconds: float | No
                 ratio = samples[f"F_el / F_el({result.frequencies[-1]:g} Hz)"][i, j, k]
                 text.append(f"| {label} | {_cell(fel, 1.0, 4)} | {_cell(ratio, 1.0, 4)} | "
                             f"{_cell(samples['d_eq (Eq. 25) [µm]'][i, j, k], 1.0, 3)} | "
-                            f"{_cell(field_gap[i, j, k], MICRO, 3)} | "
+                            f"{_cell(field_equivalent_gap[i, j, k], MICRO, 3)} | "
                             f"{_cell(samples['A_R/A0 [%]'][i, j, k] / 100.0, 100.0, 2, 1.0)} | "
                             f"{_cell(contact[i, j, k], 100.0, 3, 1.0)} |")
             text += ["", f"(realisation mean [{bars_note(result).removeprefix('bars: ')}])", ""]

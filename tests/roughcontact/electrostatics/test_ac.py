@@ -224,11 +224,11 @@ def test_cocg_converges_and_reports_when_it_does_not(rough):
     assert stalled.residual > 1e-10 and np.all(np.isfinite(stalled.pressure))
     assert isinstance(solution, ACFieldSolution)
     assert solution.mean_oscillation <= np.mean(solution.oscillation_amplitude) * (1 + 1e-12)
-    assert solution.equivalent_gap == pytest.approx(TABLE1.gap_for_pressure(solution.mean_pressure, 100.0))
+    assert solution.field_equivalent_gap == pytest.approx(TABLE1.gap_for_pressure(solution.mean_pressure, 100.0))
     dielectric = solve_ac_field(TABLE1, gap, grid.lengths, 100.0, frequency=math.inf)
-    assert dielectric.ac_equivalent_gap == pytest.approx(dielectric.equivalent_gap, rel=1e-12)
+    assert dielectric.ac_equivalent_gap == pytest.approx(dielectric.field_equivalent_gap, rel=1e-12)
     # the lossy stratum corneum attracts more than the dielectric at the same gap: its own circuit's gap is larger
-    assert solution.ac_equivalent_gap > solution.equivalent_gap
+    assert solution.ac_equivalent_gap > solution.field_equivalent_gap
     with pytest.raises(AttributeError, match="no energy"):
         solution.energy
 

@@ -36,7 +36,7 @@ def test_uniform_gap_is_the_parallel_plate():
     """The lateral terms vanish on a uniform gap: Eq. 21 to rounding (1e-10 leaves room for the CG's 1e-12)."""
     solution = solve_field(STACK, np.full(32, 0.8e-6), 50e-6, VOLTAGE, model="layered_air", tol=1e-12)
     assert solution.mean_pressure == pytest.approx(float(STACK.pressure(0.8e-6, VOLTAGE)), rel=1e-10)
-    assert solution.equivalent_gap == pytest.approx(0.8e-6, rel=1e-10)
+    assert solution.field_equivalent_gap == pytest.approx(0.8e-6, rel=1e-10)
     assert solution.energy == pytest.approx(float(STACK.energy(0.8e-6, VOLTAGE)), rel=1e-10)
 
 

@@ -53,13 +53,14 @@ def test_interface_law_is_consistent(scene, law):
                        rtol=1e-4, atol=1e-6 * np.abs(law.tractions).max())
     assert np.allclose(law.stiffness(gaps), (law.traction(gaps + step) - law.traction(gaps - step)) / (2 * step),
                        rtol=1e-3)
-    for method in (law.traction, law.energy, law.equivalent_gap, law.field_gap, law.slope_squared):  # continuous
+    for method in (law.traction, law.energy, law.equivalent_gap, law.field_equivalent_gap,   # continuous
+                   law.slope_squared):
         assert method(last * (1 + 1e-9)) == pytest.approx(method(last * (1 - 1e-9)), rel=1e-6, abs=1e-12)
     assert law.contact_fraction(last * 2) == 0.0 and law.ridge_area_fraction(last * 2, 1) == 0.0
     assert law.tractions[-1] < 0 < law.tractions[0]             # attraction far away, contact pressure near
     # the layered field attracts more than Eq. 21 per pixel on every node's gap (smaller field gap; measured
     # f/e = 0.61-0.98, the largest difference near contact); the parallel-plate law's field gap is e itself
-    assert (np.array(law.field_gaps) < np.array(law.equivalent_gaps)).all()
+    assert (np.array(law.field_equivalent_gaps) < np.array(law.equivalent_gaps)).all()
     assert law.coarse_graining == closing_lengths(scene) and len(law.separations) == LAW_NODES
     for closed in law.ridge_area_fractions:                    # a closing only adds to the contact set
         assert (np.array(closed) >= np.array(law.contact_fractions)).all()
