@@ -167,16 +167,16 @@ class ElectrostaticInteraction(Interaction):
     @property
     def strength(self) -> float | None:
         """σ_el(0) [Pa], the largest attraction of the per-pixel law (at contact); None for the layered field."""
-        return float(self.stack.pressure(0.0, self.voltage)) if self.local else None
+        return float(self.stack.attraction(0.0, self.voltage)) if self.local else None
 
     def energy(self, gap) -> np.ndarray:
         return _with_wall(lambda g: self.stack.energy(g, self.voltage), gap)
 
     def traction(self, gap) -> np.ndarray:
-        return -self.stack.pressure(gap, self.voltage)
+        return -self.stack.attraction(gap, self.voltage)
 
     def stiffness(self, gap) -> np.ndarray:
-        return -self.stack.pressure_derivative(gap, self.voltage)
+        return -self.stack.attraction_derivative(gap, self.voltage)
 
 
 @dataclass(frozen=True)

@@ -57,20 +57,21 @@ def deferred_correction(scene_parts, frequency, surrogate_eps, args) -> list:
     for step in range(args.steps + 1):
         gap = result.gap
         true = solve_ac_field(stack, gap, grid.lengths, args.voltage, frequency=frequency, tol=1e-12)
-        rows.append(dict(frequency_Hz=frequency, eps_eff=surrogate_eps, step=step, mean_pressure_Pa=true.mean_pressure,
+        rows.append(dict(frequency_Hz=frequency, eps_eff=surrogate_eps, step=step,
+                         mean_pressure_Pa=true.mean_attraction,
                          contact_fraction=result.contact_fraction, field_equivalent_gap_m=true.field_equivalent_gap,
                          solver_iterations=result.iterations, converged=result.converged))
         if step == args.steps:
             break
         modelled = solve_field(surrogate, gap, grid.lengths, args.voltage, tol=1e-12)
-        correction = modelled.pressure - true.pressure          # t − t_S with t = −σ̄ (positive compressive)
+        correction = modelled.attraction - true.attraction          # t − t_S with t = −σ̄ (positive compressive)
         shifted = correction - correction.mean()
         body.displacement_into(shifted.astype(body.dtype), displacement)
         result_next = solve_contact(heights - displacement, body, mean_pressure=pressure - correction.mean(),
                                     interaction=law, x0=result, tol=args.tol, warn=False)
         rows[-1]["gap_change"] = float(np.max(np.abs(result_next.gap - gap)) / np.max(gap))
         result = result_next
-        print(f"  step {step}: gap change {rows[-1]['gap_change']:.2e}, <σ̄> {true.mean_pressure:.6g} Pa, "
+        print(f"  step {step}: gap change {rows[-1]['gap_change']:.2e}, <σ̄> {true.mean_attraction:.6g} Pa, "
               f"A/A0 {result.contact_fraction:.4f}", flush=True)
     if frequency == 0.0:
         check_equilibrium(scene_parts, result, args)

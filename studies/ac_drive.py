@@ -80,8 +80,8 @@ def sweep(patch: Patch, frequencies) -> list:
         return -float(np.mean(result.interaction_traction))
 
     measured = halfway(lambda f: mean_attraction(patch.solve(f)), mean_attraction(direct), mean_attraction(dielectric))
-    fixed_measured = halfway(lambda f: patch.field(dielectric.gap, f).mean_pressure, fixed[0.0].mean_pressure,
-                             fixed[math.inf].mean_pressure)
+    fixed_measured = halfway(lambda f: patch.field(dielectric.gap, f).mean_attraction, fixed[0.0].mean_attraction,
+                             fixed[math.inf].mean_attraction)
     rest, fixed_rest = patch.rest_thickness(direct.gap), patch.rest_thickness(dielectric.gap)
     common = dict(measured_crossover_Hz=measured, circuit_crossover_Hz=crossover_frequency(patch.stack, rest),
                   h_rest_m=rest, fixed_measured_crossover_Hz=fixed_measured, fixed_h_rest_m=fixed_rest,
@@ -90,17 +90,17 @@ def sweep(patch: Patch, frequencies) -> list:
     for frequency, result in solved.items():
         field = patch.field(result.gap, frequency)
         details = result.solver.details
-        rows.append(dict(common, frequency_Hz=frequency, mean_pressure_Pa=field.mean_pressure,
-                         ratio_to_dielectric=field.mean_pressure / fixed[math.inf].mean_pressure,
+        rows.append(dict(common, frequency_Hz=frequency, mean_pressure_Pa=field.mean_attraction,
+                         ratio_to_dielectric=field.mean_attraction / fixed[math.inf].mean_attraction,
                          contact_fraction=result.contact_fraction, equivalent_gap_m=result.equivalent_gap,
                          field_equivalent_gap_m=field.field_equivalent_gap, ac_equivalent_gap_m=field.ac_equivalent_gap,
-                         modulation_depth=field.mean_oscillation / field.mean_pressure,
+                         modulation_depth=field.mean_oscillation / field.mean_attraction,
                          corrections=details.get("corrections", 0), converged=result.converged,
-                         electrostatic_force_N=field.mean_pressure * patch.area,
-                         fixed_mean_pressure_Pa=fixed[frequency].mean_pressure,
-                         fixed_ratio_to_dielectric=fixed[frequency].mean_pressure / fixed[math.inf].mean_pressure,
+                         electrostatic_force_N=field.mean_attraction * patch.area,
+                         fixed_mean_pressure_Pa=fixed[frequency].mean_attraction,
+                         fixed_ratio_to_dielectric=fixed[frequency].mean_attraction / fixed[math.inf].mean_attraction,
                          fixed_parallel_plate_mean_pressure_Pa=patch.field(dielectric.gap, frequency,
-                                                                           "parallel_plate").mean_pressure))
+                                                                           "parallel_plate").mean_attraction))
     return rows
 
 

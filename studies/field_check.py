@@ -55,10 +55,10 @@ PATCH = dict(window=32e-6, rms_height=0.5e-6, hurst=0.8, long_cutoff=16e-6, shor
 PATCH_PRESSURES = (3e4, 1e5)                       # [Pa] nominal pressures on the patch
 
 
-def _second_order(mean_pressure, gap):
-    """S from σ̄ at a = 0.05 g0 and 0.1 g0 (Richardson: the a⁴ term removed); ``mean_pressure(a)`` [Pa]."""
+def _second_order(mean_attraction, gap):
+    """S from σ̄ at a = 0.05 g0 and 0.1 g0 (Richardson: the a⁴ term removed); ``mean_attraction(a)`` [Pa]."""
     amplitude = 0.05 * gap
-    excess = [mean_pressure(a) - mean_pressure(0.0) for a in (amplitude, 2 * amplitude)]
+    excess = [mean_attraction(a) - mean_attraction(0.0) for a in (amplitude, 2 * amplitude)]
     return (16 * excess[0] - excess[1]) / (12 * amplitude ** 2)
 
 
@@ -72,13 +72,13 @@ def sinusoid_rows(stack, wavelengths, mean_gaps, columns: int, fem_options: dict
             exact = float(second_order_attraction(stack, gap, 2 * np.pi / wavelength, voltage))
             start = time.process_time()
             fem = _second_order(lambda a: field_solve_profile(stack, gap + a * shape, wavelength, voltage,
-                                                              **fem_options).mean_pressure, gap)
+                                                              **fem_options).mean_attraction, gap)
             seconds = time.process_time() - start
             # the air-lateral solve's round-off floor is about 1e-16 q_max d_sc (its stratum-corneum stiffness)
             layered, layered_air = (_second_order(lambda a: solve_field(
-                stack, gap + a * shape, wavelength, voltage, model=model, tol=tol).mean_pressure, gap)
+                stack, gap + a * shape, wavelength, voltage, model=model, tol=tol).mean_attraction, gap)
                 for model, tol in (("layered", 1e-13), ("layered_air", 1e-11)))
-            per_pixel = float(stack.pressure_derivative(gap, voltage, 2)) / 4
+            per_pixel = float(stack.attraction_derivative(gap, voltage, 2)) / 4
             rows.append({"wavelength_um": wavelength * 1e6, "mean_gap_um": gap * 1e6, "S_exact_Pa_per_m2": exact,
                          "fem_over_exact": fem / exact, "layered_over_exact": layered / exact,
                          "layered_air_over_exact": layered_air / exact,
@@ -132,23 +132,23 @@ def profile_rows(scene, stack, pixel: float, forces, voltages, fem_options: dict
                 fine_gap = np.interp(fine_x, np.arange(gap.size + 1) * length / gap.size, np.append(gap, gap[0]))
                 fine = field_solve_profile(stack, fine_gap, length, voltage,
                                            **{key: 2 * value for key, value in fem_options.items()})
-                layered = solve_field(stack, gap, length, voltage, tol=1e-12).mean_pressure
-                layered_air = solve_field(stack, gap, length, voltage, model="layered_air", tol=1e-11).mean_pressure
-                per_pixel = float(np.mean(stack.pressure(gap, voltage)))
+                layered = solve_field(stack, gap, length, voltage, tol=1e-12).mean_attraction
+                layered_air = solve_field(stack, gap, length, voltage, model="layered_air", tol=1e-11).mean_attraction
+                per_pixel = float(np.mean(stack.attraction(gap, voltage)))
                 rows.append({
                     "profile": name, "normal_force_N": force, "solve_voltage_V": solve_voltage,
                     "cold_start": cold_start, "pixels": gap.size, "pixel_um": length / gap.size * 1e6,
                     "contact_fraction": np.mean(gap == 0),
-                    "mean_gap_um": gap.mean() * 1e6, "fem_Pa": fem.mean_pressure,
-                    "fem_maxwell_Pa": fem.mean_maxwell_pressure,
+                    "mean_gap_um": gap.mean() * 1e6, "fem_Pa": fem.mean_attraction,
+                    "fem_maxwell_Pa": fem.mean_maxwell_attraction,
                     "layered_Pa": layered, "per_pixel_Pa": per_pixel,
-                    "layered_difference": layered / fem.mean_pressure - 1,
-                    "layered_air_difference": layered_air / fem.mean_pressure - 1,
-                    "per_pixel_difference": per_pixel / fem.mean_pressure - 1,
-                    "fem_equivalent_gap_um": stack.gap_for_pressure(fem.mean_pressure, voltage) * 1e6,
-                    "layered_equivalent_gap_um": stack.gap_for_pressure(layered, voltage) * 1e6,
+                    "layered_difference": layered / fem.mean_attraction - 1,
+                    "layered_air_difference": layered_air / fem.mean_attraction - 1,
+                    "per_pixel_difference": per_pixel / fem.mean_attraction - 1,
+                    "fem_equivalent_gap_um": stack.gap_for_attraction(fem.mean_attraction, voltage) * 1e6,
+                    "layered_equivalent_gap_um": stack.gap_for_attraction(layered, voltage) * 1e6,
                     "per_pixel_equivalent_gap_um": stack.equivalent_gap(gap) * 1e6,
-                    "fem_refined_difference": fine.mean_pressure / fem.mean_pressure - 1,
+                    "fem_refined_difference": fine.mean_attraction / fem.mean_attraction - 1,
                     "fem_unknowns": fem.unknowns, "fem_cpu_s": seconds})
     return rows
 
@@ -180,17 +180,17 @@ def patch_rows(stack, columns: int, rng: int) -> list:
         fem = field_solve_patch(stack, gap, (window, window), voltage)
         seconds = time.process_time() - start
         fine = field_solve_patch(stack, _refined(gap), (window, window), voltage)
-        layered = solve_field(stack, gap, (window, window), voltage, tol=1e-12).mean_pressure
+        layered = solve_field(stack, gap, (window, window), voltage, tol=1e-12).mean_attraction
         layered_air = solve_field(stack, gap, (window, window), voltage, model="layered_air",
-                                  tol=1e-11).mean_pressure
-        per_pixel = float(np.mean(stack.pressure(gap, voltage)))
+                                  tol=1e-11).mean_attraction
+        per_pixel = float(np.mean(stack.attraction(gap, voltage)))
         rows.append({"nominal_pressure_Pa": pressure, "pixels": gap.size, "pixel_um": window / columns * 1e6,
                      "contact_fraction": np.mean(gap == 0), "mean_gap_um": gap.mean() * 1e6,
-                     "fem_Pa": fem.mean_pressure, "layered_Pa": layered, "per_pixel_Pa": per_pixel,
-                     "layered_difference": layered / fem.mean_pressure - 1,
-                     "layered_air_difference": layered_air / fem.mean_pressure - 1,
-                     "per_pixel_difference": per_pixel / fem.mean_pressure - 1,
-                     "fem_refined_difference": fine.mean_pressure / fem.mean_pressure - 1,
+                     "fem_Pa": fem.mean_attraction, "layered_Pa": layered, "per_pixel_Pa": per_pixel,
+                     "layered_difference": layered / fem.mean_attraction - 1,
+                     "layered_air_difference": layered_air / fem.mean_attraction - 1,
+                     "per_pixel_difference": per_pixel / fem.mean_attraction - 1,
+                     "fem_refined_difference": fine.mean_attraction / fem.mean_attraction - 1,
                      "fem_unknowns": fem.unknowns, "fem_refined_unknowns": fine.unknowns, "fem_cpu_s": seconds,
                      "fem_converged": fem.converged and fine.converged})
     return rows

@@ -85,8 +85,8 @@ def gap_quantities(stack, gap: np.ndarray, length: float) -> dict:
     """At ``FIELD_VOLTAGE``, on the profile or patch ``gap`` [m] of side ``length`` [m]: the mean attraction of
     the layered field and of the per-pixel law [Pa], Eq. 25's d_eq and the field-equivalent gap [µm]."""
     field = solve_field(stack, gap, length if gap.ndim == 1 else (length, length), FIELD_VOLTAGE, tol=1e-11)
-    return {"fel_layered_Pa": field.mean_pressure,
-            "fel_per_pixel_Pa": float(np.mean(stack.pressure(gap, FIELD_VOLTAGE))),
+    return {"fel_layered_Pa": field.mean_attraction,
+            "fel_per_pixel_Pa": float(np.mean(stack.attraction(gap, FIELD_VOLTAGE))),
             "deq_um": stack.equivalent_gap(gap) * 1e6, "field_deq_um": field.field_equivalent_gap * 1e6}
 
 

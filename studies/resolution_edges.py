@@ -116,11 +116,12 @@ def strip_rows(stack, pixels) -> list:
             air = (solve_field(stack, gap, STRIP_WINDOW, VOLTAGE, model="layered_air", tol=1e-10)
                    if kind == "crack" and n <= AIR_STRIP_PIXELS else None)
             rows.append({"opening": kind, "pixels": n, "pixel_nm": STRIP_WINDOW / n * 1e9,
-                         "fel_kPa": field.mean_pressure / 1e3,
-                         "fel_contact_kPa": float(field.pressure[contact].sum()) / n / 1e3,
-                         "edge_sigma_MPa": float(field.pressure[contact].max()) / 1e6,
-                         "fel_lateral_air_kPa": "" if air is None else air.mean_pressure / 1e3,
-                         "edge_sigma_lateral_air_MPa": "" if air is None else float(air.pressure[contact].max()) / 1e6})
+                         "fel_kPa": field.mean_attraction / 1e3,
+                         "fel_contact_kPa": float(field.attraction[contact].sum()) / n / 1e3,
+                         "edge_sigma_MPa": float(field.attraction[contact].max()) / 1e6,
+                         "fel_lateral_air_kPa": "" if air is None else air.mean_attraction / 1e3,
+                         "edge_sigma_lateral_air_MPa":
+                             "" if air is None else float(air.attraction[contact].max()) / 1e6})
     return rows
 
 
@@ -144,7 +145,7 @@ def fem_strip_rows(stack, pixels) -> list:
     for n in pixels:
         solution = field_solve_profile(stack, strip_gap("crack", n), STRIP_WINDOW, VOLTAGE)
         rows.append({"opening": "crack", "pixels": n, "pixel_nm": STRIP_WINDOW / n * 1e9,
-                     "fel_kPa": solution.mean_pressure / 1e3, "converged": solution.converged})
+                     "fel_kPa": solution.mean_attraction / 1e3, "converged": solution.converged})
     return rows
 
 
@@ -191,8 +192,8 @@ def equilibrium(scene, result, grid) -> dict:
     gap = np.asarray(result.gap)[:, 0]
     field = solve_field(scene.screen.stack(), gap, grid.lengths[0], VOLTAGE, tol=1e-12)
     energy = (result.elastic_energy + result.interaction_energy) / grid.area + result.mean_pressure * result.mean_gap
-    return {"converged": result.converged, "iterations": result.iterations, "fel_kPa": field.mean_pressure / 1e3,
-            "contact_fraction": result.contact_fraction, "energy_J_m2": energy}, gap, field.pressure
+    return {"converged": result.converged, "iterations": result.iterations, "fel_kPa": field.mean_attraction / 1e3,
+            "contact_fraction": result.contact_fraction, "energy_J_m2": energy}, gap, field.attraction
 
 
 def edge_measures(gap: np.ndarray, pressure: np.ndarray, spacing: float) -> dict:

@@ -196,9 +196,9 @@ class ACFieldSolution(FieldSolution):
     """The field of the stack over one gap field under a sinusoidal drive of RMS ``voltage`` U [V] at
     ``frequency`` [Hz] (``solve_ac_field``; 0 is a DC voltage U, inf the dielectric model). SI units.
 
-    ``flux`` is the RMS phasor D̂ [C/m²] (complex), ``pressure`` the time-averaged attraction σ̄ [Pa] per pixel
+    ``flux`` is the RMS phasor D̂ [C/m²] (complex), ``attraction`` the time-averaged attraction σ̄ [Pa] per pixel
     and ``oscillation`` the complex amplitude σ̂₂ [Pa] of its 2ω component, σ(t) = σ̄ + Re(σ̂₂ e^{2iωt}) (zero at
-    DC). ``mean_pressure``, ``electrostatic_force`` and ``field_equivalent_gap`` are those of σ̄ (the uniform gap
+    DC). ``mean_attraction``, ``electrostatic_force`` and ``field_equivalent_gap`` are those of σ̄ (the uniform gap
     whose Eq. 21 attraction at U is ⟨σ̄⟩)."""
 
     frequency: float
@@ -224,7 +224,7 @@ class ACFieldSolution(FieldSolution):
             return float("nan")
         stack = self.stack
         offset = inverse_permittivity(stack, self.frequency) * stack.d_sc + stack.d_i / stack.eps_i    # a [m]
-        thickness = abs(self.voltage) * math.sqrt(EPSILON_0 / (2 * stack.eps_a * self.mean_pressure))   # |h| [m]
+        thickness = abs(self.voltage) * math.sqrt(EPSILON_0 / (2 * stack.eps_a * self.mean_attraction))   # |h| [m]
         if thickness < abs(offset.imag):
             return float("nan")
         return float(stack.eps_a * (math.sqrt(thickness ** 2 - offset.imag ** 2) - offset.real))
@@ -241,7 +241,7 @@ def solve_ac_field(stack: DielectricStack, gap, lengths=None, voltage: float = 1
                    backend: str = "pyfftw") -> ACFieldSolution:
     """The field of ``stack`` over the air-gap field ``gap`` [m] under a sinusoidal drive of RMS ``voltage`` U [V]
     at ``frequency`` [Hz] (module docstring): 0 is a DC voltage U, ``math.inf`` the dielectric model (then
-    ``pressure`` equals :func:`~roughcontact.electrostatics.field.solve_field`'s).
+    ``attraction`` equals :func:`~roughcontact.electrostatics.field.solve_field`'s).
 
     ``gap``, ``lengths``, ``periodic``, ``model``, ``tol``, ``maxiter`` and ``backend`` as for ``solve_field``.
     """
@@ -258,6 +258,7 @@ def solve_ac_field(stack: DielectricStack, gap, lengths=None, voltage: float = 1
         oscillation = np.zeros_like(oscillation)        # a DC voltage: the force does not oscillate
     squared_voltage = voltage ** 2
     return ACFieldSolution(model=field.model, voltage=voltage, stack=stack, grid=grid,
-                           flux=(voltage * unit_flux).reshape(shape), pressure=(squared_voltage * mean).reshape(shape),
-                           iterations=iterations, residual=residual, frequency=field.frequency,
+                           flux=(voltage * unit_flux).reshape(shape),
+                           attraction=(squared_voltage * mean).reshape(shape), iterations=iterations,
+                           residual=residual, frequency=field.frequency,
                            oscillation=(squared_voltage * oscillation).reshape(shape))

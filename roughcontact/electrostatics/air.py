@@ -161,9 +161,9 @@ class LateralAirField:
         flux_sc = self._fourier(stiff_sc, voltage - phi - delta)                  # K_sc (U − φ_s), × 1/ε0
         column_flux = flux_sc - self._lateral(edges, phi, delta)[1]             # the flux that holds Δ = 0 at contact
         safe = np.where(open_, gap, 1.0)
-        pressure = np.where(open_, eps_a * delta ** 2 / (2 * safe ** 2), column_flux ** 2 / (2 * eps_a))
-        pressure -= self._lateral_opening(edges, phi, delta)
-        return EPSILON_0 * flux_sc, EPSILON_0 * pressure, steps[0], residual
+        attraction = np.where(open_, eps_a * delta ** 2 / (2 * safe ** 2), column_flux ** 2 / (2 * eps_a))
+        attraction -= self._lateral_opening(edges, phi, delta)
+        return EPSILON_0 * flux_sc, EPSILON_0 * attraction, steps[0], residual
 
     def _lateral_opening(self, edges, phi, delta) -> np.ndarray:
         """∂/∂g_k of the lateral terms at fixed potentials (× N/ε0): each edge's energy ½ w (a² + ab + b²/3)

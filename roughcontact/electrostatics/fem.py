@@ -43,14 +43,14 @@ CONTACT_GAP = 1e-9
 class PatchFieldSolution:
     """Field solve over a 2-D gap field (x, y, z); SI units.
 
-    ``mean_pressure`` σ̄ [Pa] (virtual work, positive = attraction), ``pressure`` the attraction per column
+    ``mean_attraction`` σ̄ [Pa] (virtual work, positive = attraction), ``attraction`` the attraction per column
     [Pa] (the virtual work of moving one column of skin nodes, over its tributary area; shaped like the gap, its
     area-weighted mean is σ̄), ``gap`` [m], ``energy`` E [J], ``nodes``, ``elements`` (simplices kept),
     ``unknowns``, and the solver's ``converged``, ``iterations`` and relative ``residual``.
     """
 
-    mean_pressure: float
-    pressure: np.ndarray
+    mean_attraction: float
+    attraction: np.ndarray
     gap: np.ndarray
     energy: float
     nodes: int
@@ -64,15 +64,15 @@ class PatchFieldSolution:
 @dataclass(frozen=True)
 class ProfileFieldSolution(PatchFieldSolution):
     """Field solve over a 1-D gap profile (x, z); the fields of :class:`PatchFieldSolution` per unit depth in y
-    (``pressure`` per column over its tributary width, ``energy`` E [J/m]), and ``x`` the column positions
-    [m]. ``maxwell_pressure`` [Pa] is the independent air-side Maxwell traction on the skin per interval between
+    (``attraction`` per column over its tributary width, ``energy`` E [J/m]), and ``x`` the column positions
+    [m]. ``maxwell_attraction`` [Pa] is the independent air-side Maxwell traction on the skin per interval between
     columns (the field of the air triangle under it; the zero-area ones at contact take their limiting field),
-    ``mean_maxwell_pressure`` its mean; it converges to σ̄ with the mesh.
+    ``mean_maxwell_attraction`` its mean; it converges to σ̄ with the mesh.
     """
 
     x: np.ndarray
-    maxwell_pressure: np.ndarray
-    mean_maxwell_pressure: float
+    maxwell_attraction: np.ndarray
+    mean_maxwell_attraction: float
 
 
 @dataclass(frozen=True)
@@ -243,7 +243,7 @@ def _opening_derivative(mesh, degenerate, potential, residual):
     return share, np.concatenate([alpha - beta * vertical[slot][:, None], vertical[slot][:, None]], axis=1)
 
 
-def _maxwell_pressure(mesh, gradient, eps_air):
+def _maxwell_attraction(mesh, gradient, eps_air):
     """Air-side Maxwell traction on the skin per interval between columns [Pa], attractive positive:
     ``ε0 eps_a [½ (E_z² - E_x²) - E_x E_z g']`` from the top air row's triangle under each interval."""
     intervals, rows = mesh.node_shape[0] - 1, mesh.rows
@@ -363,14 +363,14 @@ def field_solve_profile(stack: DielectricStack, gap, length: float, voltage: flo
     solved = _solve_stack(stack, gap, (spacing,), periodic, voltage, rows, sc_first, solver, tol, maxiter,
                           "field_solve_profile")
     mesh = solved.mesh
-    maxwell = _maxwell_pressure(mesh, solved.gradient, stack.eps_a)
+    maxwell = _maxwell_attraction(mesh, solved.gradient, stack.eps_a)
     return ProfileFieldSolution(
-        mean_pressure=-float(solved.derivative.sum()) / length,
-        pressure=-solved.derivative / _tributary(gap.size, spacing, periodic),
+        mean_attraction=-float(solved.derivative.sum()) / length,
+        attraction=-solved.derivative / _tributary(gap.size, spacing, periodic),
         x=mesh.points[0, ::mesh.rows][:gap.size], gap=gap.copy(),
         energy=solved.energy, nodes=int(mesh.points.shape[1]), elements=solved.elements, unknowns=solved.unknowns,
         converged=solved.converged, iterations=solved.iterations, residual=solved.residual,
-        maxwell_pressure=maxwell, mean_maxwell_pressure=float(maxwell.sum() * spacing / length))
+        maxwell_attraction=maxwell, mean_maxwell_attraction=float(maxwell.sum() * spacing / length))
 
 
 def field_solve_patch(stack: DielectricStack, gap, lengths, voltage: float, periodic: bool = True,
@@ -398,7 +398,7 @@ def field_solve_patch(stack: DielectricStack, gap, lengths, voltage: float, peri
                           "field_solve_patch")
     area = np.outer(*[_tributary(n, h, periodic) for n, h in zip(gap.shape, spacing)])
     return PatchFieldSolution(
-        mean_pressure=-float(solved.derivative.sum()) / (lengths[0] * lengths[1]),
-        pressure=-solved.derivative.reshape(gap.shape) / area, gap=gap.copy(), energy=solved.energy,
+        mean_attraction=-float(solved.derivative.sum()) / (lengths[0] * lengths[1]),
+        attraction=-solved.derivative.reshape(gap.shape) / area, gap=gap.copy(), energy=solved.energy,
         nodes=int(solved.mesh.points.shape[1]), elements=solved.elements, unknowns=solved.unknowns,
         converged=solved.converged, iterations=solved.iterations, residual=solved.residual)

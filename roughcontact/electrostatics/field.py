@@ -361,8 +361,8 @@ class FieldSolution:
     """The field of the stack over one gap field at one voltage (``solve_field``). SI units.
 
     ``flux`` D [C/m²] (through the air column; for ``"layered_air"`` the flux leaving the stratum corneum) and
-    ``pressure`` σ_el [Pa] (the attraction, N ∂W/∂g) per pixel, shaped like the gap given;
-    ``traction`` −σ_el in the contact solver's convention (positive compressive). ``mean_pressure`` and
+    ``attraction`` σ_el [Pa] (N ∂W/∂g) per pixel, shaped like the gap given;
+    ``traction`` −σ_el in the contact solver's convention (positive compressive). ``mean_attraction`` and
     ``energy`` (W = −½ U ⟨D⟩ [J/m²]) are averages over the window (the apparent area).
     """
 
@@ -371,25 +371,25 @@ class FieldSolution:
     stack: DielectricStack
     grid: Grid
     flux: np.ndarray
-    pressure: np.ndarray
+    attraction: np.ndarray
     iterations: int
     residual: float
 
     @property
     def traction(self) -> np.ndarray:
         """−σ_el [Pa]: the attraction as a traction on the skin (positive compressive)."""
-        return -self.pressure
+        return -self.attraction
 
     @property
-    def mean_pressure(self) -> float:
+    def mean_attraction(self) -> float:
         """⟨σ_el⟩ [Pa] over the window: F_el / A0."""
-        return float(np.mean(self.pressure))
+        return float(np.mean(self.attraction))
 
     @property
     def electrostatic_force(self) -> float:
         """F_el = ⟨σ_el⟩ A0 [N] on the window (per unit length [N/m] for a profile: ⟨σ_el⟩ L)."""
         length_x, length_y = self.grid.lengths
-        return self.mean_pressure * (length_x if self.grid.is_profile else length_x * length_y)
+        return self.mean_attraction * (length_x if self.grid.is_profile else length_x * length_y)
 
     @property
     def energy(self) -> float:
@@ -404,7 +404,7 @@ class FieldSolution:
         """
         if self.voltage == 0.0:
             return float("nan")
-        return self.stack.gap_for_pressure(self.mean_pressure, self.voltage)
+        return self.stack.gap_for_attraction(self.mean_attraction, self.voltage)
 
 
 def solve_field(stack: DielectricStack, gap, lengths=None, voltage: float = 1.0, model: str = "layered",
@@ -425,17 +425,17 @@ def solve_field(stack: DielectricStack, gap, lengths=None, voltage: float = 1.0,
     tol = check_real("tol", tol, low=0.0, low_open=True)
     maxiter = None if maxiter is None else check_integer("maxiter", maxiter, low=1)
     if model == "layered_air":
-        flux, pressure, iterations, residual = LateralAirField(stack, grid, backend=backend).solve(
+        flux, attraction, iterations, residual = LateralAirField(stack, grid, backend=backend).solve(
             gap, voltage, tol, maxiter)
     else:
         field = StackField(stack, grid, model=model, backend=backend, threads=1)
         unit_flux, iterations, residual = field.solve(gap, tol=tol, maxiter=maxiter)
-        flux, pressure = voltage * unit_flux, voltage ** 2 * field.attraction(gap, unit_flux)
+        flux, attraction = voltage * unit_flux, voltage ** 2 * field.attraction(gap, unit_flux)
     if residual > tol:
         warnings.warn(f"field solve stopped at relative residual {residual:.3g} > tol = {tol:g} after "
                       f"{iterations} iterations", ConvergenceWarning, stacklevel=2)
     return FieldSolution(model=model, voltage=voltage, stack=stack, grid=grid, flux=flux.reshape(shape),
-                         pressure=pressure.reshape(shape), iterations=iterations, residual=residual)
+                         attraction=attraction.reshape(shape), iterations=iterations, residual=residual)
 
 
 def _grid_and_gap(gap, lengths, periodic) -> tuple:

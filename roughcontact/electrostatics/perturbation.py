@@ -10,7 +10,7 @@ and the mean attraction (a rigid shift of the skin, g0 -> g0 + δ, at fixed a) i
 
     σ̄(a) = -dW/dg0 = σ_el(g0) + a² S(q, g0) + O(a⁴),   S = -∂W2/∂g0,
 
-σ_el the parallel-plate pressure of seed Eq. 21. With e0 = U/h and Q(z) the amplitude of the first-order
+σ_el the parallel-plate attraction of seed Eq. 21. With e0 = U/h and Q(z) the amplitude of the first-order
 (Eulerian) potential perturbation, harmonic in each layer (Q'' = q² Q) with
 
     Q(-d_i) = 0,   Q(g0 + d_sc) = -e0/eps_sc,   [eps Q'] = 0 at both interfaces,
@@ -104,7 +104,7 @@ def second_order_attraction(stack: DielectricStack, mean_gap, wavenumber, voltag
 def mean_attraction(stack: DielectricStack, mean_gap, amplitude, wavenumber, voltage) -> np.ndarray:
     """``σ̄ = σ_el(g0) + a² S`` [Pa], the mean attraction to second order in the amplitude a [m] (a <= g0)."""
     amplitude = check_finite_array("amplitude", amplitude, nonnegative=True)
-    return stack.pressure(mean_gap, voltage) + amplitude ** 2 * second_order_attraction(
+    return stack.attraction(mean_gap, voltage) + amplitude ** 2 * second_order_attraction(
         stack, mean_gap, wavenumber, voltage)
 
 

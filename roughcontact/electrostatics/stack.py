@@ -3,7 +3,7 @@
 All quantities SI. ``gap`` is the air-gap thickness d_a [m] (>= 0, zero at contact points), ``voltage`` the
 voltage U across the stack [V] (only U² enters). Everything broadcasts over ``gap`` and ``voltage`` arrays.
 
-Sign convention (``docs/reference/conventions.md``): :meth:`DielectricStack.pressure` returns the *magnitude* of the
+Sign convention (``docs/reference/conventions.md``): :meth:`DielectricStack.attraction` returns the *magnitude* of the
 attractive electrostatic stress σ_el >= 0. As a surface traction in the contact solver's convention
 (positive = compressive) it enters as ``-σ_el``. The interaction energy per unit area is
 ``V(d) = -w(d)`` (:meth:`DielectricStack.energy`) and ``σ_el = dV/dd``.
@@ -124,12 +124,12 @@ class DielectricStack:
                               insulator=field_air_equivalent / self.eps_i,
                               displacement=EPSILON_0 * field_air_equivalent)
 
-    def pressure(self, gap, voltage) -> np.ndarray:
+    def attraction(self, gap, voltage) -> np.ndarray:
         """Electrostatic attraction per unit area σ_el = ε0 U² / (2 eps_a h(d)²) [Pa] (Eq. 21)."""
         thickness, voltage = self._inputs(gap, voltage)
-        return self._times_voltage_squared("pressure", EPSILON_0 / (2 * self.eps_a * thickness ** 2), voltage)
+        return self._times_voltage_squared("attraction", EPSILON_0 / (2 * self.eps_a * thickness ** 2), voltage)
 
-    def pressure_derivative(self, gap, voltage, order: int = 1) -> np.ndarray:
+    def attraction_derivative(self, gap, voltage, order: int = 1) -> np.ndarray:
         """d^k σ_el / dd^k for k = 1, 2 [Pa/m^k]; the 1/eps_a chain-rule factor from dh/dd is included.
 
         ``dσ/dd = -2 σ / (eps_a h)``, ``d²σ/dd² = 6 σ / (eps_a h)²``.
@@ -141,17 +141,17 @@ class DielectricStack:
         sigma_per_volt_squared = EPSILON_0 / (2 * self.eps_a * thickness ** 2)
         per_volt_squared = -2 * sigma_per_volt_squared / eps_a_h if order == 1 else \
             6 * sigma_per_volt_squared / eps_a_h ** 2
-        return self._times_voltage_squared(f"pressure derivative of order {order}", per_volt_squared, voltage)
+        return self._times_voltage_squared(f"attraction derivative of order {order}", per_volt_squared, voltage)
 
     def force(self, gap, voltage, area) -> np.ndarray:
         """Electrostatic force F_el = σ_el A [N] on a plate of ``area`` [m²] (Eq. 20)."""
         gap, voltage, area = check_broadcast(gap=gap, voltage=voltage,
                                              area=check_finite_array("area", area, nonnegative=True))
-        return self.pressure(gap, voltage) * area
+        return self.attraction(gap, voltage) * area
 
-    def strong_troxel_pressure(self, voltage) -> np.ndarray:
+    def strong_troxel_attraction(self, voltage) -> np.ndarray:
         """Direct-contact limit σ_el(d = 0) = ε0 U² / (2 eps_a c²) [Pa] (Eq. 23; Eq. 24 for eps_a = 1)."""
-        return self.pressure(0.0, voltage)
+        return self.attraction(0.0, voltage)
 
     def work_of_adhesion(self, gap, voltage) -> np.ndarray:
         """Work of electroadhesion w(d) = ∫_d^∞ σ_el dd' = ε0 U² / (2 h(d)) [J/m²] (Eq. 22)."""
@@ -162,13 +162,13 @@ class DielectricStack:
         """Interaction energy per unit area V(d) = -w(d) [J/m²]; ``dV/dd = σ_el``."""
         return -self.work_of_adhesion(gap, voltage)
 
-    def gap_for_pressure(self, mean_pressure: float, voltage: float) -> float:
-        """The uniform gap d [m] whose Eq. 21 attraction at ``voltage`` is ``mean_pressure`` [Pa] (Eq. 21 inverted):
+    def gap_for_attraction(self, mean_attraction: float, voltage: float) -> float:
+        """The uniform gap d [m] whose Eq. 21 attraction at ``voltage`` is ``mean_attraction`` [Pa] (Eq. 21 inverted):
         d = eps_a (|U| sqrt(ε0 / (2 eps_a σ)) − c). Negative for σ above full contact's (Eq. 23); ``nan`` at U = 0."""
         if voltage == 0.0:
             return float("nan")
-        mean_pressure = check_positive("mean_pressure", mean_pressure)
-        thickness = abs(float(voltage)) * np.sqrt(EPSILON_0 / (2 * self.eps_a * mean_pressure))
+        mean_attraction = check_positive("mean_attraction", mean_attraction)
+        thickness = abs(float(voltage)) * np.sqrt(EPSILON_0 / (2 * self.eps_a * mean_attraction))
         return float(self.eps_a * (thickness - self.dielectric_offset))
 
     # -- Eq. 25 --------------------------------------------------------------------------------------------

@@ -42,7 +42,7 @@ from .power_law import MILLIMETRE, PowerLawContact
 class SlidingState(SavableResult):
     """State of the sliding contact at given (F_N, U); arrays broadcast over both (SI units).
 
-    ``gap`` d_eq [m], ``pressure`` σ_el [Pa], ``work_of_adhesion`` w [J/m²], ``initial_area`` A_R0 [m²] (before
+    ``gap`` d_eq [m], ``attraction`` σ_el [Pa], ``work_of_adhesion`` w [J/m²], ``initial_area`` A_R0 [m²] (before
     tangential loading), ``area`` A_R [m²] (sliding), ``tangential_force`` F_T [N], ``electrostatic_force``
     F_el = σ_el A_R [N], ``friction_coefficient`` μ = F_T/F_N (Eq. 42; +inf at F_N = 0 with F_T > 0, μ0 at
     F_N = F_T = 0), ``area_saturated`` where the reduction law hit A_R = 0.
@@ -51,7 +51,7 @@ class SlidingState(SavableResult):
     normal_force: np.ndarray
     voltage: np.ndarray
     gap: np.ndarray
-    pressure: np.ndarray
+    attraction: np.ndarray
     work_of_adhesion: np.ndarray
     initial_area: np.ndarray
     area: np.ndarray
@@ -122,7 +122,7 @@ class SlidingFrictionModel:
         """Full sliding state at normal force F_N [N] and voltage U [V] (Eqs. 21–22, 9, 40–45)."""
         force, voltage = _inputs(normal_force, voltage)
         gap = self.gap(force, voltage)
-        sigma = self.stack.pressure(gap, voltage)
+        sigma = self.stack.attraction(gap, voltage)
         w = self.stack.work_of_adhesion(gap, voltage)
         initial_area = self.contact.area(force, w)
         kappa = self.tau0 + self.mu0 * sigma                     # shear stress per unit ridge area [Pa]
@@ -141,7 +141,7 @@ class SlidingFrictionModel:
             area = np.where(loaded & ~saturated, initial_area - self.c2 * tangential ** 2 / initial_area, 0.0)
             excess = tangential - self.mu0 * force
             mu = np.where(force > 0, tangential / force, np.where(excess > 0, np.inf, self.mu0))
-        return SlidingState(normal_force=force.copy(), voltage=voltage.copy(), gap=gap, pressure=sigma,
+        return SlidingState(normal_force=force.copy(), voltage=voltage.copy(), gap=gap, attraction=sigma,
                             work_of_adhesion=w, initial_area=initial_area, area=np.maximum(area, 0.0),
                             tangential_force=tangential, electrostatic_force=sigma * np.maximum(area, 0.0),
                             friction_coefficient=mu, area_saturated=saturated)

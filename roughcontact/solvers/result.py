@@ -215,10 +215,10 @@ class ContactResult(SavableResult):
         solve used: Eq. 21 of ``gap`` pixel by pixel, or the layered field (the solved traction)."""
         stack, voltage = self._electrostatics()
         if self.interaction.local:
-            pressure = stack.pressure(self.gap, voltage)
+            attraction = stack.attraction(self.gap, voltage)
         else:
-            pressure = -np.asarray(self.interaction_traction, dtype=np.float64)
-        return float(np.sum(pressure, dtype=np.float64)) * self.grid.pixel_area
+            attraction = -np.asarray(self.interaction_traction, dtype=np.float64)
+        return float(np.sum(attraction, dtype=np.float64)) * self.grid.pixel_area
 
     @property
     def equivalent_gap(self) -> float:
@@ -235,7 +235,7 @@ class ContactResult(SavableResult):
         stack, voltage = self._electrostatics()
         if voltage == 0.0:
             return math.nan
-        return stack.gap_for_pressure(self.electrostatic_force / self.grid.area, voltage)
+        return stack.gap_for_attraction(self.electrostatic_force / self.grid.area, voltage)
 
     def _electrostatics(self):
         if not isinstance(self.interaction, ElectrostaticInteraction):

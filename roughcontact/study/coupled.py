@@ -103,7 +103,7 @@ class InterfaceLaw(Interaction):
     @property
     def _tail_scale(self) -> float:
         """Factor on −σ_el beyond the table that makes the traction continuous there (0 at 0 V)."""
-        sigma = float(self.stack.pressure(self.separations[-1], self.voltage))
+        sigma = float(self.stack.attraction(self.separations[-1], self.voltage))
         return -self.tractions[-1] / sigma if sigma > 0 else 0.0
 
     def _inside(self, name, gap):
@@ -113,11 +113,11 @@ class InterfaceLaw(Interaction):
 
     def traction(self, gap) -> np.ndarray:
         inside, far = self._inside("traction", gap)
-        return np.where(far, -self._tail_scale * self.stack.pressure(gap, self.voltage), inside)
+        return np.where(far, -self._tail_scale * self.stack.attraction(gap, self.voltage), inside)
 
     def stiffness(self, gap) -> np.ndarray:
         inside, far = self._inside("stiffness", gap)
-        return np.where(far, -self._tail_scale * self.stack.pressure_derivative(gap, self.voltage), inside)
+        return np.where(far, -self._tail_scale * self.stack.attraction_derivative(gap, self.voltage), inside)
 
     def energy(self, gap) -> np.ndarray:
         gap = np.asarray(gap, dtype=float)
@@ -183,7 +183,7 @@ def interface_law(heights, body, stack, voltage: float, nodes: int = LAW_NODES, 
         gap, contact = np.asarray(result.gap), np.asarray(result.contact)
         rows.append((result.mean_pressure, stack.equivalent_gap(gap), result.contact_fraction,
                      gap_slope(gap, (offset + gap) ** -2.0, spacing) ** 2,
-                     stack.gap_for_pressure(unit_attraction(stack, field, result, voltage), 1.0),
+                     stack.gap_for_attraction(unit_attraction(stack, field, result, voltage), 1.0),
                      *(ridge_area_fraction(contact, spacing[0], length) for length in coarse_graining)))
         previous, converged = result, converged and bool(result.converged)
     columns = [tuple(float(v) for v in column[::-1]) for column in zip(*rows)]
@@ -341,8 +341,9 @@ def ridge_chain(scene, law: InterfaceLaw, threads: int | None = None, grid=None,
             ridge_equivalent_gap=ridge_equivalent_gap(stack, d_field, fractions[0]),
             mean_gap=float(np.mean([p.mean_gap for p in points])),
             contact_fraction=float(np.mean([p.contact_fraction for p in points])), ridge_area_fractions=fractions,
-            electrostatic_pressure=float(stack.pressure(d_field, law.voltage)),
-            pixel_law_pressure=float(stack.pressure(d_eq, law.voltage)), field_ratio=field_ratio(stack, d_field, d_eq),
+            electrostatic_pressure=float(stack.attraction(d_field, law.voltage)),
+            pixel_law_pressure=float(stack.attraction(d_eq, law.voltage)),
+            field_ratio=field_ratio(stack, d_field, d_eq),
             gap_slope=float(np.mean([p.gap_slope for p in points])),
             converged=law.converged and all(p.converged for p in points),
             iterations=sum(p.iterations for p in points), unstable_steps=sum(p.unstable_steps for p in points),

@@ -111,8 +111,8 @@ def assumption_errors(result: StudyResult) -> dict:
     d_field = result.summary("field_equivalent_gap")[0]
     mean_gap = result.summary("mean_gap")[0]
     with np.errstate(divide="ignore", invalid="ignore"):
-        constant = stack.pressure(np.maximum(d_field[:, :1], 0.0), voltages) / sigma - 1
-        naive = stack.pressure(mean_gap, voltages) / sigma - 1
+        constant = stack.attraction(np.maximum(d_field[:, :1], 0.0), voltages) / sigma - 1
+        naive = stack.attraction(mean_gap, voltages) / sigma - 1
         per_pixel = result.summary("pixel_law_pressure")[0] / sigma - 1
     on = result.voltages > 0
     return {name: np.where(on[None, :], error, np.nan)

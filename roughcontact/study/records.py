@@ -40,8 +40,8 @@ def unit_attraction(stack, field: str, result, voltage: float, frequency: float 
     gap = np.asarray(result.gap, dtype=np.float64)
     if frequency is not None:
         return solve_ac_field(stack, gap, grid.lengths, 1.0, frequency=frequency, model=field,
-                              periodic=grid.periodic).mean_pressure
-    return solve_field(stack, gap, grid.lengths, 1.0, model=field, periodic=grid.periodic).mean_pressure
+                              periodic=grid.periodic).mean_attraction
+    return solve_field(stack, gap, grid.lengths, 1.0, model=field, periodic=grid.periodic).mean_attraction
 
 
 def field_ratio(stack, field_equivalent_gap: float, equivalent_gap: float) -> float:
@@ -97,14 +97,14 @@ def patch_record(stack, field, voltage, results, lengths, spacing, solves, secon
     offset = stack.eps_a * stack.dielectric_offset
     attraction = float(np.mean([unit_attraction(stack, field, res, voltage, frequency)   # rings: equal area
                                 for res in results]))
-    d_field = stack.gap_for_pressure(attraction, 1.0)
+    d_field = stack.gap_for_attraction(attraction, 1.0)
     return PatchRecord(
         equivalent_gap=float(d_eq), field_equivalent_gap=d_field,
         ridge_equivalent_gap=ridge_equivalent_gap(stack, max(d_field, 0.0), fractions[0]),
         mean_gap=float(gaps.mean()),
         contact_fraction=float(np.mean([res.contact_fraction for res in results])), ridge_area_fractions=fractions,
         electrostatic_pressure=attraction * voltage ** 2,
-        pixel_law_pressure=float(np.mean(stack.pressure(gaps, voltage))),
+        pixel_law_pressure=float(np.mean(stack.attraction(gaps, voltage))),
         field_ratio=field_ratio(stack, d_field, d_eq),
         gap_slope=float(np.mean([gap_slope(g, (offset + g) ** -2.0, spacing, periodic) for g in gaps])),
         converged=all(bool(res.converged) for res in results), iterations=int(sum(res.iterations for res in results)),

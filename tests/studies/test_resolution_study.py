@@ -40,8 +40,8 @@ def test_fast_run_rows_and_their_consistency(study, read_csv):
     for row in rows:
         # Eq. 25 and the field-equivalent gap invert Eq. 21 at the mean attraction of their model
         per_pixel, layered = float(row["fel_per_pixel_Pa"]), float(row["fel_layered_Pa"])
-        assert float(stack.pressure(float(row["deq_um"]) * 1e-6, 200.0)) == pytest.approx(per_pixel, rel=1e-9)
-        assert float(stack.pressure(float(row["field_deq_um"]) * 1e-6, 200.0)) == pytest.approx(layered, rel=1e-9)
+        assert float(stack.attraction(float(row["deq_um"]) * 1e-6, 200.0)) == pytest.approx(per_pixel, rel=1e-9)
+        assert float(stack.attraction(float(row["field_deq_um"]) * 1e-6, 200.0)) == pytest.approx(layered, rel=1e-9)
         # the stratum corneum's lateral conduction: the layered field attracts more than the per-pixel law
         assert layered > 1.2 * per_pixel
     by_law = {(row["normal_force_N"], row["law"], row["pixels"]): row for row in rows}

@@ -58,12 +58,12 @@ def test_uniform_gap_is_the_series_circuit(stack, model, shape):
         flux = circuit_flux(stack, gap, 70.0, frequency) if frequency < math.inf else \
             EPSILON_0 * 70.0 / stack.electrical_thickness(gap)
         assert solution.flux == pytest.approx(np.full(shape, flux), rel=1e-12, abs=0)
-        assert solution.mean_pressure == pytest.approx(abs(flux) ** 2 / (2 * EPSILON_0 * stack.eps_a), rel=1e-12)
+        assert solution.mean_attraction == pytest.approx(abs(flux) ** 2 / (2 * EPSILON_0 * stack.eps_a), rel=1e-12)
         oscillation = 0.0 if frequency == 0 else flux ** 2 / (2 * EPSILON_0 * stack.eps_a)
         assert np.mean(solution.oscillation) == pytest.approx(oscillation, rel=1e-12, abs=1e-12 * abs(oscillation))
         assert solution.ac_equivalent_gap == pytest.approx(gap, rel=1e-12)    # the circuit inverted
     # the RMS convention: at ω = ∞ the time average is the seed's Eq. 21 at U
-    assert solution.mean_pressure == pytest.approx(float(stack.pressure(gap, 70.0)), rel=1e-12)
+    assert solution.mean_attraction == pytest.approx(float(stack.attraction(gap, 70.0)), rel=1e-12)
 
 
 def test_the_crossover_separates_the_limits_as_a_lorentzian():
@@ -71,10 +71,10 @@ def test_the_crossover_separates_the_limits_as_a_lorentzian():
     difference of limits 7 % apart loses 1.5 digits of the 1e-12 solves)."""
     gap = np.full((8, 8), 2e-6)
     rest = 2e-6 + TABLE1.d_i / TABLE1.eps_i
-    limits = [solve_ac_field(TABLE1, gap, (1e-4, 1e-4), frequency=f).mean_pressure for f in (0.0, math.inf)]
+    limits = [solve_ac_field(TABLE1, gap, (1e-4, 1e-4), frequency=f).mean_attraction for f in (0.0, math.inf)]
     crossover = crossover_frequency(TABLE1, rest)
     for ratio in (0.1, 1.0, 3.0):
-        mean = solve_ac_field(TABLE1, gap, (1e-4, 1e-4), frequency=ratio * crossover).mean_pressure
+        mean = solve_ac_field(TABLE1, gap, (1e-4, 1e-4), frequency=ratio * crossover).mean_attraction
         assert (mean - limits[1]) / (limits[0] - limits[1]) == pytest.approx(1 / (1 + ratio ** 2), rel=1e-9)
 
 
@@ -88,8 +88,8 @@ def test_limits_on_a_rough_gap_with_contact(rough, periodic):
     lengths = grid.lengths
 
     def close(solution, reference):
-        scale = reference.pressure.max()
-        np.testing.assert_allclose(solution.pressure, reference.pressure, rtol=0, atol=1e-10 * scale)
+        scale = reference.attraction.max()
+        np.testing.assert_allclose(solution.attraction, reference.attraction, rtol=0, atol=1e-10 * scale)
         np.testing.assert_allclose(solution.flux, reference.flux, rtol=0, atol=1e-10 * np.abs(reference.flux).max())
 
     dielectric = solve_field(TABLE1, gap, lengths, 100.0, periodic=periodic, tol=1e-13)
@@ -98,12 +98,12 @@ def test_limits_on_a_rough_gap_with_contact(rough, periodic):
     for frequency, reference in ((math.inf, dielectric), (1e15, dielectric), (1e-12, conductor), (0.0, conductor)):
         solution = solve_ac_field(TABLE1, gap, lengths, 100.0, frequency=frequency, periodic=periodic, tol=1e-13)
         close(solution, reference)
-    assert conductor.mean_pressure > 1.1 * dielectric.mean_pressure
+    assert conductor.mean_attraction > 1.1 * dielectric.mean_attraction
     # a lossless stack and a sinusoid of vanishing frequency oscillate fully in phase; DC does not oscillate
     for frequency in (math.inf, 1e-12):
         solution = solve_ac_field(TABLE1, gap, lengths, 100.0, frequency=frequency, periodic=periodic, tol=1e-13)
-        np.testing.assert_allclose(solution.oscillation, solution.pressure, rtol=0,
-                                   atol=1e-10 * solution.pressure.max())
+        np.testing.assert_allclose(solution.oscillation, solution.attraction, rtol=0,
+                                   atol=1e-10 * solution.attraction.max())
     assert not np.any(solve_ac_field(TABLE1, gap, lengths, 100.0, frequency=0.0, periodic=periodic).oscillation)
 
 
@@ -149,13 +149,13 @@ def test_time_average_against_a_time_integration_of_the_columns():
     mean, oscillation = force.mean(axis=0), 2 * np.mean(force * np.exp(-2j * omega * times)[:, None], axis=0)
     solution = solve_ac_field(stack, gap, length, voltage, frequency=frequency, tol=1e-13)
     scale = mean.max()
-    np.testing.assert_allclose(solution.pressure, mean, rtol=0, atol=1e-9 * scale)
+    np.testing.assert_allclose(solution.attraction, mean, rtol=0, atol=1e-9 * scale)
     np.testing.assert_allclose(solution.oscillation, oscillation, rtol=0, atol=1e-9 * scale)
     assert abs(np.angle(np.mean(oscillation))) > 1e-3       # the 2ω force lags: a check of the phase, too
 
 
 def mean_attraction(stack, gap, lengths, frequency):
-    return solve_ac_field(stack, gap, lengths, 100.0, frequency=frequency, tol=1e-12).mean_pressure
+    return solve_ac_field(stack, gap, lengths, 100.0, frequency=frequency, tol=1e-12).mean_attraction
 
 
 def measured_crossover(stack, gap, lengths):
@@ -209,10 +209,10 @@ def test_scipy_backend_agrees(rough, periodic):
     grid, gap = rough
     solutions = [solve_ac_field(TABLE1, gap, grid.lengths, 100.0, frequency=1e3, periodic=periodic, tol=1e-13,
                                 backend=backend) for backend in ("pyfftw", "scipy")]
-    np.testing.assert_allclose(solutions[1].pressure, solutions[0].pressure, rtol=0,
-                               atol=1e-12 * solutions[0].pressure.max())
+    np.testing.assert_allclose(solutions[1].attraction, solutions[0].attraction, rtol=0,
+                               atol=1e-12 * solutions[0].attraction.max())
     np.testing.assert_allclose(solutions[1].oscillation, solutions[0].oscillation, rtol=0,
-                               atol=1e-12 * solutions[0].pressure.max())
+                               atol=1e-12 * solutions[0].attraction.max())
 
 
 def test_cocg_converges_and_reports_when_it_does_not(rough):
@@ -221,10 +221,10 @@ def test_cocg_converges_and_reports_when_it_does_not(rough):
     assert solution.residual <= 1e-10 and 3 < solution.iterations < 40
     with pytest.warns(ConvergenceWarning, match="AC field solve stopped"):
         stalled = solve_ac_field(TABLE1, gap, grid.lengths, 100.0, frequency=1e3, maxiter=1)
-    assert stalled.residual > 1e-10 and np.all(np.isfinite(stalled.pressure))
+    assert stalled.residual > 1e-10 and np.all(np.isfinite(stalled.attraction))
     assert isinstance(solution, ACFieldSolution)
     assert solution.mean_oscillation <= np.mean(solution.oscillation_amplitude) * (1 + 1e-12)
-    assert solution.field_equivalent_gap == pytest.approx(TABLE1.gap_for_pressure(solution.mean_pressure, 100.0))
+    assert solution.field_equivalent_gap == pytest.approx(TABLE1.gap_for_attraction(solution.mean_attraction, 100.0))
     dielectric = solve_ac_field(TABLE1, gap, grid.lengths, 100.0, frequency=math.inf)
     assert dielectric.ac_equivalent_gap == pytest.approx(dielectric.field_equivalent_gap, rel=1e-12)
     # the lossy stratum corneum attracts more than the dielectric at the same gap: its own circuit's gap is larger
@@ -253,12 +253,12 @@ def test_the_conductivity_changes_no_dielectric_number_and_round_trips(tmp_path)
     record written before σ_sc existed loads with the default."""
     lossless = dataclasses.replace(TABLE1, sigma_sc=0.0)
     gap = np.random.default_rng(3).exponential(1e-6, (16, 16))
-    assert np.array_equal(TABLE1.pressure(gap, 50.0), lossless.pressure(gap, 50.0))
-    assert np.array_equal(solve_field(TABLE1, gap, (1e-4, 1e-4), 50.0).pressure,
-                          solve_field(lossless, gap, (1e-4, 1e-4), 50.0).pressure)
+    assert np.array_equal(TABLE1.attraction(gap, 50.0), lossless.attraction(gap, 50.0))
+    assert np.array_equal(solve_field(TABLE1, gap, (1e-4, 1e-4), 50.0).attraction,
+                          solve_field(lossless, gap, (1e-4, 1e-4), 50.0).attraction)
     # σ_sc = 0: the stratum corneum is a dielectric at every frequency, DC included
-    np.testing.assert_allclose(solve_ac_field(lossless, gap, (1e-4, 1e-4), 50.0, frequency=0.0).pressure,
-                               solve_field(TABLE1, gap, (1e-4, 1e-4), 50.0).pressure, rtol=1e-9)
+    np.testing.assert_allclose(solve_ac_field(lossless, gap, (1e-4, 1e-4), 50.0, frequency=0.0).attraction,
+                               solve_field(TABLE1, gap, (1e-4, 1e-4), 50.0).attraction, rtol=1e-9)
     grid = Grid((16, 16), (1e-4, 1e-4))
     surface = self_affine(grid, hurst=0.8, rms_height=1e-6, rng=0)
     stack = dataclasses.replace(HUMID, sigma_sc=1.25e-3)

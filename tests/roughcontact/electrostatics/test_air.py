@@ -17,7 +17,7 @@ def _second_order(model, mean_gap, wavelength, columns=64):
 
     def mean(amplitude):
         return solve_field(STACK, mean_gap + amplitude * shape, wavelength, VOLTAGE, model=model,
-                           tol=1e-12).mean_pressure
+                           tol=1e-12).mean_attraction
     amplitude = 0.05 * mean_gap
     excess = [mean(a) - mean(0.0) for a in (amplitude, 2 * amplitude)]
     return (16 * excess[0] - excess[1]) / (12 * amplitude ** 2)
@@ -35,7 +35,7 @@ def _rough_gap(shape, rng=1):
 def test_uniform_gap_is_the_parallel_plate():
     """The lateral terms vanish on a uniform gap: Eq. 21 to rounding (1e-10 leaves room for the CG's 1e-12)."""
     solution = solve_field(STACK, np.full(32, 0.8e-6), 50e-6, VOLTAGE, model="layered_air", tol=1e-12)
-    assert solution.mean_pressure == pytest.approx(float(STACK.pressure(0.8e-6, VOLTAGE)), rel=1e-10)
+    assert solution.mean_attraction == pytest.approx(float(STACK.attraction(0.8e-6, VOLTAGE)), rel=1e-10)
     assert solution.field_equivalent_gap == pytest.approx(0.8e-6, rel=1e-10)
     assert solution.energy == pytest.approx(float(STACK.energy(0.8e-6, VOLTAGE)), rel=1e-10)
 
@@ -95,15 +95,15 @@ def test_attraction_is_the_energy_derivative(shape, lengths):
             base = energy(gap)
             derivative = (4 * (shifted(step) - base) - (shifted(2 * step) - base)) / (2 * step)
             tolerance = 1e-5
-        assert solution.pressure[pixel] == pytest.approx(gap.size * derivative, rel=tolerance)
+        assert solution.attraction[pixel] == pytest.approx(gap.size * derivative, rel=tolerance)
 
 
 def test_differs_from_columns_by_the_air_alone():
     """On a rough gap with contact the two models differ by the air's lateral field only: below 2 % here
     (measured 0.8 %), and not at all once the lateral terms vanish (a uniform gap, above)."""
     gap = _rough_gap((64, 1))
-    air = solve_field(STACK, gap[:, 0], 40e-6, VOLTAGE, model="layered_air").mean_pressure
-    columns = solve_field(STACK, gap[:, 0], 40e-6, VOLTAGE, model="layered").mean_pressure
+    air = solve_field(STACK, gap[:, 0], 40e-6, VOLTAGE, model="layered_air").mean_attraction
+    columns = solve_field(STACK, gap[:, 0], 40e-6, VOLTAGE, model="layered").mean_attraction
     assert 0 < abs(air / columns - 1) < 0.02
 
 

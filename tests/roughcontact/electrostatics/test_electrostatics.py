@@ -35,14 +35,14 @@ def test_fields_satisfy_gauss_and_voltage_sum(stack):
 def test_pressure_is_maxwell_stress_in_the_air(stack):
     gap, voltage = np.linspace(0, 5e-6, 7), 80.0
     maxwell = 0.5 * EPSILON_0 * stack.eps_a * stack.fields(gap, voltage).air ** 2      # Eq. 17 per area
-    np.testing.assert_allclose(stack.pressure(gap, voltage), maxwell, rtol=1e-14)
+    np.testing.assert_allclose(stack.attraction(gap, voltage), maxwell, rtol=1e-14)
 
 
 @pytest.mark.parametrize("stack", [TABLE1, HUMID])
 def test_work_of_adhesion_is_integral_of_pressure(stack):
     for gap in (0.0, 1e-6, 20e-6):
         # integrate in micrometres so that quad sees O(1) numbers
-        integral, _ = quad(lambda x: 1e-6 * stack.pressure(1e-6 * x, 200.0), gap / 1e-6, np.inf,
+        integral, _ = quad(lambda x: 1e-6 * stack.attraction(1e-6 * x, 200.0), gap / 1e-6, np.inf,
                            epsabs=0, epsrel=1e-12)
         assert stack.work_of_adhesion(gap, 200.0) == pytest.approx(integral, rel=1e-10)   # quad is ~1e-12
 
@@ -52,12 +52,12 @@ def test_pressure_and_its_derivatives_by_finite_differences(stack):
     gap, voltage, step = np.array([0.05e-6, 0.7e-6, 3e-6]), 120.0, 1e-11
     # sigma = dV/dd with V = -w; central differences are exact to O(step^2) ~ 1e-10 relative here
     dV = (stack.energy(gap + step, voltage) - stack.energy(gap - step, voltage)) / (2 * step)
-    np.testing.assert_allclose(dV, stack.pressure(gap, voltage), rtol=1e-7)
-    d1 = (stack.pressure(gap + step, voltage) - stack.pressure(gap - step, voltage)) / (2 * step)
-    np.testing.assert_allclose(stack.pressure_derivative(gap, voltage, 1), d1, rtol=1e-6)
-    d2 = (stack.pressure_derivative(gap + step, voltage, 1)
-          - stack.pressure_derivative(gap - step, voltage, 1)) / (2 * step)
-    np.testing.assert_allclose(stack.pressure_derivative(gap, voltage, 2), d2, rtol=1e-6)
+    np.testing.assert_allclose(dV, stack.attraction(gap, voltage), rtol=1e-7)
+    d1 = (stack.attraction(gap + step, voltage) - stack.attraction(gap - step, voltage)) / (2 * step)
+    np.testing.assert_allclose(stack.attraction_derivative(gap, voltage, 1), d1, rtol=1e-6)
+    d2 = (stack.attraction_derivative(gap + step, voltage, 1)
+          - stack.attraction_derivative(gap - step, voltage, 1)) / (2 * step)
+    np.testing.assert_allclose(stack.attraction_derivative(gap, voltage, 2), d2, rtol=1e-6)
 
 
 def test_quoted_work_of_adhesion_values():
@@ -75,19 +75,19 @@ def test_pressure_table_of_references():
     # references.md §0.1, sigma_el in kPa at 200 V, quoted to two decimals -> half a unit in the last place
     quoted = {0.0: 1534.18, 0.5e-6: 251.12, 1e-6: 98.66, 2e-6: 32.35, 3e-6: 15.88, 6e-6: 4.41}
     for gap, kpa in quoted.items():
-        assert TABLE1.pressure(gap, 200.0) / 1e3 == pytest.approx(kpa, abs=0.005)
+        assert TABLE1.attraction(gap, 200.0) / 1e3 == pytest.approx(kpa, abs=0.005)
 
 
 def test_strong_troxel_limit():
     # Eq. 24 (eps_a = 1): eps0 U² / 2 (d_sc/eps_sc + d_i/eps_i)^-2
     expected = EPSILON_0 * 100.0 ** 2 / 2 / (250e-6 / 3000 + 1e-6 / 3.9) ** 2
-    assert TABLE1.strong_troxel_pressure(100.0) == pytest.approx(expected, rel=1e-14)
+    assert TABLE1.strong_troxel_attraction(100.0) == pytest.approx(expected, rel=1e-14)
 
 
 def test_force_and_broadcasting():
     gap = np.array([0.0, 1e-6, 2e-6])[:, None]
     voltage = np.array([0.0, 50.0, 200.0, -200.0])[None, :]
-    sigma = TABLE1.pressure(gap, voltage)
+    sigma = TABLE1.attraction(gap, voltage)
     assert sigma.shape == (3, 4)
     assert np.all(sigma[:, 0] == 0.0)
     np.testing.assert_array_equal(sigma[:, 2], sigma[:, 3])          # only U² enters
@@ -141,7 +141,7 @@ class TestEquivalentGap:
         d[:30] = 0.0                                   # contact points are part of the average
         for stack in (TABLE1, HUMID):
             d_eq = stack.equivalent_gap(d)
-            assert stack.pressure(d_eq, 77.0) == pytest.approx(stack.pressure(d, 77.0).mean(), rel=1e-12)
+            assert stack.attraction(d_eq, 77.0) == pytest.approx(stack.attraction(d, 77.0).mean(), rel=1e-12)
 
 
 @pytest.mark.parametrize("name, value", [("d_sc", 0.0), ("d_sc", -1e-6), ("eps_sc", 0.0), ("d_i", -1.0),
@@ -153,9 +153,9 @@ def test_bad_stack_parameters(name, value):
 
 def test_bad_gap_voltage_and_weights():
     with pytest.raises(ValueError, match="gap"):
-        TABLE1.pressure(-1e-9, 100.0)
+        TABLE1.attraction(-1e-9, 100.0)
     with pytest.raises(ValueError, match="voltage"):
-        TABLE1.pressure(1e-6, np.nan)
+        TABLE1.attraction(1e-6, np.nan)
     with pytest.raises(ValueError, match="gap_field"):
         TABLE1.equivalent_gap([1e-6, np.inf])
     with pytest.raises(ValueError, match="weights"):
@@ -165,10 +165,10 @@ def test_bad_gap_voltage_and_weights():
     with pytest.raises(TypeError, match="d_sc"):
         DielectricStack(d_sc="thick")
     with pytest.raises(ValueError, match=r"shapes do not broadcast: gap \(3,\), voltage \(2,\)"):
-        TABLE1.pressure(np.zeros(3), np.ones(2))
+        TABLE1.attraction(np.zeros(3), np.ones(2))
     with pytest.raises(ValueError, match=r"gap \(3,\), voltage \(\), area \(2,\)"):
         TABLE1.force(np.zeros(3), 1.0, np.ones(2))
-    for call in (lambda: TABLE1.pressure(0.0, 100.0 + 0j), lambda: TABLE1.work_of_adhesion(np.zeros(2) + 0j, 1.0),
+    for call in (lambda: TABLE1.attraction(0.0, 100.0 + 0j), lambda: TABLE1.work_of_adhesion(np.zeros(2) + 0j, 1.0),
                  lambda: DielectricStack(d_sc=250e-6 + 0j)):
         with pytest.raises(TypeError, match="complex|real number"):
             call()
@@ -179,13 +179,13 @@ def test_huge_voltages_are_exact_or_refused_with_their_range():
     (measured: 3.8e301 Pa at 1e150 V, d = 0, scaling as U² to 4e-16) and beyond that a ValueError gives
     the range."""
     c = TABLE1.dielectric_offset
-    assert TABLE1.pressure(0.0, 1e150) == pytest.approx((1e150 * np.sqrt(EPSILON_0 / 2) / c) ** 2, rel=1e-14)
-    assert TABLE1.pressure(0.0, 1e150) / TABLE1.pressure(0.0, 1.0) == pytest.approx(1e300, rel=1e-14)
+    assert TABLE1.attraction(0.0, 1e150) == pytest.approx((1e150 * np.sqrt(EPSILON_0 / 2) / c) ** 2, rel=1e-14)
+    assert TABLE1.attraction(0.0, 1e150) / TABLE1.attraction(0.0, 1.0) == pytest.approx(1e300, rel=1e-14)
     limit = np.sqrt(np.finfo(float).max / (EPSILON_0 / (2 * c ** 2)))          # σ(0, limit) = float max
-    with pytest.raises(ValueError, match=r"voltage = 1e\+200 V makes the pressure overflow") as error:
-        TABLE1.pressure(0, 1e200)
+    with pytest.raises(ValueError, match=r"voltage = 1e\+200 V makes the attraction overflow") as error:
+        TABLE1.attraction(0, 1e200)
     assert float(str(error.value).split("< ")[1].split(" V")[0]) == pytest.approx(limit, rel=5e-3)   # 3 digits
-    for call in (lambda: TABLE1.work_of_adhesion(0.0, 1e300), lambda: TABLE1.pressure_derivative(0.0, 1e155, 2)):
+    for call in (lambda: TABLE1.work_of_adhesion(0.0, 1e300), lambda: TABLE1.attraction_derivative(0.0, 1e155, 2)):
         with pytest.raises(ValueError, match="voltage = .* overflow float64.* valid range"):
             call()
 
@@ -217,4 +217,4 @@ def test_layers_elastance_limits(stack):
 def test_pickle_round_trip_is_exact():
     clone = pickle.loads(pickle.dumps(HUMID))
     assert clone == HUMID
-    assert clone.pressure(1e-6, 10.0) == HUMID.pressure(1e-6, 10.0)
+    assert clone.attraction(1e-6, 10.0) == HUMID.attraction(1e-6, 10.0)

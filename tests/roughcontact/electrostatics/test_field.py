@@ -26,8 +26,8 @@ def test_uniform_gap_is_eq21(model, shape, gap):
     # solve's tolerance 1e-10 bounds the rest), and the equivalent gap is the gap.
     solution = solve_field(STACK, np.full(shape, gap), 1e-3 if len(shape) == 1 else (1e-3, 1.5e-3), 150.0,
                            model=model)
-    assert solution.mean_pressure == pytest.approx(float(STACK.pressure(gap, 150.0)), rel=1e-10)
-    assert np.allclose(solution.pressure, STACK.pressure(gap, 150.0), rtol=1e-10, atol=0)
+    assert solution.mean_attraction == pytest.approx(float(STACK.attraction(gap, 150.0)), rel=1e-10)
+    assert np.allclose(solution.attraction, STACK.attraction(gap, 150.0), rtol=1e-10, atol=0)
     assert solution.field_equivalent_gap == pytest.approx(gap, abs=1e-10 * STACK.dielectric_offset)
     assert solution.energy == pytest.approx(float(STACK.energy(gap, 150.0)), rel=1e-10)
 
@@ -35,7 +35,7 @@ def test_uniform_gap_is_eq21(model, shape, gap):
 def test_parallel_plate_is_eq21_pixel_by_pixel():
     gap = rough_gap((48, 40), np.random.default_rng(1))
     solution = solve_field(STACK, gap, (1e-4, 1e-4), 80.0, model="parallel_plate")
-    assert np.allclose(solution.pressure, STACK.pressure(gap, 80.0), rtol=1e-13, atol=0)
+    assert np.allclose(solution.attraction, STACK.attraction(gap, 80.0), rtol=1e-13, atol=0)
     assert solution.field_equivalent_gap == pytest.approx(STACK.equivalent_gap(gap), rel=1e-12)
 
 
@@ -73,8 +73,8 @@ def test_long_wavelengths_and_bare_electrodes_recover_the_parallel_plate():
     rng = np.random.default_rng(2)
     gap = rough_gap((64, 1), rng, contact=0.0) + 1e-6
     wide = 2 * np.pi * STACK.d_sc / 0.03                  # q d_sc = 0.03 at the fundamental
-    layered = solve_field(STACK, gap[:, 0], wide, 100.0).mean_pressure
-    plate = solve_field(STACK, gap[:, 0], wide, 100.0, model="parallel_plate").mean_pressure
+    layered = solve_field(STACK, gap[:, 0], wide, 100.0).mean_attraction
+    plate = solve_field(STACK, gap[:, 0], wide, 100.0, model="parallel_plate").mean_attraction
     assert layered == pytest.approx(plate, rel=2e-3)
     bare = DielectricStack(d_sc=1e-9, eps_sc=1e6, d_i=1e-12, eps_i=1.0)
     flux = solve_field(bare, gap[:, 0], 1e-4, 100.0).flux
@@ -106,7 +106,7 @@ def test_attraction_is_the_energy_derivative(periodic):
             derivative = (-3 * energy(index, 0.0) + 4 * energy(index, step) - energy(index, 2 * step)) / (2 * step)
         else:
             derivative = (energy(index, step) - energy(index, -step)) / (2 * step)
-        assert derivative == pytest.approx(solution.pressure[index], rel=1e-5)
+        assert derivative == pytest.approx(solution.attraction[index], rel=1e-5)
 
 
 def test_layered_attraction_exceeds_the_per_pixel_law_at_microcontacts():
@@ -117,10 +117,10 @@ def test_layered_attraction_exceeds_the_per_pixel_law_at_microcontacts():
     gap = rough_gap((64, 64), rng, contact=0.05, scale=5e-6)
     solution = solve_field(STACK, gap, (2e-4, 2e-4), 100.0)
     contact = gap == 0
-    ratio = solution.pressure[contact] / STACK.strong_troxel_pressure(100.0)
+    ratio = solution.attraction[contact] / STACK.strong_troxel_attraction(100.0)
     assert np.all(ratio > 1.0) and np.median(ratio) > 1.5
-    assert solution.mean_pressure > solve_field(STACK, gap, (2e-4, 2e-4), 100.0,
-                                                model="parallel_plate").mean_pressure
+    assert solution.mean_attraction > solve_field(STACK, gap, (2e-4, 2e-4), 100.0,
+                                                model="parallel_plate").mean_attraction
 
 
 def test_flux_scales_with_voltage_and_warm_start_converges_at_once():
@@ -144,7 +144,7 @@ def test_free_window_carries_no_flux_outside():
     free = solve_field(STACK, gap, 4e-3, 100.0, periodic=False)
     periodic = solve_field(STACK, gap, 4e-3, 100.0)
     # the strip's force is set by the slab's response within ~d_sc of it (window 16 d_sc): the two agree to 1e-3
-    assert free.pressure[n // 2] == pytest.approx(periodic.pressure[n // 2], rel=1e-3)
+    assert free.attraction[n // 2] == pytest.approx(periodic.attraction[n // 2], rel=1e-3)
 
 
 @pytest.mark.parametrize("kwargs, message", [
@@ -183,7 +183,7 @@ def test_field_law_is_the_field_and_its_warm_start_agrees():
     law = FieldLaw(STACK, voltage, grid, tol=1e-12)
     energy, (traction, stiffness, flux, columns) = evaluate(law, before)
     reference = solve_field(STACK, before, grid.lengths, voltage, tol=1e-12)
-    scale = np.max(reference.pressure)
+    scale = np.max(reference.attraction)
     assert np.max(np.abs(traction - reference.traction)) < 1e-9 * scale
     assert energy / before.size == pytest.approx(reference.energy, rel=1e-9)
     field = StackField(STACK, grid)

@@ -41,7 +41,7 @@ def test_bare_conductors_energy_and_attraction(gap, wavelength):
 @pytest.mark.parametrize("gap", [0.5e-6, 2e-6])
 def test_long_waves_are_the_per_pixel_average(stack, gap):
     # q -> 0: <σ_el(g0 + a cos qx)> = σ_el + (a²/4) σ_el'' exactly (q = 0 uses the Taylor branch)
-    per_pixel = stack.pressure_derivative(gap, VOLTAGE, 2) / 4
+    per_pixel = stack.attraction_derivative(gap, VOLTAGE, 2) / 4
     assert second_order_attraction(stack, gap, 0.0, VOLTAGE) == pytest.approx(per_pixel, rel=1e-13)
     # and the approach is q² (the derivative expansion): the deviation quarters when q halves
     q = 1.0 / stack.d_sc / 100
@@ -84,8 +84,8 @@ def test_uniform_gap_is_equation_21_and_contact_is_equation_23(field_solve, stac
     # gap = 0 is full contact: the air rows are merged and the attraction is the one-sided opening derivative
     solution = field_solve(stack, np.full(24, gap), 2e-5, VOLTAGE, periodic=periodic)
     assert solution.converged
-    assert solution.mean_pressure == pytest.approx(stack.pressure(gap, VOLTAGE), rel=1e-10)
-    np.testing.assert_allclose(solution.pressure, stack.pressure(gap, VOLTAGE), rtol=1e-9)
+    assert solution.mean_attraction == pytest.approx(stack.attraction(gap, VOLTAGE), rel=1e-10)
+    np.testing.assert_allclose(solution.attraction, stack.attraction(gap, VOLTAGE), rtol=1e-9)
     energy = 0.5 * stack.work_of_adhesion(gap, VOLTAGE) * 2 * 2e-5           # ½ C U² per unit depth
     assert solution.energy == pytest.approx(energy, rel=1e-10)
 
@@ -99,13 +99,13 @@ def test_sinusoid_against_perturbation_theory(field_solve, wavelength, gap, colu
     q = 2 * np.pi / wavelength
     x = np.arange(columns) * wavelength / columns
     amplitude = 0.05 * gap
-    excess = [field_solve(TABLE1, gap + a * np.cos(q * x), wavelength, VOLTAGE).mean_pressure
-              - TABLE1.pressure(gap, VOLTAGE) for a in (amplitude, 2 * amplitude)]
+    excess = [field_solve(TABLE1, gap + a * np.cos(q * x), wavelength, VOLTAGE).mean_attraction
+              - TABLE1.attraction(gap, VOLTAGE) for a in (amplitude, 2 * amplitude)]
     second_order = (16 * excess[0] - excess[1]) / (12 * amplitude ** 2)          # Richardson: a⁴ removed
     expected = second_order_attraction(TABLE1, gap, q, VOLTAGE)
     assert second_order == pytest.approx(expected, rel=tolerance)
     # the per-pixel law is a different number here: the comparison can tell them apart
-    assert abs(second_order / (TABLE1.pressure_derivative(gap, VOLTAGE, 2) / 4) - 1) > 10 * tolerance
+    assert abs(second_order / (TABLE1.attraction_derivative(gap, VOLTAGE, 2) / 4) - 1) > 10 * tolerance
 
 
 def _contact_profile(columns, wavelength=1e-4):
@@ -121,8 +121,8 @@ def test_contact_opening_derivative_is_the_energy_slope(field_solve):
     contact = field_solve(TABLE1, gap, length, VOLTAGE)
     slopes = [(contact.energy - field_solve(TABLE1, gap + d, length, VOLTAGE).energy) / d / length
               for d in (1e-10, 2e-10)]
-    assert 2 * slopes[0] - slopes[1] == pytest.approx(contact.mean_pressure, rel=1e-6)   # measured 2e-8
-    assert contact.pressure @ np.full(128, length / 128) / length == pytest.approx(contact.mean_pressure,
+    assert 2 * slopes[0] - slopes[1] == pytest.approx(contact.mean_attraction, rel=1e-6)   # measured 2e-8
+    assert contact.attraction @ np.full(128, length / 128) / length == pytest.approx(contact.mean_attraction,
                                                                                   rel=1e-12)
 
 
@@ -138,7 +138,7 @@ def test_convergence_on_a_profile_with_contact(field_solve):
     # measured on the contact profile: differences -610, -173, -52 Pa of 1.89e5 Pa, order 1.82 then 1.73 —
     # the contact edges (a zero-angle air wedge between the two dielectrics) keep it below 2
     means = [field_solve(TABLE1, _contact_profile(96 * 2 ** level), 1e-4, VOLTAGE, air_rows=2 * 2 ** level,
-                         insulator_rows=2 * 2 ** level, sc_rows=12 * 2 ** level).mean_pressure
+                         insulator_rows=2 * 2 ** level, sc_rows=12 * 2 ** level).mean_attraction
              for level in range(3)]
     differences = np.diff(means)
     order = np.log2(differences[0] / differences[1])
@@ -156,13 +156,13 @@ def test_virtual_work_against_air_side_maxwell_stress(field_solve):
         errors = []
         for rows in (4, 8, 16):
             solution = field_solve(TABLE1, gap, wavelength, VOLTAGE, air_rows=rows, insulator_rows=8, sc_rows=48)
-            errors.append(solution.mean_maxwell_pressure / solution.mean_pressure - 1)
+            errors.append(solution.mean_maxwell_attraction / solution.mean_attraction - 1)
         assert 0 < errors[-1] < 1e-4
         assert errors[0] / errors[1] == pytest.approx(2, rel=0.2)
         assert errors[1] / errors[2] == pytest.approx(2, rel=0.2)
     for gap in (1e-6, 0.0):
         solution = field_solve(TABLE1, np.full(16, gap), 1e-5, VOLTAGE)
-        np.testing.assert_allclose(solution.maxwell_pressure, solution.mean_pressure, rtol=1e-9)
+        np.testing.assert_allclose(solution.maxwell_attraction, solution.mean_attraction, rtol=1e-9)
 
 
 # -- the 3-D solve over 2-D gap fields --------------------------------------------------------------------------
@@ -179,9 +179,9 @@ def test_patch_uniform_gap_and_contact(patch_solve, stack, periodic, gap):
     # as in 2-D, P1 holds the 1-D solution; AMG-CG to 1e-12 leaves ~1e-11 (measured at most 6e-11)
     solution = patch_solve(stack, np.full((6, 5), gap), (2e-5, 1.5e-5), VOLTAGE, periodic=periodic, tol=1e-12)
     assert solution.converged
-    assert solution.mean_pressure == pytest.approx(stack.pressure(gap, VOLTAGE), rel=1e-9)
-    interior = solution.pressure if periodic else solution.pressure[1:-1, 1:-1]     # free: corners (docstring)
-    np.testing.assert_allclose(interior, stack.pressure(gap, VOLTAGE), rtol=1e-8)
+    assert solution.mean_attraction == pytest.approx(stack.attraction(gap, VOLTAGE), rel=1e-9)
+    interior = solution.attraction if periodic else solution.attraction[1:-1, 1:-1]     # free: corners (docstring)
+    np.testing.assert_allclose(interior, stack.attraction(gap, VOLTAGE), rtol=1e-8)
     assert solution.energy == pytest.approx(stack.work_of_adhesion(gap, VOLTAGE) * 3e-10, rel=1e-9)
 
 
@@ -191,8 +191,8 @@ def test_patch_of_a_ridge_profile_is_the_profile_solve(field_solve, patch_solve)
     gap, length = _contact_profile(32), 1e-4
     profile = field_solve(TABLE1, gap, length, VOLTAGE)
     patch = patch_solve(TABLE1, np.repeat(gap[:, None], 4, axis=1), (length, length / 8), VOLTAGE, tol=1e-12)
-    assert patch.mean_pressure == pytest.approx(profile.mean_pressure, rel=1e-9)
-    np.testing.assert_allclose(patch.pressure, np.repeat(profile.pressure[:, None], 4, axis=1), rtol=1e-7)
+    assert patch.mean_attraction == pytest.approx(profile.mean_attraction, rel=1e-9)
+    np.testing.assert_allclose(patch.attraction, np.repeat(profile.attraction[:, None], 4, axis=1), rtol=1e-7)
 
 
 def test_patch_contact_opening_derivative_is_the_energy_slope(patch_solve):
@@ -203,7 +203,7 @@ def test_patch_contact_opening_derivative_is_the_energy_slope(patch_solve):
     contact = patch_solve(TABLE1, gap, lengths, VOLTAGE, tol=1e-12)
     slopes = [(contact.energy - patch_solve(TABLE1, gap + d, lengths, VOLTAGE, tol=1e-12).energy) / d / 1e-8
               for d in (1e-10, 2e-10)]
-    assert 2 * slopes[0] - slopes[1] == pytest.approx(contact.mean_pressure, rel=2e-6)
+    assert 2 * slopes[0] - slopes[1] == pytest.approx(contact.mean_attraction, rel=2e-6)
 
 
 def test_patch_egg_box_against_perturbation_theory(patch_solve):
@@ -213,8 +213,8 @@ def test_patch_egg_box_against_perturbation_theory(patch_solve):
     x = np.arange(columns) * wavelength / columns
     shape = np.cos(2 * np.pi * x / wavelength)[:, None] * np.cos(2 * np.pi * x / wavelength)[None, :]
     amplitude = 0.05 * gap
-    excess = [patch_solve(TABLE1, gap + a * shape, (wavelength, wavelength), VOLTAGE).mean_pressure
-              - TABLE1.pressure(gap, VOLTAGE) for a in (amplitude, 2 * amplitude)]
+    excess = [patch_solve(TABLE1, gap + a * shape, (wavelength, wavelength), VOLTAGE).mean_attraction
+              - TABLE1.attraction(gap, VOLTAGE) for a in (amplitude, 2 * amplitude)]
     second_order = (16 * excess[0] - excess[1]) / (12 * amplitude ** 2)
     expected = 0.5 * second_order_attraction(TABLE1, gap, np.sqrt(2) * 2 * np.pi / wavelength, VOLTAGE)
     assert second_order == pytest.approx(expected, rel=3e-4)

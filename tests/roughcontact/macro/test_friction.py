@@ -31,7 +31,7 @@ def test_no_voltage_gives_amontons(voltage):
 @pytest.mark.parametrize("voltage", [50.0, 100.0, 200.0])
 def test_closed_form_solves_eqs_41_43_44(voltage):
     state = MODEL.state(FORCES, voltage)
-    sigma, area_0, force_t = state.pressure, state.initial_area, state.tangential_force
+    sigma, area_0, force_t = state.attraction, state.initial_area, state.tangential_force
     eta = MODEL.c2 / area_0                                               # Eq. 44
     # Eq. 41 with Eq. 43, self-consistently
     np.testing.assert_allclose(state.area, area_0 - eta * force_t ** 2, rtol=1e-12)
@@ -46,7 +46,7 @@ def test_closed_form_solves_eqs_41_43_44(voltage):
     # the chain: gap (Eq. 46) -> σ_el, w (Eqs. 21-22) -> A_R0 (Eq. 9 inverted)
     gap = 3.1e-6 - 0.5e-6 * FORCES
     np.testing.assert_allclose(state.gap, gap, rtol=1e-14)
-    np.testing.assert_allclose(sigma, DielectricStack().pressure(gap, voltage), rtol=1e-14)
+    np.testing.assert_allclose(sigma, DielectricStack().attraction(gap, voltage), rtol=1e-14)
     np.testing.assert_allclose(area_0, MODEL.contact.area(FORCES, DielectricStack().work_of_adhesion(gap, voltage)),
                                rtol=1e-14)
 
@@ -54,7 +54,7 @@ def test_closed_form_solves_eqs_41_43_44(voltage):
 def test_without_area_reduction():
     model = SlidingFrictionModel(c2=0.0)
     state = model.state(FORCES, 200.0)
-    np.testing.assert_allclose(state.tangential_force, 0.26 * (FORCES + state.pressure * state.initial_area),
+    np.testing.assert_allclose(state.tangential_force, 0.26 * (FORCES + state.attraction * state.initial_area),
                                rtol=1e-14)
 
 
@@ -63,7 +63,7 @@ def test_adhesion_controlled_term_eq40():
     for voltage in (0.0, 150.0):
         state = model.state(FORCES, voltage)
         np.testing.assert_allclose(state.tangential_force,
-                                   2e3 * state.area + 0.26 * (FORCES + state.pressure * state.area), rtol=1e-12)
+                                   2e3 * state.area + 0.26 * (FORCES + state.attraction * state.area), rtol=1e-12)
 
 
 def test_extremes_stay_finite():

@@ -52,7 +52,7 @@ def true_equilibrium(res, heights, body, frequency=None):
     field = solve_ac_field(law.stack, np.maximum(raw_gap, 0.0), grid.lengths, law.voltage,
                            frequency=law.frequency if frequency is None else frequency, tol=1e-12,
                            periodic=grid.periodic)
-    traction, scale = -field.pressure, field.pressure.max()
+    traction, scale = -field.attraction, field.attraction.max()
     open_gap = raw_gap > 1e-9 * np.ptp(heights)
     imbalance = np.max(np.abs(res.pressure - traction)[open_gap]) / scale
     contact_pressure = np.min((res.pressure - traction)[~open_gap], initial=np.inf) / scale

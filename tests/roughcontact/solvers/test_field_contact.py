@@ -36,7 +36,7 @@ def field_equilibrium(res, heights, body):
     grid = body.grid
     field = solve_field(STACK, np.maximum(raw_gap, 0.0), grid.lengths, res.interaction.voltage, tol=1e-12,
                         periodic=grid.periodic)
-    scale = field.pressure.max()
+    scale = field.attraction.max()
     open_gap = raw_gap > 1e-9 * np.ptp(heights)
     imbalance = np.max(np.abs(res.pressure - field.traction)[open_gap]) / scale
     mismatch = np.max(np.abs(res.interaction_traction - field.traction)) / scale

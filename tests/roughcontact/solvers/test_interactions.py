@@ -104,7 +104,7 @@ def test_parallel_plates():
     law = ElectrostaticInteraction(STACK, 200.0)
     gap = 2e-6
     res = solve_contact(HeightField(grid, np.zeros(grid.shape)), half, penetration=-gap, interaction=law)
-    sigma = float(STACK.pressure(gap, 200.0))
+    sigma = float(STACK.attraction(gap, 200.0))
     assert res.converged and res.contact_fraction == 0.0
     np.testing.assert_allclose(res.gap, gap, rtol=1e-14)
     assert res.mean_pressure == pytest.approx(-sigma, rel=1e-12)

@@ -129,7 +129,7 @@ def test_sweep_records_are_the_direct_solves_under_the_same_drive(sweep, sweep_r
                     solution = solve_ac_field(stack, np.asarray(direct.gap), direct.params["grid"].lengths, 1.0,
                                               frequency=frequency)
                     assert point.field_equivalent_gap[1] == pytest.approx(
-                        stack.gap_for_pressure(solution.mean_pressure, 1.0), rel=1e-12)   # the same solve
+                        stack.gap_for_attraction(solution.mean_attraction, 1.0), rel=1e-12)   # the same solve
     # at 0 V nothing depends on the frequency but the small-voltage field
     gaps = sweep_result.array("equivalent_gap")[:, 0]
     assert np.all(gaps == gaps[:, :1])

@@ -62,8 +62,8 @@ def test_records_count_the_unstable_steps_of_their_solves(tiny, tiny_result):
             # converged to 0.1 x its residual, tol 1e-6: measured agreement 1e-7; a per-pixel F_el is 30 % off)
             point, grid = tiny_result.points[i][1], body.grid
             field = solve_field(stack, previous.gap, grid.lengths, 150.0, tol=1e-10)
-            assert point.electrostatic_pressure[r] == pytest.approx(field.mean_pressure, rel=1e-5)
-            assert point.pixel_law_pressure[r] == pytest.approx(float(np.mean(stack.pressure(previous.gap, 150.0))),
+            assert point.electrostatic_pressure[r] == pytest.approx(field.mean_attraction, rel=1e-5)
+            assert point.pixel_law_pressure[r] == pytest.approx(float(np.mean(stack.attraction(previous.gap, 150.0))),
                                                                 rel=1e-12)
     assert "4 of 8 patch results came from solves that crossed an instability (concave steps, from 150 V on)" \
         in report_text(tiny_result, False)
@@ -77,24 +77,24 @@ def test_field_gaps_and_ratio_carry_the_solved_attraction(tiny, tiny_result):
                 d_field, attraction = point.field_equivalent_gap[r], point.electrostatic_pressure[r]
                 ratio = point.field_ratio[r]
                 if point.voltage > 0:       # Eq. 21 at d_field is the solved attraction, the ratio F_el / F_el,pixel
-                    assert stack.pressure(d_field, point.voltage) == pytest.approx(attraction, rel=1e-12)
+                    assert stack.attraction(d_field, point.voltage) == pytest.approx(attraction, rel=1e-12)
                     assert ratio == pytest.approx(attraction / point.pixel_law_pressure[r], rel=1e-12)
                 # the layered field attracts more than Eq. 21 per pixel (measured 1.43-1.50 on these gaps)
                 assert 1.2 < ratio < 2.0 and d_field < point.equivalent_gap[r]
                 # the friction law's gap: sigma_el(d_eq,R) A_R = F_el, or 0 where A_R cannot carry F_el
                 area = point.ridge_area_fractions[0][r]
-                unit = stack.pressure(max(d_field, 0.0), 1.0)
+                unit = stack.attraction(max(d_field, 0.0), 1.0)
                 if point.ridge_equivalent_gap[r] > 0:
-                    assert stack.pressure(point.ridge_equivalent_gap[r], 1.0) * area == pytest.approx(unit, rel=1e-10)
+                    assert stack.attraction(point.ridge_equivalent_gap[r], 1.0) * area == pytest.approx(unit, rel=1e-10)
                 else:
-                    assert stack.pressure(0.0, 1.0) * area <= unit
+                    assert stack.attraction(0.0, 1.0) * area <= unit
     # 0 V: the field gap is the hard-wall gap's in the small-voltage limit, independent of the voltage
     body = patch_body(tiny)
     heights, pressure = patch_surface(tiny, 1), apparent_contact(tiny.fingerpad, 0.5, 1)[1][0]
     hard_wall = solve_contact(heights, body, mean_pressure=pressure, tol=1e-6, warn=False)
     field = solve_field(stack, hard_wall.gap, body.grid.lengths, 10.0, tol=1e-10)
     assert tiny_result.points[0][0].field_equivalent_gap[1] == pytest.approx(
-        stack.gap_for_pressure(field.mean_pressure, 10.0), rel=1e-6)
+        stack.gap_for_attraction(field.mean_attraction, 10.0), rel=1e-6)
 
 
 @pytest.mark.slow           # 16 s on the shared 2-core machine, like the end-to-end run (the CLI, every figure)
@@ -202,7 +202,7 @@ def test_ridge_equivalent_gap_carries_the_same_attraction_over_the_ridge_area():
     stack = load_scene().screen.stack()
     for fraction in (0.3, 0.7, 1.0):
         gap = ridge_equivalent_gap(stack, 2e-6, fraction)
-        assert stack.pressure(gap, 200.0) * fraction == pytest.approx(stack.pressure(2e-6, 200.0), rel=1e-12)
+        assert stack.attraction(gap, 200.0) * fraction == pytest.approx(stack.attraction(2e-6, 200.0), rel=1e-12)
     assert ridge_equivalent_gap(stack, 2e-6, 1.0) == pytest.approx(2e-6, rel=1e-12)
     assert ridge_equivalent_gap(stack, 1e-9, 1e-6) == 0.0
 
@@ -256,7 +256,7 @@ def test_tabulated_area_and_bottom_up_friction(tiny_result):
     state = model.state(2.0, 150.0)
     point = tiny_result.points[1][1]
     # F_el = sigma_el(d_eq,R) A_R0 equals the solved mean attraction over A0
-    assert float(stack.pressure(state.gap, 150.0) * state.initial_area) == pytest.approx(
+    assert float(stack.attraction(state.gap, 150.0) * state.initial_area) == pytest.approx(
         np.mean(point.electrostatic_pressure) * point.apparent_area, rel=0.05)
     assert model.state(2.0, 0.0).friction_coefficient == pytest.approx(0.26)
 
@@ -269,7 +269,7 @@ def test_friction_per_realisation(tiny_result):
     samples = friction_realisations(tiny_result)
     for r in range(2):
         state = bottom_up_friction(tiny_result, realisation=r).state(2.0, 150.0)
-        assert float(stack.pressure(state.gap, 150.0) * state.initial_area) == pytest.approx(
+        assert float(stack.attraction(state.gap, 150.0) * state.initial_area) == pytest.approx(
             point.electrostatic_pressure[r] * point.apparent_area, rel=0.05)
         assert samples["friction_coefficient"][1, 1, r] == state.friction_coefficient
         assert samples["tangential_force"][1, 1, r] == state.tangential_force
