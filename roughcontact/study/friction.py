@@ -107,13 +107,13 @@ def assumption_errors(result: StudyResult) -> dict:
     arithmetic mean gap; ``per_pixel``: Eq. 21 pixel by pixel on the solved gap (Eq. 21 at d_eq)."""
     stack = result.scene.screen.stack()
     voltages = result.voltages[None, :]
-    sigma = result.summary("electrostatic_pressure")[0]
+    sigma = result.summary("electrostatic_attraction")[0]
     d_field = result.summary("field_equivalent_gap")[0]
     mean_gap = result.summary("mean_gap")[0]
     with np.errstate(divide="ignore", invalid="ignore"):
         constant = stack.attraction(np.maximum(d_field[:, :1], 0.0), voltages) / sigma - 1
         naive = stack.attraction(mean_gap, voltages) / sigma - 1
-        per_pixel = result.summary("pixel_law_pressure")[0] / sigma - 1
+        per_pixel = result.summary("pixel_law_attraction")[0] / sigma - 1
     on = result.voltages > 0
     return {name: np.where(on[None, :], error, np.nan)
             for name, error in (("constant_gap", constant), ("mean_gap", naive), ("per_pixel", per_pixel))}

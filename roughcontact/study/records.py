@@ -58,8 +58,8 @@ class PatchRecord:
     of the solved gap), ``field_equivalent_gap`` d_field (the uniform gap whose Eq. 21 attraction is the solve's
     mean attraction; at 0 V that of the hard-wall gap's field in the small-voltage limit), ``ridge_equivalent_gap``
     d_eq,R (the uniform gap whose Eq. 21 attraction over A_R is the solve's F_el), ``mean_gap`` [m];
-    ``contact_fraction``; ``ridge_area_fractions`` A_R/A0 per coarse-graining length; ``electrostatic_pressure``
-    σ̄_el [Pa] of the solve's field, ``pixel_law_pressure`` [Pa] of Eq. 21 per pixel on the same solved gap and
+    ``contact_fraction``; ``ridge_area_fractions`` A_R/A0 per coarse-graining length; ``electrostatic_attraction``
+    σ̄_el [Pa] of the solve's field, ``pixel_law_attraction`` [Pa] of Eq. 21 per pixel on the same solved gap and
     ``field_ratio`` their ratio (the small-voltage limit at 0 V); ``gap_slope`` (rms |∇g|, weighted by
     (ε_a c + g)⁻²); ``converged`` (every ring); ``iterations``, ``unstable_steps`` (concave steps: the solves
     crossed instabilities, so the answer may depend on the path; ``docs/guide/interactions.md``) and ``solves`` (summed
@@ -71,8 +71,8 @@ class PatchRecord:
     mean_gap: float
     contact_fraction: float
     ridge_area_fractions: tuple
-    electrostatic_pressure: float
-    pixel_law_pressure: float
+    electrostatic_attraction: float
+    pixel_law_attraction: float
     field_ratio: float
     gap_slope: float
     converged: bool
@@ -103,8 +103,8 @@ def patch_record(stack, field, voltage, results, lengths, spacing, solves, secon
         ridge_equivalent_gap=ridge_equivalent_gap(stack, max(d_field, 0.0), fractions[0]),
         mean_gap=float(gaps.mean()),
         contact_fraction=float(np.mean([res.contact_fraction for res in results])), ridge_area_fractions=fractions,
-        electrostatic_pressure=attraction * voltage ** 2,
-        pixel_law_pressure=float(np.mean(stack.attraction(gaps, voltage))),
+        electrostatic_attraction=attraction * voltage ** 2,
+        pixel_law_attraction=float(np.mean(stack.attraction(gaps, voltage))),
         field_ratio=field_ratio(stack, d_field, d_eq),
         gap_slope=float(np.mean([gap_slope(g, (offset + g) ** -2.0, spacing, periodic) for g in gaps])),
         converged=all(bool(res.converged) for res in results), iterations=int(sum(res.iterations for res in results)),
@@ -127,8 +127,8 @@ class PointResult:
     mean_gap: tuple
     contact_fraction: tuple
     ridge_area_fractions: tuple
-    electrostatic_pressure: tuple
-    pixel_law_pressure: tuple
+    electrostatic_attraction: tuple
+    pixel_law_attraction: tuple
     field_ratio: tuple
     gap_slope: tuple
     converged: tuple
@@ -138,8 +138,8 @@ class PointResult:
 
 
 _PER_REALISATION = ("equivalent_gap", "field_equivalent_gap", "ridge_equivalent_gap", "mean_gap",
-                    "contact_fraction", "electrostatic_pressure", "pixel_law_pressure", "field_ratio", "gap_slope",
-                    "converged", "iterations", "unstable_steps")
+                    "contact_fraction", "electrostatic_attraction", "pixel_law_attraction", "field_ratio",
+                    "gap_slope", "converged", "iterations", "unstable_steps")
 
 
 def point_result(force, voltage, area, pressures, records) -> PointResult:

@@ -103,9 +103,9 @@ FIELDS = (
      "gap with sigma_el(d) A_R = F_el of the solve (the friction law's gap)"),
     ("mean_gap", "mean_gap", MICRO, "um", "arithmetic mean air gap over the apparent area"),
     ("contact_fraction", "real_contact_fraction", 1.0, "1", "real (pixel) contact area / apparent area"),
-    ("electrostatic_pressure", "electrostatic_pressure", 1e-3, "kPa",
+    ("electrostatic_attraction", "electrostatic_attraction", 1e-3, "kPa",
      "mean sigma_el of the solve's field over the apparent area"),
-    ("pixel_law_pressure", "pixel_law_pressure", 1e-3, "kPa",
+    ("pixel_law_attraction", "pixel_law_attraction", 1e-3, "kPa",
      "mean sigma_el of Eq. 21 pixel by pixel on the same solved gap"),
     ("field_ratio", "field_ratio", 1.0, "1",
      "F_el of the solve's field / F_el of Eq. 21 per pixel on the same gap (0 V: small-voltage limit)"),
@@ -128,8 +128,8 @@ def _point_rows(result: StudyResult) -> list:
                 row[f"{column}_ci95_{unit}"] = means[name][1][i, j] * scale
             row["ridge_area_fraction"] = ridge_mean[i, j, 0]
             row["ridge_area_fraction_ci95"] = ridge_half[i, j, 0]
-            for name, column in (("electrostatic_pressure", "electrostatic_force"),
-                                 ("pixel_law_pressure", "pixel_law_force")):
+            for name, column in (("electrostatic_attraction", "electrostatic_force"),
+                                 ("pixel_law_attraction", "pixel_law_force")):
                 row[f"{column}_N"] = means[name][0][i, j] * point.apparent_area
                 row[f"{column}_ci95_N"] = means[name][1][i, j] * point.apparent_area
             row["converged"] = all(point.converged)
@@ -194,8 +194,8 @@ def dataset(result: StudyResult, friction: bool = True):
               "coarse_graining": ("coarse_graining", np.array(result.coarse_graining), {"units": "m"})}
     dims = ("normal_force", "voltage", "realisation")
     units = {"equivalent_gap": "m", "field_equivalent_gap": "m", "ridge_equivalent_gap": "m", "mean_gap": "m",
-             "contact_fraction": "1", "electrostatic_pressure": "Pa", "pixel_law_pressure": "Pa", "field_ratio": "1",
-             "gap_slope": "1", "iterations": "1", "unstable_steps": "1"}
+             "contact_fraction": "1", "electrostatic_attraction": "Pa", "pixel_law_attraction": "Pa",
+             "field_ratio": "1", "gap_slope": "1", "iterations": "1", "unstable_steps": "1"}
     descriptions = {name: text for name, _, _, _, text in FIELDS}
     variables = {name: (dims, result.array(name), {"units": unit, "long_name": descriptions.get(name, name)})
                  for name, unit in units.items()}
@@ -559,8 +559,8 @@ def _per_pixel_section(result: StudyResult) -> list:
     """The table "how wrong is the per-pixel assumption": F_el of the solve's field and of Eq. 21 pixel by pixel
     on the same solved gap [N], and their ratio with its interval over the realisations."""
     area = result.array("apparent_area")[:, :, None]      # one per point
-    field = area * _realisations(result, "electrostatic_pressure")
-    pixel = area * _realisations(result, "pixel_law_pressure")
+    field = area * _realisations(result, "electrostatic_attraction")
+    pixel = area * _realisations(result, "pixel_law_attraction")
     ratio = _realisations(result, "field_ratio")
     voltages = result.voltages
     lines = ["## How wrong is the per-pixel field assumption", "",
@@ -627,7 +627,7 @@ def _sweep_samples(result: StudyResult) -> dict:
     ratio: the realisations' spread cancels), d_eq [µm] and A_R/A0 [%] of a sweep, shape (loads, voltages,
     frequencies, realisations), NaN where a solve did not converge."""
     area = result.array("apparent_area")[..., None]
-    force = area * _realisations(result, "electrostatic_pressure")
+    force = area * _realisations(result, "electrostatic_attraction")
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = force / force[:, :, -1:, :]
     return {"F_el [N]": force, f"F_el / F_el({result.frequencies[-1]:g} Hz)": ratio,

@@ -110,7 +110,7 @@ def test_coupled_chain_follows_the_resolved_chain(scene, law, chains):
             assert _values(coupled)[name] == pytest.approx(_values(resolved)[name], rel=bound), name
         # the mean gap is the ridge-scale separation's, σ̄_el that of the pixel-wise e(ū)
         assert coupled.mean_gap == pytest.approx(resolved.mean_gap, rel=0.12)         # measured +1 %, −8 %
-        assert coupled.electrostatic_pressure == pytest.approx(resolved.electrostatic_pressure, rel=0.2)
+        assert coupled.electrostatic_attraction == pytest.approx(resolved.electrostatic_attraction, rel=0.2)
         assert coupled.field_equivalent_gap == pytest.approx(resolved.field_equivalent_gap,
                                                              rel=BOUNDS["equivalent_gap"])
     rms = float(np.std(roughness_heights(scene, 0)))

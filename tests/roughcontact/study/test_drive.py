@@ -116,7 +116,7 @@ def test_sweep_records_are_the_direct_solves_under_the_same_drive(sweep, sweep_r
                 assert point.contact_fraction[1] == direct.contact_fraction
                 if voltage > 0:
                     # (the record forms F_el/(A U²) U²: round-off apart, the same number)
-                    assert point.electrostatic_pressure[1] == pytest.approx(direct.electrostatic_force / area,
+                    assert point.electrostatic_attraction[1] == pytest.approx(direct.electrostatic_force / area,
                                                                             rel=1e-14)
                     dielectric = solve_contact(heights, body, mean_pressure=pressure,
                                                interaction=ElectrostaticInteraction(stack, voltage), tol=1e-6,
@@ -140,7 +140,8 @@ def test_sweep_records_are_the_direct_solves_under_the_same_drive(sweep, sweep_r
 def test_at_frequency_is_the_loads_by_voltages_study(sweep_result):
     view = sweep_result.at_frequency(2)
     assert view.frequencies == () and view.array("equivalent_gap").shape == (2, 2, 2)
-    assert np.array_equal(view.array("electrostatic_pressure"), sweep_result.array("electrostatic_pressure")[:, :, 2])
+    assert np.array_equal(view.array("electrostatic_attraction"),
+                          sweep_result.array("electrostatic_attraction")[:, :, 2])
     assert np.array_equal(view.ridge_area, sweep_result.ridge_area[:, :, 2])
     mean = sweep_result.summary("ridge_area_fractions")[0]
     assert np.array_equal(mean[:, :, 2], view.summary("ridge_area_fractions")[0], equal_nan=True)
@@ -226,7 +227,7 @@ def test_the_example_sweep_gives_the_documented_table():
     10 kHz to the digits printed there (16 solves on 128², about 1 s)."""
     result = run_study(load_scene(EXAMPLE), workers=1)
     area = result.array("apparent_area")[0, 0, :, None]
-    force = area * result.array("electrostatic_pressure")[0, 0]                  # (frequencies, realisations)
+    force = area * result.array("electrostatic_attraction")[0, 0]                  # (frequencies, realisations)
     ratio = np.mean(force / force[-1], axis=-1)
     d_eq = np.mean(result.array("equivalent_gap")[0, 0], axis=-1) * 1e6
     for k, (fel, paired, gap) in {0: (0.861, 1.058, 2.511), 5: (0.842, 1.035, 2.515),

@@ -40,7 +40,7 @@ def test_zero_volt_study_is_the_hard_wall_chain():
             previous = solve_contact(heights, body, mean_pressure=pressure, tol=1e-6, x0=previous, warn=False)
             assert result.points[i][0].equivalent_gap[r] == stack.equivalent_gap(previous.gap)
             assert result.points[i][0].contact_fraction[r] == previous.contact_fraction
-            assert result.points[i][0].electrostatic_pressure[r] == 0.0
+            assert result.points[i][0].electrostatic_attraction[r] == 0.0
     assert "One voltage (0 V) in the scene: its dependence on the voltage is not tested" in report_text(result, False)
     assert "No solve crossed an instability." in report_text(result, False)
 
@@ -62,8 +62,8 @@ def test_records_count_the_unstable_steps_of_their_solves(tiny, tiny_result):
             # converged to 0.1 x its residual, tol 1e-6: measured agreement 1e-7; a per-pixel F_el is 30 % off)
             point, grid = tiny_result.points[i][1], body.grid
             field = solve_field(stack, previous.gap, grid.lengths, 150.0, tol=1e-10)
-            assert point.electrostatic_pressure[r] == pytest.approx(field.mean_attraction, rel=1e-5)
-            assert point.pixel_law_pressure[r] == pytest.approx(float(np.mean(stack.attraction(previous.gap, 150.0))),
+            assert point.electrostatic_attraction[r] == pytest.approx(field.mean_attraction, rel=1e-5)
+            assert point.pixel_law_attraction[r] == pytest.approx(float(np.mean(stack.attraction(previous.gap, 150.0))),
                                                                 rel=1e-12)
     assert "4 of 8 patch results came from solves that crossed an instability (concave steps, from 150 V on)" \
         in report_text(tiny_result, False)
@@ -74,11 +74,11 @@ def test_field_gaps_and_ratio_carry_the_solved_attraction(tiny, tiny_result):
     for i, row in enumerate(tiny_result.points):
         for point in row:
             for r in range(2):
-                d_field, attraction = point.field_equivalent_gap[r], point.electrostatic_pressure[r]
+                d_field, attraction = point.field_equivalent_gap[r], point.electrostatic_attraction[r]
                 ratio = point.field_ratio[r]
                 if point.voltage > 0:       # Eq. 21 at d_field is the solved attraction, the ratio F_el / F_el,pixel
                     assert stack.attraction(d_field, point.voltage) == pytest.approx(attraction, rel=1e-12)
-                    assert ratio == pytest.approx(attraction / point.pixel_law_pressure[r], rel=1e-12)
+                    assert ratio == pytest.approx(attraction / point.pixel_law_attraction[r], rel=1e-12)
                 # the layered field attracts more than Eq. 21 per pixel (measured 1.43-1.50 on these gaps)
                 assert 1.2 < ratio < 2.0 and d_field < point.equivalent_gap[r]
                 # the friction law's gap: sigma_el(d_eq,R) A_R = F_el, or 0 where A_R cannot carry F_el
@@ -131,7 +131,7 @@ def test_trends_with_load_and_voltage(tiny_result):
     assert (np.diff(d_eq, axis=1) < 0).all()            # the attraction closes the gap
     assert tiny_result.array("converged").all()
     assert tiny_result.solves == 2 * 2 * 2 and tiny_result.computed == 4
-    sigma = tiny_result.summary("electrostatic_pressure")[0]
+    sigma = tiny_result.summary("electrostatic_attraction")[0]
     assert (sigma[:, 0] == 0).all() and (sigma[:, 1] > 0).all()
 
 
@@ -257,7 +257,7 @@ def test_tabulated_area_and_bottom_up_friction(tiny_result):
     point = tiny_result.points[1][1]
     # F_el = sigma_el(d_eq,R) A_R0 equals the solved mean attraction over A0
     assert float(stack.attraction(state.gap, 150.0) * state.initial_area) == pytest.approx(
-        np.mean(point.electrostatic_pressure) * point.apparent_area, rel=0.05)
+        np.mean(point.electrostatic_attraction) * point.apparent_area, rel=0.05)
     assert model.state(2.0, 0.0).friction_coefficient == pytest.approx(0.26)
 
 
@@ -270,7 +270,7 @@ def test_friction_per_realisation(tiny_result):
     for r in range(2):
         state = bottom_up_friction(tiny_result, realisation=r).state(2.0, 150.0)
         assert float(stack.attraction(state.gap, 150.0) * state.initial_area) == pytest.approx(
-            point.electrostatic_pressure[r] * point.apparent_area, rel=0.05)
+            point.electrostatic_attraction[r] * point.apparent_area, rel=0.05)
         assert samples["friction_coefficient"][1, 1, r] == state.friction_coefficient
         assert samples["tangential_force"][1, 1, r] == state.tangential_force
     assert np.all(samples["friction_coefficient"][:, 0] == 0.26)            # 0 V: mu0 in every realisation
@@ -388,7 +388,7 @@ def test_run_command_end_to_end(tmp_path, capsys):
         assert data.attrs["scene.presets.draft.grid"] == 32 and "roughcontact_version" in data.attrs
         assert data["equivalent_gap"].shape == (2, 2, 2) and data.attrs["field"] == "layered"
         assert data["bottom_up_friction_coefficient_ci95"].shape == (2, 2)
-        for name, unit in (("field_equivalent_gap", "m"), ("pixel_law_pressure", "Pa"), ("field_ratio", "1")):
+        for name, unit in (("field_equivalent_gap", "m"), ("pixel_law_attraction", "Pa"), ("field_ratio", "1")):
             assert data[name].attrs["units"] == unit and data[name].shape == (2, 2, 2)
     # the finished directory gives the run's friction model back without solving: friction.csv's mu and F_T
     # (written with 17 significant digits) are the recipe's on the study read back
