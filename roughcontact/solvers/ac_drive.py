@@ -101,32 +101,32 @@ def _corrections(count: int) -> str:
     return f"{count} correction" + ("" if count == 1 else "s")
 
 
-def _correction_size(half, change, gap_scale: float) -> float:
+def _correction_size(body, change, gap_scale: float) -> float:
     """sqrt(⟨(K Δc̃)²⟩ + (Φ_L ⟨Δc⟩)²)/gap_scale for a change Δc [Pa] of the frozen traction (a free window: the
     rms of K Δc over it): the displacement it would cause, in the energy solve's units of its tolerance."""
-    if not half.periodic:
-        return float(np.sqrt(np.mean(half.displacement(change) ** 2))) / gap_scale
+    if not body.periodic:
+        return float(np.sqrt(np.mean(body.displacement(change) ** 2))) / gap_scale
     mean = float(np.mean(change))
-    longest = max(float(half.compliance(2 * math.pi / max(half.grid.lengths))), half.uniform_compliance)
-    fluctuation = half.displacement(change - mean)
+    longest = max(float(body.compliance(2 * math.pi / max(body.grid.lengths))), body.uniform_compliance)
+    fluctuation = body.displacement(change - mean)
     return float(np.sqrt(np.mean(fluctuation ** 2) + (longest * mean) ** 2)) / gap_scale
 
 
-def _start(heights, half, load, penetration, x0, tol, maxiter):
+def _start(heights, body, load, penetration, x0, tol, maxiter):
     """(the result the first solve starts from or None, its gap, its name, its FFT pairs): the energy solve's own
     start (``x0``, else the hard-wall solution at the same control where one exists), solved here once since its
     gap also matches ε_eff; else None and the rigid gap (the energy solve starts itself)."""
     h_max = float(heights.max())
     flat_position = None if penetration is None else h_max - penetration
-    begin, kind, pairs = energy_start(heights, half, load, flat_position, x0, tol, maxiter)
+    begin, kind, pairs = energy_start(heights, body, load, flat_position, x0, tol, maxiter)
     if begin is None:
         return None, np.maximum((h_max if flat_position is None else flat_position) - heights, 0.0), kind, pairs
     return begin, np.asarray(begin.gap, dtype=np.float64), kind, pairs
 
 
-def solve_driven(height_field, half, law, *, mean_pressure=None, total_force=None, penetration=None, tol,
+def solve_driven(surface, body, law, *, mean_pressure=None, total_force=None, penetration=None, tol,
                  maxiter=10000, x0=None, callback=None, warn=True) -> ContactResult:
-    """The equilibrium of ``height_field`` on the flat under the time-averaged attraction of the AC drive ``law``
+    """The equilibrium of ``surface`` on the flat under the time-averaged attraction of the AC drive ``law``
     (module docstring); load control (``mean_pressure`` [Pa] or ``total_force`` [N]) or ``penetration`` [m], as
     for :func:`~roughcontact.solvers.energy_cg.solve_smooth`, whose ``tol``, ``maxiter``, ``callback`` and
     ``warn`` every energy solve takes.
@@ -141,16 +141,16 @@ def solve_driven(height_field, half, law, *, mean_pressure=None, total_force=Non
     of the AC field solves (``fft_pairs`` counts them with the solves' and the hard-wall start's).
     """
     began = time.perf_counter()
-    grid = half.grid
+    grid = body.grid
     given = {"mean_pressure": mean_pressure, "total_force": total_force, "penetration": penetration}
     given = {name: value for name, value in given.items() if value is not None}
     if len(given) != 1:
         raise ValueError(f"give exactly one of mean_pressure, total_force, penetration; got {sorted(given) or 'none'}")
     (control, requested), = given.items()
     requested = check_real(control, requested)
-    heights = _heights(height_field, half).astype(np.float64)
+    heights = _heights(surface, body).astype(np.float64)
     load = requested / grid.area if control == "total_force" else requested if control == "mean_pressure" else None
-    begin, gap, start_kind, pairs = _start(heights, half, load, None if load is not None else requested, x0, tol,
+    begin, gap, start_kind, pairs = _start(heights, body, load, None if load is not None else requested, x0, tol,
                                            maxiter)
     deviation = heights - float(heights.mean())
     gap_scale = float(np.sqrt(np.mean(deviation ** 2))) or law.length
@@ -158,11 +158,11 @@ def solve_driven(height_field, half, law, *, mean_pressure=None, total_force=Non
     frozen = np.zeros(grid.shape)                       # the first solve: the surrogate alone
     sizes, iterations, result, traction, message = [], [], begin, None, ""
     while True:
-        shift = half.displacement(frozen.astype(half.dtype))                # K c: the frozen traction's displacement
+        shift = body.displacement(frozen.astype(body.dtype))                # K c: the frozen traction's displacement
         shifted = heights - shift
         target = dict(mean_pressure=load - float(np.mean(frozen))) if load is not None else \
             dict(penetration=requested + float(shifted.max()) - float(heights.max()))
-        result = solve_smooth(shifted, half, correction.surrogate, tol=tol, maxiter=maxiter, x0=result,
+        result = solve_smooth(shifted, body, correction.surrogate, tol=tol, maxiter=maxiter, x0=result,
                               callback=callback, warn=False, **target)
         pairs += result.solver.fft_pairs + 2                                 # and K c, K Δc
         start_kind = result.solver.start if begin is None and not iterations else start_kind   # the solve's own
@@ -171,7 +171,7 @@ def solve_driven(height_field, half, law, *, mean_pressure=None, total_force=Non
             message = f"solve {len(iterations)} (after {_corrections(len(sizes))}) stopped: {result.message}"
             break
         traction, update = correction(result)
-        sizes.append(_correction_size(half, update - frozen, gap_scale))
+        sizes.append(_correction_size(body, update - frozen, gap_scale))
         if sizes[-1] <= tol:
             message = (f"converged after {_corrections(len(sizes) - 1)}: the correction changed by "
                        f"{sizes[-1]:.3g} <= tol {tol:g}; the last solve {result.message}")
@@ -196,19 +196,19 @@ def solve_driven(height_field, half, law, *, mean_pressure=None, total_force=Non
     report = dataclasses.replace(result.solver, method=METHOD, converged=converged, message=message,
                                  iterations=sum(iterations), start=start_kind, fft_pairs=float(pairs + correction_pairs),
                                  wall_time=time.perf_counter() - began, details={**result.solver.details, **details})
-    return _driven_result(result, half, heights, law, frozen, traction if result.converged else None, report,
+    return _driven_result(result, body, heights, law, frozen, traction if result.converged else None, report,
                           control, requested)
 
 
-def _driven_result(result, half, heights, law, frozen, traction, report, control, requested) -> ContactResult:
+def _driven_result(result, body, heights, law, frozen, traction, report, control, requested) -> ContactResult:
     """The ContactResult of the original problem from the last surrogate solve ``result`` (which had the traction
     ``frozen`` c added) with the ``report``: p = p_S + c, u = u_S + K c, the true traction ``traction`` t(g) at
     its gap (None where that solve did not converge: the solve's own t_S + c)."""
-    dtype = half.dtype
+    dtype = body.dtype
     if traction is None:
         traction = np.asarray(result.interaction_traction, dtype=np.float64) + frozen
     pressure = np.asarray(result.pressure, dtype=np.float64) + frozen
-    displacement = np.asarray(result.displacement, dtype=np.float64) + half.displacement(frozen.astype(dtype))
+    displacement = np.asarray(result.displacement, dtype=np.float64) + body.displacement(frozen.astype(dtype))
     contact_pressure = np.where(result.contact, pressure - traction, 0.0)
     arrays = {name: values.astype(dtype) for name, values in (("pressure", pressure), ("displacement", displacement),
                                                               ("interaction_traction", traction),
@@ -219,5 +219,5 @@ def _driven_result(result, half, heights, law, frozen, traction, report, control
     return dataclasses.replace(
         result, **arrays, mean_pressure=result.mean_pressure + float(np.mean(frozen)),
         penetration=float(heights.max()) - result.flat_position,
-        elastic_energy=half.elastic_energy(arrays["pressure"], arrays["displacement"]), interaction_energy=energy,
+        elastic_energy=body.elastic_energy(arrays["pressure"], arrays["displacement"]), interaction_energy=energy,
         interaction=law, control=control, requested=float(requested), solver=report)

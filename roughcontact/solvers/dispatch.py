@@ -71,14 +71,14 @@ def method_for(interaction: Interaction, method=None) -> Method:
     return chosen
 
 
-def solve_contact(height_field, body: ElasticHalfSpace, *, mean_pressure=None, total_force=None,
+def solve_contact(surface, body: ElasticHalfSpace, *, mean_pressure=None, total_force=None,
                   penetration=None, interaction: Interaction | None = None, method=None, tol=None, maxiter=10000,
                   x0=None, callback=None, warn=True, cold_start=None, preconditioned=None) -> ContactResult:
-    """Press ``height_field`` onto a rigid flat and solve for pressure, displacement and gap.
+    """Press ``surface`` onto a rigid flat and solve for pressure, displacement and gap.
 
     Parameters
     ----------
-    height_field : surfaces.HeightField or array
+    surface : surfaces.HeightField or array
         Topography h [m] on ``body.grid`` (peaks positive, towards the flat).
     body : ElasticHalfSpace
         The elastic body (kernel, FFT backend, dtype).
@@ -141,6 +141,6 @@ def solve_contact(height_field, body: ElasticHalfSpace, *, mean_pressure=None, t
         warnings.warn(f"tol = {tol!r} is below float32's round-off floor {FLOAT32_TOL_FLOOR:.2g}: the residual may "
                       f"not get there (the solve may stall or run to maxiter = {maxiter}); use tol >= "
                       f"{FLOAT32_TOL_FLOOR:.2g} or a float64 body", ConvergenceWarning, stacklevel=2)
-    return chosen.solve(height_field, body, interaction, mean_pressure=mean_pressure, total_force=total_force,
+    return chosen.solve(surface, body, interaction, mean_pressure=mean_pressure, total_force=total_force,
                         penetration=penetration, tol=tol, maxiter=maxiter, x0=x0, callback=callback, warn=warn,
                         **given)

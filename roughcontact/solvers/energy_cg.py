@@ -327,18 +327,18 @@ def _restore_mean(g, target):
 class _Energy:
     """Π/A for one control (module docstring): the load term and the elastic traction of a gap field."""
 
-    def __init__(self, h, body, load, flat_position):
-        self.body, self.load, self.flat_position = body, load, flat_position
+    def __init__(self, h, operator, load, flat_position):
+        self.operator, self.load, self.flat_position = operator, load, flat_position
         self.h_mean = float(h.mean(dtype=np.float64))
-        self.h_f = (h - self.h_mean).astype(body.dtype)
-        self.uniform = body.uniform_compliance                  # Φ(0) [m/Pa]
+        self.h_f = (h - self.h_mean).astype(operator.dtype)
+        self.uniform = operator.uniform_compliance                  # Φ(0) [m/Pa]
         self.constrained = load is None and self.uniform == 0.0
         self.mean_target = None if flat_position is None else flat_position - self.h_mean
 
     def elastic_traction(self, g, out, work):
         """out ← p_el = K⁻¹ u_f for the flat gap g (one FFT pair); ``work`` (grid-shaped) holds u_f."""
         _fluctuation_into(g, self.h_f, work.reshape(-1))
-        return self.body.stiffness_into(work, out).reshape(-1)
+        return self.operator.stiffness_into(work, out).reshape(-1)
 
     def external_load(self, g, pel, traction):
         """λ [Pa] at the gap g: P̄, the layer's ū/Φ(0), or (under the ⟨g⟩ constraint) the multiplier that
@@ -370,12 +370,12 @@ class _PaddedBody:
     the window only and the padding's displacement left free, the minimum has zero traction on the padding, so
     the window's displacement is the free surface's (``docs/guide/interactions.md``)."""
 
-    def __init__(self, half):
-        self.dtype, self._fft, self._multiplier = half.dtype, half._fft, half._multiplier
-        self._size = float(half.transform_shape[0] * half.transform_shape[1])
+    def __init__(self, body):
+        self.dtype, self._fft, self._multiplier = body.dtype, body._fft, body._multiplier
+        self._size = float(body.transform_shape[0] * body.transform_shape[1])
         self.uniform_compliance = float(self._multiplier[0, 0]) * self._size
         self.largest_compliance = float(self._multiplier.max()) * self._size
-        self.pixel_compliance = half.pixel_compliance
+        self.pixel_compliance = body.pixel_compliance
 
     def empty(self):
         return self._fft.empty()
@@ -393,7 +393,7 @@ class _PaddedBody:
         return out
 
 
-def _start(heights, half, load, flat_position, x0, tol, maxiter):
+def _start(heights, body, load, flat_position, x0, tol, maxiter):
     """What the solve starts from: ``x0``, else the hard-wall solution at the same control where it exists (None
     otherwise: the undeformed surface); its name and FFT pairs."""
     if isinstance(x0, ContactResult):
@@ -407,26 +407,26 @@ def _start(heights, half, load, flat_position, x0, tol, maxiter):
     # the start keeps the K⁻¹ preconditioner on profiles too: a smooth solve that crosses instabilities ends in an
     # equilibrium that depends on its start (docs/dev/investigations.md), and the profile studies were measured so
     if load is not None and load > 0:
-        start = solve_hard_wall(heights, half, mean_pressure=load, tol=max(tol, START_TOL), maxiter=maxiter,
+        start = solve_hard_wall(heights, body, mean_pressure=load, tol=max(tol, START_TOL), maxiter=maxiter,
                                 preconditioned=True, warn=False)
     elif flat_position is not None and flat_position < h_max:
-        start = solve_hard_wall(heights, half, penetration=h_max - flat_position, tol=max(tol, START_TOL),
+        start = solve_hard_wall(heights, body, penetration=h_max - flat_position, tol=max(tol, START_TOL),
                                 maxiter=maxiter, preconditioned=True, warn=False)
     else:
         return None, "rigid", 0.0
     return start, "hard wall", start.solver.fft_pairs
 
 
-def solve_smooth(height_field, half, law, *, mean_pressure=None, total_force=None, penetration=None, tol,
+def solve_smooth(surface, body, law, *, mean_pressure=None, total_force=None, penetration=None, tol,
                  maxiter=10000, x0=None, callback=None, warn=True) -> ContactResult:
-    """Solve the contact of ``height_field`` with the flat under the smooth ``law`` (module docstring).
+    """Solve the contact of ``surface`` with the flat under the smooth ``law`` (module docstring).
 
     Called by :func:`~roughcontact.solvers.dispatch.solve_contact` for a smooth interaction: ``mean_pressure`` [Pa] or
     ``total_force`` [N] of any sign (external load control), or ``penetration`` δ = max(h) − s [m] of any sign.
     ``x0``: a previous result, whose gap starts the solve.
     """
     start = time.perf_counter()
-    grid = half.grid
+    grid = body.grid
     given = {name: value for name, value in (("mean_pressure", mean_pressure), ("total_force", total_force),
                                              ("penetration", penetration)) if value is not None}
     if len(given) != 1:
@@ -437,43 +437,43 @@ def solve_smooth(height_field, half, law, *, mean_pressure=None, total_force=Non
     check_integer("maxiter", maxiter, low=0)
     if callback is not None and not callable(callback):
         raise TypeError(f"callback must be callable, got {type(callback).__name__}")
-    heights = _heights(height_field, half)
+    heights = _heights(surface, body)
     load = requested / grid.area if control == "total_force" else requested if control == "mean_pressure" else None
     if x0 is None and load is not None and load < 0 and not (law.strength is not None and -load > law.strength):
-        return _retract_to(height_field, half, law, load, control, requested, start,
+        return _retract_to(surface, body, law, load, control, requested, start,
                            dict(tol=tol, maxiter=maxiter, callback=callback, warn=warn))
     flat_position = None if load is not None else float(heights.max()) - requested
-    begin, start_kind, start_pairs = _start(heights, half, load, flat_position, x0, tol, maxiter)
+    begin, start_kind, start_pairs = _start(heights, body, load, flat_position, x0, tol, maxiter)
     nx, ny = grid.shape
-    if half.periodic:                                       # the grid itself
-        body, h = half, heights.reshape(-1)
+    if body.periodic:                                       # the grid itself
+        operator, h = body, heights.reshape(-1)
         window = np.ones(h.size, np.bool_)
-        largest_compliance = max(float(half.compliance(2 * math.pi / max(grid.lengths))), half.uniform_compliance)
+        largest_compliance = max(float(body.compliance(2 * math.pi / max(grid.lengths))), body.uniform_compliance)
     else:                                                   # the window in the corner of the padded grid
-        body = _PaddedBody(half)
-        padded = np.zeros(half.transform_shape)
+        operator = _PaddedBody(body)
+        padded = np.zeros(body.transform_shape)
         padded[:nx, :ny] = heights
         h = padded.reshape(-1)
-        window = np.zeros(half.transform_shape, np.bool_)
+        window = np.zeros(body.transform_shape, np.bool_)
         window[:nx, :ny] = True
         window = window.reshape(-1)
-        largest_compliance = body.largest_compliance
-    scale_to_body = h.size / heights.size                   # external load per body pixel = per window pixel / this
-    energy = _Energy(h, body, None if load is None else load / scale_to_body, flat_position)
+        largest_compliance = operator.largest_compliance
+    scale_to_operator = h.size / heights.size       # external load per operator pixel = per window pixel / this
+    energy = _Energy(h, operator, None if load is None else load / scale_to_operator, flat_position)
     if energy.constrained and energy.mean_target <= 0:
         raise ValueError(f"penetration = {requested!r} m leaves no room for a gap on a periodic half-space: the mean "
                          f"gap ⟨g⟩ = s − ⟨h⟩ must be > 0, i.e. penetration < max(h) − ⟨h⟩ = "
                          f"{float(h.max()) - energy.h_mean!r} m")
-    g, start_pairs = _start_gap(begin, h, body, window, heights, flat_position, start_pairs)
+    g, start_pairs = _start_gap(begin, h, operator, window, heights, flat_position, start_pairs)
     if energy.constrained:
         _restore_mean(g, energy.mean_target)
     deviation = heights - float(heights.mean(dtype=np.float64))
     gap_scale = float(np.sqrt(np.mean(deviation * deviation, dtype=np.float64))) or law.length or 1.0
-    state = _Solver(g, energy, law, gap_scale, start_pairs, window, largest_compliance, scale_to_body, grid)
-    return state.run(tol, maxiter, callback, warn, half, heights, control, requested, start_kind, start)
+    state = _Solver(g, energy, law, gap_scale, start_pairs, window, largest_compliance, scale_to_operator, grid)
+    return state.run(tol, maxiter, callback, warn, body, heights, control, requested, start_kind, start)
 
 
-def _retract_to(height_field, half, law, load, control, requested, start, options) -> ContactResult:
+def _retract_to(surface, body, law, load, control, requested, start, options) -> ContactResult:
     """A cold solve under the tensile load ``load`` [Pa] (< 0, within the law's strength): the equilibrium at zero
     load, then a quasi-static retract along its branch to ``load``, each solve from the last equilibrium, the step
     halved where a solve finds none (at most ``RETRACT_HALVINGS`` times). A cold descent from the undeformed
@@ -481,11 +481,11 @@ def _retract_to(height_field, half, law, load, control, requested, start, option
     ``load`` (start "retract from 0 Pa"; ``details["retract_loads"]`` the loads solved), or, where the branch
     ends first, the detached result, its message bracketing the branch's pull-off."""
     warn = options.pop("warn")
-    attached = solve_smooth(height_field, half, law, mean_pressure=0.0, warn=False, **options)
+    attached = solve_smooth(surface, body, law, mean_pressure=0.0, warn=False, **options)
     solved, pairs, trial = [0.0], attached.solver.fft_pairs, attached
     attached_load, step = 0.0, -load
     while attached.converged and attached_load > load:
-        trial = solve_smooth(height_field, half, law, mean_pressure=max(load, attached_load - step), x0=attached,
+        trial = solve_smooth(surface, body, law, mean_pressure=max(load, attached_load - step), x0=attached,
                              warn=False, **options)
         solved.append(trial.requested)
         pairs += trial.solver.fft_pairs
@@ -509,22 +509,22 @@ def _retract_to(height_field, half, law, load, control, requested, start, option
     return dataclasses.replace(trial, solver=report, control=control, requested=float(requested))
 
 
-def _start_gap(begin, h, body, window, heights, flat_position, start_pairs):
-    """The starting gap on the body's grid (flat) from the start's gap (periodic) or from its traction and flat
+def _start_gap(begin, h, operator, window, heights, flat_position, start_pairs):
+    """The starting gap on the operator's grid (flat) from the start's gap (periodic) or from its traction and flat
     position (padded free surface: the padding's displacement is K_T of the window's traction); clipped at 0 in
     the window. Returns it and the FFT pairs spent."""
     if begin is None:                                       # the undeformed surface under the flat
         position = float(heights.max()) if flat_position is None else flat_position
-        g = (position - h).astype(body.dtype)
+        g = (position - h).astype(operator.dtype)
     elif window.all():
-        g = np.array(begin.gap, dtype=body.dtype).reshape(-1)
+        g = np.array(begin.gap, dtype=operator.dtype).reshape(-1)
     else:
-        traction = body.empty()
+        traction = operator.empty()
         traction[...] = 0.0
         nx, ny = heights.shape
         traction[:nx, :ny] = begin.pressure
-        displacement = body._displacement_into(traction, body.empty())
-        g = (displacement.reshape(-1) - h + begin.flat_position).astype(body.dtype)
+        displacement = operator._displacement_into(traction, operator.empty())
+        g = (displacement.reshape(-1) - h + begin.flat_position).astype(operator.dtype)
         start_pairs += 1.0
     g[window] = np.maximum(g[window], 0.0)
     return g, start_pairs
@@ -534,18 +534,18 @@ class _Solver:
     """The work arrays and the iteration of :func:`solve_smooth` (fields, not closures, so that each step's
     buffers swap without allocation)."""
 
-    def __init__(self, g, energy, law, gap_scale, start_pairs, window, largest_compliance, scale_to_body, grid):
-        body = energy.body
-        self.energy, self.law, self.body, self.gap_scale = energy, law, body, gap_scale
-        self.window, self.largest_compliance, self.scale_to_body = window, largest_compliance, scale_to_body
+    def __init__(self, g, energy, law, gap_scale, start_pairs, window, largest_compliance, scale_to_operator, grid):
+        operator = energy.operator
+        self.energy, self.law, self.operator, self.gap_scale = energy, law, operator, gap_scale
+        self.window, self.largest_compliance, self.scale_to_operator = window, largest_compliance, scale_to_operator
         self.code = _law_code(law)
-        n, dtype = g.size, body.dtype
+        n, dtype = g.size, operator.dtype
         self.n = n
         self.g, self.trial = g, np.empty(n, dtype)
-        self.pel_field, self.trial_field, self.work, self.z_field, self.w_field = (body.empty() for _ in range(5))
+        self.pel_field, self.trial_field, self.work, self.z_field, self.w_field = (operator.empty() for _ in range(5))
         self.d, self.r, self.r_prev = np.zeros(n, dtype), np.zeros(n, dtype), np.zeros(n, dtype)
         self.free = np.zeros(n, np.bool_)
-        self.window_view = tuple(slice(0, m) for m in grid.shape)  # the grid in the corner of the body's fields
+        self.window_view = tuple(slice(0, m) for m in grid.shape)  # the grid in the corner of the operator's fields
         # the layered law, evaluated by field solves on the window; it also carries its unit-voltage flux and
         # column elastance per point (zero outside the window)
         self.field = FieldLaw(law.stack, law.voltage, grid, tol=FIELD_TOL_CEILING) \
@@ -553,7 +553,7 @@ class _Solver:
         arrays = 2 if self.field is None else 4
         self.law_now = [np.zeros(n, dtype) for _ in range(arrays)]     # p_int, k at g (and D₁, R)
         self.law_trial = [np.zeros(n, dtype) for _ in range(arrays)]   # the same at the trial gap
-        self.pixel_compliance = body.pixel_compliance
+        self.pixel_compliance = operator.pixel_compliance
         # float32 fields carry the energy's terms to a few ε32: a smaller rise is round-off, not a rise
         self.round_off = max(ENERGY_ROUND_OFF, 3 * float(np.finfo(dtype).eps))
         self.transforms = 2 * start_pairs                      # the start's solve included
@@ -582,8 +582,8 @@ class _Solver:
             start = tuple(array.reshape(shape)[inside] for array in (self.law_now[3], self.law_now[2]))
         return self.field.evaluate(gap.reshape(shape)[inside], traction, stiffness, flux, columns, start=start)
 
-    def run(self, tol, maxiter, callback, warn, half, heights, control, requested, start_kind, start):
-        energy, body, n = self.energy, self.body, self.n
+    def run(self, tol, maxiter, callback, warn, body, heights, control, requested, start_kind, start):
+        energy, operator, n = self.energy, self.operator, self.n
         pel = self.elastic(self.g, self.pel_field)
         value, magnitude, interaction = self.evaluate(self.g, pel, self.law_now)
         history, residuals = [value], []
@@ -598,7 +598,7 @@ class _Solver:
                 n_free, sum_r, at_wall, largest_pull = _residual(g, pel, traction, load, self.window, r, free)
                 # preconditioned residual z = K r on F (+ the largest compliance for the mean mode); zero mean on F
                 # under the ⟨g⟩ constraint
-                z = body._displacement_into(r.reshape(self.z_field.shape), self.z_field).reshape(-1)
+                z = operator._displacement_into(r.reshape(self.z_field.shape), self.z_field).reshape(-1)
                 self.transforms += 2
                 sum_z, zz, rz, prz = _mask_shift(z, free, (self.largest_compliance - energy.uniform) * sum_r / n, r,
                                                  self.r_prev)
@@ -670,7 +670,7 @@ class _Solver:
             message = f"stopped after {iterations} iterations: {error}"
         if not converged and warn:
             warnings.warn(message, ConvergenceWarning, stacklevel=4)
-        return self.result(pel, interaction, half, heights, control, requested, iterations, residuals, converged,
+        return self.result(pel, interaction, body, heights, control, requested, iterations, residuals, converged,
                            message, start, start_kind, tol, maxiter, detached, history)
 
     def detachment(self, at_wall, largest_pull, start_kind) -> str:
@@ -681,7 +681,7 @@ class _Solver:
         load = self.energy.load
         if load is None or load >= 0:
             return ""
-        tension, strength = -load * self.scale_to_body, self.law.strength
+        tension, strength = -load * self.scale_to_operator, self.law.strength
         if strength is not None and tension > strength:
             return (f"detached: no equilibrium at any gap, since the tensile load {-tension:.6g} Pa exceeds the "
                     f"strongest attraction of the law, {strength:.6g} Pa (the mean traction can never balance it)")
@@ -698,7 +698,7 @@ class _Solver:
         concave along d) and halves. Every first try is capped so that no stable point tunnels into contact.
         Returns (accepted, τ, the trial's p_el, steps since an exact p_el, the trial's Π/A, its magnitude and Σ V
         (None if rejected))."""
-        body, n, g, d = self.body, self.n, self.g, self.d
+        operator, n, g, d = self.operator, self.n, self.g, self.d
         stiffness, length = self.law_now[1], float(self.law.length)
         rejected = math.inf                                 # the snap-in try's length, if Armijo rejected it
         if self.snapping:
@@ -713,7 +713,7 @@ class _Solver:
         self.snapping = False
         d_mean = sum_d / n
         _centred_into(d, d_mean, self.work.reshape(-1))
-        w = body.stiffness_into(self.work, self.w_field).reshape(-1)        # K⁻¹ d_f
+        w = operator.stiffness_into(self.work, self.w_field).reshape(-1)        # K⁻¹ d_f
         self.transforms += 2
         dw, kdd, cap = _curvature_and_cap(g, d, w, stiffness, self.window, length, self.pixel_compliance, APPROACH)
         curvature = self.curvature((dw - kdd) / n, d_mean)
@@ -758,27 +758,27 @@ class _Solver:
             return step, 0 if exact else since_exact + 1, evaluated
         return None
 
-    def result(self, pel, interaction, half, heights, control, requested, iterations, residuals, converged, message,
+    def result(self, pel, interaction, body, heights, control, requested, iterations, residuals, converged, message,
                start, start_kind, tol, maxiter, detached, history):
         """The ContactResult on the window (the whole grid when periodic)."""
         energy, law, g = self.energy, self.law, self.g
-        grid = half.grid
+        grid = body.grid
         g_mean = float(g.mean(dtype=np.float64))
         traction = self.law_now[0]
         load = energy.external_load(g, pel, traction)
         mean_displacement = energy.uniform * load
         flat_position = g_mean + energy.h_mean - mean_displacement
         nx, ny = grid.shape
-        body_shape = self.pel_field.shape
+        operator_shape = self.pel_field.shape
 
         def window(values):
-            return np.array(values.reshape(body_shape)[:nx, :ny], dtype=half.dtype)
+            return np.array(values.reshape(operator_shape)[:nx, :ny], dtype=body.dtype)
 
         pressure = window(pel + load)
         displacement = window(g - g_mean + energy.h_f + mean_displacement)
         gap, traction = window(g), window(traction)
         contact = gap <= 0
-        contact_pressure = np.where(contact, pressure - traction, 0.0).astype(half.dtype)
+        contact_pressure = np.where(contact, pressure - traction, 0.0).astype(body.dtype)
         for array in (pressure, displacement, gap, contact, contact_pressure, traction):
             array.flags.writeable = False
         report = SolverReport(
@@ -786,16 +786,16 @@ class _Solver:
             residuals=np.asarray(residuals, dtype=np.float64), tol=tol, maxiter=int(maxiter), start=start_kind,
             fft_pairs=self.transforms / 2 + (self.field.fft_pairs if self.field else 0),
             wall_time=time.perf_counter() - start, unstable_steps=self.unstable_steps, detached=detached,
-            kernel=half.description, version=__version__,
-            details={"energy_history": [float(v) * grid.area * self.scale_to_body for v in history],
+            kernel=body.description, version=__version__,
+            details={"energy_history": [float(v) * grid.area * self.scale_to_operator for v in history],
                      **({} if self.field is None else {"field_fft_pairs": self.field.fft_pairs,
                                                        "field_evaluations": self.field.evaluations})})
         return ContactResult(
             pressure=pressure, displacement=displacement, gap=gap, contact=contact,
             contact_fraction=float(np.count_nonzero(contact)) / contact.size,
-            mean_pressure=float(load) * self.scale_to_body, mean_gap=float(gap.mean(dtype=np.float64)),
+            mean_pressure=float(load) * self.scale_to_operator, mean_gap=float(gap.mean(dtype=np.float64)),
             penetration=float(heights.max()) - flat_position,
-            elastic_energy=half.elastic_energy(pressure, displacement), grid=grid, solver=report,
+            elastic_energy=body.elastic_energy(pressure, displacement), grid=grid, solver=report,
             contact_pressure=contact_pressure, interaction_traction=traction, flat_position=float(flat_position),
             interaction_energy=interaction * grid.pixel_area, interaction=law, control=control,
             requested=float(requested))

@@ -18,15 +18,15 @@ def _check_body(body) -> None:
         raise TypeError(f"body must be an ElasticHalfSpace, got {type(body).__name__}")
 
 
-def _heights(height_field, body) -> np.ndarray:
-    if isinstance(height_field, HeightField):
-        if height_field.grid != body.grid:
-            raise ValueError(f"height_field.grid {height_field.grid} differs from the body's grid {body.grid}")
-        heights = height_field.heights
+def _heights(surface, body) -> np.ndarray:
+    if isinstance(surface, HeightField):
+        if surface.grid != body.grid:
+            raise ValueError(f"surface.grid {surface.grid} differs from the body's grid {body.grid}")
+        heights = surface.heights
     else:
-        heights = check_finite_array("height_field", height_field)
+        heights = check_finite_array("surface", surface)
         if heights.shape != body.grid.shape:
-            raise ValueError(f"height_field has shape {heights.shape}, but the body's grid has shape "
+            raise ValueError(f"surface has shape {heights.shape}, but the body's grid has shape "
                              f"{body.grid.shape}")
     return np.ascontiguousarray(heights, dtype=body.dtype)
 

@@ -223,24 +223,24 @@ def _warm_pressure(x0, shape):
     return pressure if pressure.any() else None
 
 
-def _pk_pressure(heights, half, mean_pressure, flat_position):
+def _pk_pressure(heights, body, mean_pressure, flat_position):
     """Polonsky and Keer's initial guess [Pa]: uniform p̄ (load control) or the rigid overlap (displacement
     control)."""
     if mean_pressure is not None:
-        return np.full(heights.shape, mean_pressure, dtype=half.dtype)
+        return np.full(heights.shape, mean_pressure, dtype=body.dtype)
     overlap = np.maximum(heights - flat_position, 0)      # rigid overlap; pressure ~ E* δ / (contact size)
-    contact_size = math.sqrt(np.count_nonzero(overlap) * half.grid.pixel_area)
-    return (overlap * (half.E_star / contact_size)).astype(half.dtype)
+    contact_size = math.sqrt(np.count_nonzero(overlap) * body.grid.pixel_area)
+    return (overlap * (body.E_star / contact_size)).astype(body.dtype)
 
 
-def _nested_start(surface, half, mean_pressure, flat_position, tol, maxiter, preconditioned):
+def _nested_start(surface, body, mean_pressure, flat_position, tol, maxiter, preconditioned):
     """Cold-start pressure [Pa]: the same problem solved on the grid coarsened 2 × 2 (itself started the same
     way, down to ``NESTED_MIN`` pixels per axis) to tol max(tol, ``NESTED_TOL``), whose pressure, each coarse
     pixel's on the fine pixels it covers (:func:`_repeat_into`), is the fine guess — cascade multi-resolution
     (Bemporad & Paggi 2015, Int. J. Solids Struct. 69:94). Returns the coarse pressure (None where the grid does
     not halve or the flat misses the coarse surface) and the coarse solves' iterations, coarsest first. The
     coarse body is built here and dropped, so the fine solve's peak memory is unchanged."""
-    grid = half.grid
+    grid = body.grid
     if any(n % 2 or n // 2 < NESTED_MIN for n in grid.shape[:1 if grid.is_profile else 2]):
         return None, []
     coarse = surface.coarsened(2)
@@ -250,7 +250,7 @@ def _nested_start(surface, half, mean_pressure, flat_position, tol, maxiter, pre
         control = {"penetration": float(coarse.heights.max()) - flat_position}
         if control["penetration"] <= 0:
             return None, []
-    result = solve_hard_wall(coarse, half.coarsened(), **control, tol=max(tol, NESTED_TOL), maxiter=maxiter,
+    result = solve_hard_wall(coarse, body.coarsened(), **control, tol=max(tol, NESTED_TOL), maxiter=maxiter,
                              preconditioned=preconditioned, warn=False)
     if not result.pressure.any():
         return None, []
@@ -271,30 +271,30 @@ def _restart(p, t, z_in, index, been_in_contact) -> int:
     return _contact_index(p, index, been_in_contact)
 
 
-def _full_contact(h, half, mean_pressure, pressure, displacement):
+def _full_contact(h, body, mean_pressure, pressure, displacement):
     """The exact full-contact state under load control on a periodic body into the flat arrays ``pressure`` and
-    ``displacement`` (from ``half.empty()``): p = p̄ + K⁻¹(h − ⟨h⟩), u = h − ⟨h⟩ + Φ(0) p̄ (one FFT pair). Returns
+    ``displacement`` (from ``body.empty()``): p = p̄ + K⁻¹(h − ⟨h⟩), u = h − ⟨h⟩ + Φ(0) p̄ (one FFT pair). Returns
     the flat position s = ⟨h⟩ − Φ(0) p̄, or None if some pressure would be negative (partial contact)."""
     h_mean = float(h[0]) if float(h.min()) == float(h.max()) else float(h.mean(dtype=np.float64))   # flat: exact
     np.subtract(h, h_mean, out=displacement)
-    shape = half.grid.shape
-    half.stiffness_into(displacement.reshape(shape), pressure.reshape(shape))
+    shape = body.grid.shape
+    body.stiffness_into(displacement.reshape(shape), pressure.reshape(shape))
     pressure += mean_pressure - float(pressure.mean(dtype=np.float64))        # the mean exactly p̄
     if float(pressure.min()) <= 0.0:
         return None
-    displacement += half.uniform_compliance * mean_pressure
-    return h_mean - half.uniform_compliance * mean_pressure
+    displacement += body.uniform_compliance * mean_pressure
+    return h_mean - body.uniform_compliance * mean_pressure
 
 
-def solve_hard_wall(height_field, half: ElasticHalfSpace, interaction: Interaction | None = None, *,
+def solve_hard_wall(surface, body: ElasticHalfSpace, interaction: Interaction | None = None, *,
                     mean_pressure=None, total_force=None, penetration=None, tol=None, maxiter=10000, x0=None,
                     cold_start="nested", callback=None, preconditioned=None, warn=True) -> ContactResult:
     """Polonsky–Keer's solve (module docstring) of :func:`~roughcontact.solvers.dispatch.solve_contact` for the
     hard wall, or a law that vanishes (0 V); same arguments."""
     start = time.perf_counter()
-    _check_body(half)
+    _check_body(body)
     interaction = _checked_interaction(interaction)
-    tol = default_tolerance(half.dtype, interaction) if tol is None else tol
+    tol = default_tolerance(body.dtype, interaction) if tol is None else tol
     given = {name: value for name, value in (("mean_pressure", mean_pressure), ("total_force", total_force),
                                              ("penetration", penetration)) if value is not None}
     if len(given) != 1:
@@ -304,10 +304,10 @@ def solve_hard_wall(height_field, half: ElasticHalfSpace, interaction: Interacti
     check_choice("cold_start", cold_start, COLD_STARTS)
     if callback is not None and not callable(callback):
         raise TypeError(f"callback must be callable, got {type(callback).__name__}")
-    grid = half.grid
+    grid = body.grid
     # K⁻¹ saves steps on 2-D grids; on 1-D profiles it does not (docs/guide/solver.md): off there by default
     preconditioned = not grid.is_profile if preconditioned is None else check_bool("preconditioned", preconditioned)
-    heights = _heights(height_field, half)
+    heights = _heights(surface, body)
     warm = _warm_pressure(x0, heights.shape)
     warm_started = warm is not None
     if total_force is not None or mean_pressure is not None:    # a law that vanishes (0 V) takes any sign, as
@@ -315,7 +315,7 @@ def solve_hard_wall(height_field, half: ElasticHalfSpace, interaction: Interacti
     load_control = mean_pressure is not None
     h_max = float(heights.max())
     flat_position = None if load_control else h_max - check_real("penetration", penetration)
-    if not load_control and half.periodic and half.uniform_compliance == 0.0:
+    if not load_control and body.periodic and body.uniform_compliance == 0.0:
         limit = h_max - float(heights.mean(dtype=np.float64))
         if penetration >= limit and penetration > 0:
             raise ValueError(f"penetration = {float(penetration)!r} m has no solution on a periodic body with ⟨u⟩ = 0: "
@@ -330,35 +330,35 @@ def solve_hard_wall(height_field, half: ElasticHalfSpace, interaction: Interacti
     n_points = heights.size
     h = heights.reshape(-1)
     if not load_control and flat_position >= h_max:          # the flat does not reach the surface
-        zeros = np.zeros(n_points, half.dtype)
-        return _result(zeros, zeros.copy(), h, flat_position, half, interaction, params, 0, [0.0], True,
+        zeros = np.zeros(n_points, body.dtype)
+        return _result(zeros, zeros.copy(), h, flat_position, body, interaction, params, 0, [0.0], True,
                        "no contact: penetration <= 0", start, 0)
     if load_control and mean_pressure <= 0:                 # nothing presses: a law that vanishes (0 V) at 0 or less
-        zeros = np.zeros(n_points, half.dtype)
+        zeros = np.zeros(n_points, body.dtype)
         if mean_pressure == 0:
-            return _result(zeros, zeros.copy(), h, h_max, half, interaction, params, 0, [0.0], True,
+            return _result(zeros, zeros.copy(), h, h_max, body, interaction, params, 0, [0.0], True,
                            "zero load: the flat touches the highest point and presses nothing", start, 0)
         message = (f"detached: no equilibrium under the tensile load {mean_pressure:.6g} Pa, since the law "
                    f"{type(interaction).__name__} exerts no traction (it vanishes); the bodies separate")
         if warn:
             warnings.warn(message, ConvergenceWarning, stacklevel=3)
-        return _result(zeros, zeros.copy(), h, h_max, half, interaction, params, 0, [math.inf], False, message,
+        return _result(zeros, zeros.copy(), h, h_max, body, interaction, params, 0, [math.inf], False, message,
                        start, 0, detached=True)
     coarse_pressure = None
     if warm is None and cold_start == "nested":             # solved first, before the fine work arrays exist
-        surface = height_field if isinstance(height_field, HeightField) else HeightField(grid, heights)
-        coarse_pressure, params["details"]["nested_iterations"] = _nested_start(surface, half, mean_pressure, flat_position,
-                                                                     tol, maxiter, preconditioned)
-        del surface                                         # (a grid copy when the heights came as an array)
+        field = surface if isinstance(surface, HeightField) else HeightField(grid, heights)
+        coarse_pressure, params["details"]["nested_iterations"] = _nested_start(
+            field, body, mean_pressure, flat_position, tol, maxiter, preconditioned)
+        del field                                           # (a grid copy when the heights came as an array)
         params["start"] = "pk" if coarse_pressure is None else "nested"
     # grid-sized work arrays (aligned: the periodic FFT uses them in place); t and z_in stay 0 outside I_c
-    p, u, t, r = (half.empty().reshape(-1) for _ in range(4))
-    z_in = half.empty().reshape(-1) if preconditioned else t
-    if load_control and half.periodic:                      # full contact is exact: no iteration
-        shift = _full_contact(h, half, mean_pressure, p, u)
+    p, u, t, r = (body.empty().reshape(-1) for _ in range(4))
+    z_in = body.empty().reshape(-1) if preconditioned else t
+    if load_control and body.periodic:                      # full contact is exact: no iteration
+        shift = _full_contact(h, body, mean_pressure, p, u)
         if shift is not None:
             params["details"]["full_contact"] = True
-            return _result(p, u, h, shift, half, interaction, params, 0, [0.0], True,
+            return _result(p, u, h, shift, body, interaction, params, 0, [0.0], True,
                            "full contact: the pressure that flattens h, p̄ + K⁻¹(h − ⟨h⟩), is positive everywhere "
                            "(exact)", start, 2)
     index = np.empty(n_points, np.int32 if n_points < 2 ** 31 else np.int64)   # the contact set I_c, sorted
@@ -366,20 +366,20 @@ def solve_hard_wall(height_field, half: ElasticHalfSpace, interaction: Interacti
         p[:] = warm.reshape(-1)
         del warm                                            # (a grid copy when x0 needed a dtype conversion)
     elif coarse_pressure is None:
-        p[:] = _pk_pressure(heights, half, mean_pressure, flat_position).reshape(-1)
+        p[:] = _pk_pressure(heights, body, mean_pressure, flat_position).reshape(-1)
     else:
         _repeat_into(coarse_pressure, p.reshape(grid.shape))
         del coarse_pressure                                 # (a quarter grid array, not kept through the solve)
-    solver = _PolonskyKeer(half, heights, (p, u, t, r, z_in), index, mean_pressure, flat_position, preconditioned,
+    solver = _PolonskyKeer(body, heights, (p, u, t, r, z_in), index, mean_pressure, flat_position, preconditioned,
                            params["details"])
     iterations, residuals, converged, message, stalled = solver.iterate(tol, maxiter, callback)
-    cycled = stalled and min(residuals) > CYCLE_ABOVE_ROUND_OFF * np.finfo(half.dtype).eps
+    cycled = stalled and min(residuals) > CYCLE_ABOVE_ROUND_OFF * np.finfo(body.dtype).eps
     if stalled and (warm_started or (preconditioned and cycled)):
         # a warm start can lead PK into a cycle that the cold start avoids: solve again from it; a cold start that
         # cycles with the K⁻¹ preconditioner far above round-off (seen on 1-D skin profiles at 0.25 µm pixels,
         # about one in ten) converges without it: solve again unpreconditioned
         del p, u, t, r, z_in, index, solver
-        retry = solve_hard_wall(height_field, half, mean_pressure=mean_pressure if total_force is None else None,
+        retry = solve_hard_wall(surface, body, mean_pressure=mean_pressure if total_force is None else None,
                                 total_force=total_force, penetration=penetration, tol=tol, maxiter=maxiter,
                                 cold_start=cold_start, callback=callback,
                                 preconditioned=preconditioned and warm_started, interaction=interaction, warn=warn)
@@ -389,7 +389,7 @@ def solve_hard_wall(height_field, half: ElasticHalfSpace, interaction: Interacti
     solver.finish()
     if not converged and warn:
         warnings.warn(message, ConvergenceWarning, stacklevel=3)
-    return _result(p, u, h, solver.shift, half, interaction, params, iterations, residuals, converged, message, start,
+    return _result(p, u, h, solver.shift, body, interaction, params, iterations, residuals, converged, message, start,
                    solver.transforms)
 
 
@@ -398,8 +398,8 @@ class _PolonskyKeer:
     pressure p and displacement u (normalised lazily by ``alpha``, PK step (g)), the direction t, the
     preconditioner's input and output, the contact set I_c as a sorted index list, and the CG's scalars."""
 
-    def __init__(self, half, heights, arrays, index, mean_pressure, flat_position, preconditioned, details):
-        self.half, self.heights, self.h = half, heights, heights.reshape(-1)
+    def __init__(self, body, heights, arrays, index, mean_pressure, flat_position, preconditioned, details):
+        self.body, self.heights, self.h = body, heights, heights.reshape(-1)
         self.p, self.u, self.t, self.r, self.z_in = arrays          # t and z_in stay 0 outside I_c
         self.index = index
         self.been_in_contact = np.zeros(heights.size, np.bool_)    # only a first entry into I_c restarts the CG
@@ -422,11 +422,11 @@ class _PolonskyKeer:
 
     def field(self, array):
         """The 2-D view that the elastic operator takes."""
-        return array.reshape(self.half.grid.shape)
+        return array.reshape(self.body.grid.shape)
 
     def recompute_displacement(self):
         """u = K p exactly: one FFT pair (two transforms)."""
-        self.half._displacement_into(self.field(self.p), self.field(self.u))
+        self.body._displacement_into(self.field(self.p), self.field(self.u))
         self.transforms += 2
         self.exact, self.since_exact = True, 0
 
@@ -465,7 +465,7 @@ class _PolonskyKeer:
             elif self.restart_every_entry and iterations - smallest_at >= STALL_LIMIT:
                 return iterations, residuals, False, (f"stalled: no smaller residual in {STALL_LIMIT} steps (smallest "
                                                       f"{smallest_residual:.3g} at step {smallest_at}, tol {tol:g}, "
-                                                      f"{self.half.dtype.name})"), True
+                                                      f"{self.body.dtype.name})"), True
             if iterations >= maxiter:
                 message = (f"not converged after {iterations} iterations: relative rms gap error {residual:.3g} "
                            f"(tol {tol:g})")
@@ -504,17 +504,17 @@ class _PolonskyKeer:
     def step(self, squared):
         """One step, (c)–(g), from the residual's Σ(g − ḡ)²; u advanced incrementally while I_c holds, else
         recomputed exactly."""
-        half, p, t, r, z_in, index = self.half, self.p, self.t, self.r, self.z_in, self.index
+        body, p, t, r, z_in, index = self.body, self.p, self.t, self.r, self.z_in, self.index
         step_incremental = False
         if self.n_contact == 0:                             # displacement control lost all contact: restart
-            p[:] = _pk_pressure(self.heights, half, None, self.flat_position).reshape(-1)
+            p[:] = _pk_pressure(self.heights, body, None, self.flat_position).reshape(-1)
             self.alpha, self.beta_allowed = 1.0, False
             self.n_contact = _restart(p, t, z_in, index, self.been_in_contact)
         else:
             # (c) conjugate direction, optionally preconditioned: z = M g with M = K⁻¹ (one FFT pair)
             if self.preconditioned:
                 _masked_gap(index, self.n_contact, self.u, self.h, self.alpha, self.shift, z_in)
-                half.stiffness_into(self.field(z_in), self.field(r))
+                body.stiffness_into(self.field(z_in), self.field(r))
                 self.transforms += 2
                 sum_z, descent = _preconditioned_moments(index, self.n_contact, z_in, r)
                 self.z_mean = sum_z / self.n_contact if self.load_control else 0.0
@@ -526,12 +526,12 @@ class _PolonskyKeer:
             if sum_gt <= 0 and beta > 0:                    # not a descent direction: restart the CG
                 sum_gt = self.conjugate_direction(0.0)
             # (d) step length τ = Σ g t / ⟨t, K t⟩, the curvature by Parseval (forward transform only)
-            curvature = half.quadratic_form(self.field(t))
+            curvature = body.quadratic_form(self.field(t))
             self.transforms += 1
             if curvature > 0:
                 self.tau = sum_gt / curvature
             elif self.tau == 0.0:                           # t = 0 on a gap-free contact set: re-entry only
-                self.tau = 1.0 / half.pixel_compliance
+                self.tau = 1.0 / body.pixel_compliance
             # (e) projected step on I_c, (f) re-entry of penetrated points (gap before the step)
             self.n_contact, total, left, entered, first_entries, self.kept_t = _step_and_reentry(
                 p, t, z_in, self.u, self.h, self.alpha, self.shift, self.tau, index, self.been_in_contact)
@@ -539,7 +539,7 @@ class _PolonskyKeer:
             self.beta_allowed = (entered if self.restart_every_entry else first_entries) == 0
             step_incremental = left == 0 and entered == 0 and self.since_exact < _REFRESH and total > 0
             if step_incremental:                            # the set held: complete K t, u ← α u − τ K t
-                half.pending_displacement_into(self.field(r))
+                body.pending_displacement_into(self.field(r))
                 self.transforms += 1
                 _advance_displacement(self.u, r, self.alpha, self.tau)
             self.alpha = 1.0
@@ -570,10 +570,10 @@ def _checked_load(total_force, mean_pressure, grid, interaction) -> float:
     return value / grid.area if name == "total_force" else value
 
 
-def _result(p, u, h, shift, half, interaction, params, iterations, residuals, converged, message, start, transforms,
+def _result(p, u, h, shift, body, interaction, params, iterations, residuals, converged, message, start, transforms,
             detached=False):
-    grid = half.grid
-    gap = np.empty(p.size, half.dtype)
+    grid = body.grid
+    gap = np.empty(p.size, body.dtype)
     contact = np.empty(p.size, np.bool_)
     _finalise_gap(u, h, p, shift, gap, contact)
     pressure, displacement = p.reshape(grid.shape), u.reshape(grid.shape)
@@ -584,11 +584,12 @@ def _result(p, u, h, shift, half, interaction, params, iterations, residuals, co
         method=METHOD, converged=bool(converged), message=message, iterations=int(iterations),
         residuals=np.asarray(residuals, dtype=np.float64), tol=params["tol"], maxiter=params["maxiter"],
         start=params["start"], fft_pairs=transforms / 2, wall_time=time.perf_counter() - start, detached=detached,
-        kernel=half.description, version=__version__, details=params["details"])
+        kernel=body.description, version=__version__, details=params["details"])
     return ContactResult(
         pressure=pressure, displacement=displacement, gap=gap, contact=contact,
         contact_fraction=float(np.count_nonzero(contact)) / contact.size,
         mean_pressure=float(p.mean(dtype=np.float64)), mean_gap=float(gap.mean(dtype=np.float64)),
-        penetration=float(h.max()) - float(shift), elastic_energy=half.elastic_energy(pressure, displacement),
-        grid=grid, solver=report, contact_pressure=pressure, interaction_traction=np.broadcast_to(np.zeros((), half.dtype), grid.shape),
+        penetration=float(h.max()) - float(shift), elastic_energy=body.elastic_energy(pressure, displacement),
+        grid=grid, solver=report, contact_pressure=pressure,
+        interaction_traction=np.broadcast_to(np.zeros((), body.dtype), grid.shape),
         flat_position=float(shift), interaction=interaction, control=params["control"], requested=params["requested"])

@@ -38,7 +38,7 @@ def _start_results(start) -> list:
     return starts
 
 
-def load_path(height_field, body: ElasticHalfSpace, mean_pressures, warm_start=True, start=None, progress=False,
+def load_path(surface, body: ElasticHalfSpace, mean_pressures, warm_start=True, start=None, progress=False,
               predictor="secant", **solver_options):
     """Yield :func:`solve_contact` results for each of ``mean_pressures`` [Pa] in order.
 
@@ -62,11 +62,11 @@ def load_path(height_field, body: ElasticHalfSpace, mean_pressures, warm_start=T
     if isinstance(mean_pressures, (str, bytes)) or not np.iterable(mean_pressures):
         raise TypeError(f"mean_pressures must be a sequence of mean pressures [Pa], got {mean_pressures!r:.60}")
     smooth = _checked_interaction(solver_options.get("interaction")).smooth   # (its warm start is the last gap)
-    return _load_steps(height_field, body, mean_pressures, warm_start, starts, progress, predictor, smooth,
+    return _load_steps(surface, body, mean_pressures, warm_start, starts, progress, predictor, smooth,
                        solver_options)
 
 
-def _load_steps(height_field, body, mean_pressures, warm_start, starts, progress, predictor, smooth, solver_options):
+def _load_steps(surface, body, mean_pressures, warm_start, starts, progress, predictor, smooth, solver_options):
     """The generator behind :func:`load_path` (its arguments checked before the first step)."""
     from tqdm.auto import tqdm
 
@@ -77,7 +77,7 @@ def _load_steps(height_field, body, mean_pressures, warm_start, starts, progress
         x0 = previous if warm_start else None
         if warm_start and predictor == "secant" and before is not None and not smooth:
             x0 = _secant_prediction(previous, before, mean_pressure)
-        result = solve_contact(height_field, body, mean_pressure=mean_pressure, x0=x0, **solver_options)
+        result = solve_contact(surface, body, mean_pressure=mean_pressure, x0=x0, **solver_options)
         previous, before = result, previous
         steps.set_postfix(contact_fraction=f"{result.contact_fraction:.4g}", iterations=result.iterations,
                           refresh=False)

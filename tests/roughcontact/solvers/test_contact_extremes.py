@@ -144,7 +144,7 @@ def test_no_contact_for_non_positive_penetration():
     assert result.converged and result.contact_fraction == 0 and not result.pressure.any()
 
 
-@pytest.mark.parametrize("heights, word", [(np.nan, "height_field"), (np.inf, "height_field")])
+@pytest.mark.parametrize("heights, word", [(np.nan, "surface"), (np.inf, "surface")])
 def test_nan_and_inf_heights(heights, word):
     grid = Grid((8, 8), (1e-3, 1e-3))
     values = np.zeros(grid.shape)
@@ -156,7 +156,7 @@ def test_nan_and_inf_heights(heights, word):
 def test_complex_heights_are_refused():
     """A complex array was cast to its real part with only a ComplexWarning."""
     grid = Grid((8, 8), (1e-3, 1e-3))
-    with pytest.raises(TypeError, match="height_field must be real, got complex"):
+    with pytest.raises(TypeError, match="surface must be real, got complex"):
         solve_contact(np.zeros(grid.shape, complex), ElasticHalfSpace(grid, E_star=E_STAR), mean_pressure=1.0)
 
 
