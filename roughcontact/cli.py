@@ -95,8 +95,8 @@ def _cmd_scene(args, provenance) -> int:
 def _cmd_run(args, provenance) -> int:
     start = time.perf_counter()
     try:
-        scene = study.run_scene(getattr(args, "scene", None), getattr(args, "preset", None),
-                          getattr(args, "target_error", None))
+        scene = study.scene_at_preset(getattr(args, "scene", None), getattr(args, "preset", None),
+                                      getattr(args, "target_error", None))
         output = output_directory(args.out)
         result = study.run_study(scene, output, progress=True, workers=getattr(args, "workers", None),
                            dask=getattr(args, "dask", None))

@@ -34,7 +34,7 @@ from roughcontact.io.results import ConvergenceWarning
 from roughcontact.solvers import ContactResult, load_cycle, pull_off
 from roughcontact import macro, paper
 from roughcontact.electrostatics import solve_field
-from roughcontact.study import friction_recipe, load_scene, open_results, run_study, run_scene
+from roughcontact.study import friction_recipe, load_scene, open_results, run_study, scene_at_preset
 from roughcontact.study.presets import error_floor
 
 
@@ -608,11 +608,12 @@ ROWS = [
     ("recipe-right", lambda: friction_recipe([0.5, 1.0], [0.0], np.full((2, 1), 1e-6), np.full((2, 1), 1e-5), STACK
                                              ).friction_coefficient(1.0, 0.0),
      right(lambda mu: close(float(mu), 0.26, 1e-12))),      # at 0 V only μ0 F_N: the seed's μ0 = 0.26
-    ("preset-auto-below-floor", lambda: run_scene(None, "auto", "1%"),
+    ("preset-auto-below-floor", lambda: scene_at_preset(None, "auto", "1%"),
      refused(ValueError, "target", "1 %", f"{100 * error_floor()[0]:.2f} %")),
-    ("preset-auto-garbage", lambda: run_scene(None, "auto", "ten"), refused(ValueError, "target", "ten")),
-    ("preset-auto-negative", lambda: run_scene(None, "auto", "-5%"), refused(ValueError, "target", "-0.05", "(0, 1]")),
-    ("preset-target-without-auto", lambda: run_scene(None, "draft", "10%"), refused(ValueError, "auto")),
+    ("preset-auto-garbage", lambda: scene_at_preset(None, "auto", "ten"), refused(ValueError, "target", "ten")),
+    ("preset-auto-negative", lambda: scene_at_preset(None, "auto", "-5%"),
+     refused(ValueError, "target", "-0.05", "(0, 1]")),
+    ("preset-target-without-auto", lambda: scene_at_preset(None, "draft", "10%"), refused(ValueError, "auto")),
 
     # --- macro and paper
     ("macro-power-law-m-negative", lambda: macro.PowerLawContact(m=-1.0, alpha=1.0, n=1.0, beta=1.0), refused(ValueError, "m", "-1")),

@@ -19,7 +19,7 @@ _LAZY = {
     "DEFAULT_SCENE_TOML": "scene",
     "Scene": "scene",
     "load_scene": "scene",
-    "run_scene": "presets",
+    "scene_at_preset": "presets",
     "fingertip_contact": "fingertip",
     "apparent_contact": "apparent",
     "apparent_scale": "apparent",

@@ -243,7 +243,7 @@ def _discretisation_sentence(entry: Measurement) -> str:
             f"describe), so F_el is {100 * least:.2g}–{100 * most:.2g} % low.")
 
 
-def run_scene(path=None, preset: str | None = None, target_error=None, table=None) -> Scene:
+def scene_at_preset(path=None, preset: str | None = None, target_error=None, table=None) -> Scene:
     """The scene of ``roughcontact run``: the scene file ``path`` (None: the default scene) at ``preset``, or,
     with ``preset`` "auto", at the cheapest measured setting whose error meets ``target_error`` (a fraction or
     a percentage such as ``"2%"``); ``target_error`` goes with "auto" only."""

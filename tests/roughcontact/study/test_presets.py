@@ -10,7 +10,7 @@ from roughcontact.cli import main
 from roughcontact.io import Provenance, read_csv
 from roughcontact.study.presets import (RESOLUTION_COLUMNS, Measurement, SCENES, add_resolution_errors, auto_scene,
                                         choose, describe, error_floor, measured, parse_target, read_table,
-                                        run_scene, write_table)
+                                        scene_at_preset, write_table)
 from roughcontact.study.scene import load_scene
 
 
@@ -129,15 +129,15 @@ def test_shipped_table_measures_the_presets_and_meets_the_bar():
 STATED = {"draft": 0.20, "standard": 0.05}
 
 
-def test_run_scene_resolves_auto_before_the_study(tmp_path):
+def test_scene_at_preset_resolves_auto_before_the_study(tmp_path):
     path = tmp_path / "scene.toml"
     path.write_text("[loads]\nnormal_forces = [1.0]\n")
-    scene = run_scene(path, "auto", "5%", TABLE)
+    scene = scene_at_preset(path, "auto", "5%", TABLE)
     assert scene.preset == TABLE[1].preset(rings=scene.presets["standard"].rings) and scene.loads.normal_forces == (1.0,)
-    assert run_scene(path, "draft").preset == load_scene(path).presets["draft"]
+    assert scene_at_preset(path, "draft").preset == load_scene(path).presets["draft"]
     for preset, target in (("auto", None), ("draft", "2%")):
         with pytest.raises(ValueError, match="--preset auto and --target-error go together"):
-            run_scene(path, preset, target, TABLE)
+            scene_at_preset(path, preset, target, TABLE)
 
 
 def test_run_command_with_the_auto_preset_records_the_chosen_setting(tmp_path, capsys):
