@@ -342,7 +342,7 @@ def summary_table(rows) -> str:
     """The Markdown tables of docs/dev/benchmarks.md from the rows of one run: per grid the cache-warm pyFFTW pair,
     our time to solution and its ratio to the FFT floor, the other starts and backends, the peers' times as
     multiples of ours; then the load sweeps."""
-    def solve(n, label):
+    def own(n, label):
         r = _find(rows, "solve", f"roughcontact[{label}]", n)
         return f"{r['time_s']:.4g} ({r['iterations']})" if r else ""
 
@@ -356,8 +356,8 @@ def summary_table(rows) -> str:
              "|---|---|---|---|---|---|---|---|---|"]
     for n in dict.fromkeys(r["n"] for r in rows if r["section"] == "solve"):
         pair, ours = _find(rows, "fft_floor", "pyfftw", n), _find(rows, "solve", "roughcontact[pyfftw]", n)
-        lines.append(f"| {n} | {1e3 * pair['time_s']:.3g} | {solve(n, 'pyfftw')} | {ours['ratio']:.2f} | "
-                     f"{solve(n, 'pyfftw,pk start')} | {solve(n, 'pyfftw,plain')} | {solve(n, 'scipy')} | "
+        lines.append(f"| {n} | {1e3 * pair['time_s']:.3g} | {own(n, 'pyfftw')} | {ours['ratio']:.2f} | "
+                     f"{own(n, 'pyfftw,pk start')} | {own(n, 'pyfftw,plain')} | {own(n, 'scipy')} | "
                      f"{peer(n, 'tamaas')} | {peer(n, 'ContactMechanics')} |")
     lines += ["", "| sweep | n | time [s] | iterations | nested cold time / this |", "|---|---|---|---|---|"]
     lines += [f"| {r['solver']}, {r['note'].split(';')[0]} | {r['n']} | {r['time_s']:.3g} | {r['iterations']} | "

@@ -249,7 +249,7 @@ def solve_ac_field(stack: DielectricStack, gap, lengths=None, voltage: float = 1
     grid, gap = _grid_and_gap(gap, lengths, periodic)
     voltage = check_real("voltage", voltage)
     field = ACStackField(stack, grid, frequency, model=model, backend=backend, threads=1)
-    unit_flux, iterations, residual = field.solve(gap, tol=tol, maxiter=maxiter)
+    unit_flux, iterations, residual = field.solve_flux(gap, tol=tol, maxiter=maxiter)
     if residual > tol:
         warnings.warn(f"AC field solve stopped at relative residual {residual:.3g} > tol = {tol:g} after "
                       f"{iterations} iterations", ConvergenceWarning, stacklevel=2)

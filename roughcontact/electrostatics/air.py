@@ -48,7 +48,7 @@ RESTARTS = 4
 class LateralAirField:
     """The stack's field with the air's lateral field on one periodic grid (module docstring).
 
-    :meth:`solve` returns, for a gap field [m] and a voltage [V], the flux leaving the stratum corneum D [C/m²]
+    :meth:`solve_flux` returns, for a gap field [m] and a voltage [V], the flux leaving the stratum corneum D [C/m²]
     (so that W = −½ U ⟨D⟩ at fixed voltage), the attraction σ_el [Pa] per pixel, the outer steps and the relative
     residual.
     """
@@ -107,7 +107,7 @@ class LateralAirField:
             grad_delta += (np.roll(on_b, 1, axis) - on_b) / spacing - 0.5 * (scaled + np.roll(scaled, 1, axis))
         return grad_phi, grad_delta
 
-    def solve(self, gap: np.ndarray, voltage: float, tol: float, maxiter=None) -> tuple:
+    def solve_flux(self, gap: np.ndarray, voltage: float, tol: float, maxiter=None) -> tuple:
         """(D [C/m²], σ_el [Pa], outer steps, relative residual) of the gap field ``gap`` [m] (checked by the
         caller) at ``voltage`` [V]."""
         # scipy's CG only here: a fixed-gap check, so importing the field model does not load scipy.sparse

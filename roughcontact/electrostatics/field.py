@@ -130,7 +130,7 @@ class StackField:
                          0.5 / permittivity, -1.0 / (3.0 * permittivity), out)
         return out
 
-    def solve(self, gap, initial=None, tol: float = DEFAULT_TOL, maxiter=None) -> tuple:
+    def solve_flux(self, gap, initial=None, tol: float = DEFAULT_TOL, maxiter=None) -> tuple:
         """The unit-voltage flux D₁ [C/m²/V] with (M + R) D₁ = 1 on the window, by Jacobi-preconditioned CG.
 
         ``initial`` is a warm start (a previous D₁). Returns ``(D₁, iterations, relative residual)``; the residual
@@ -144,7 +144,7 @@ class StackField:
         return self.solve_columns(self.column_elastance(gap), initial, tol, maxiter)
 
     def solve_columns(self, column, initial=None, tol: float = DEFAULT_TOL, maxiter=None) -> tuple:
-        """:meth:`solve` for the column elastance R [m²/F] of a gap (checked and formed by the caller)."""
+        """:meth:`solve_flux` for the column elastance R [m²/F] of a gap (checked and formed by the caller)."""
         maxiter = 10 * column.size if maxiter is None else maxiter
         if self.model == "parallel_plate":
             self.residual = np.zeros_like(column)
@@ -425,11 +425,11 @@ def solve_field(stack: DielectricStack, gap, lengths=None, voltage: float = 1.0,
     tol = check_real("tol", tol, low=0.0, low_open=True)
     maxiter = None if maxiter is None else check_integer("maxiter", maxiter, low=1)
     if model == "layered_air":
-        flux, attraction, iterations, residual = LateralAirField(stack, grid, backend=backend).solve(
+        flux, attraction, iterations, residual = LateralAirField(stack, grid, backend=backend).solve_flux(
             gap, voltage, tol, maxiter)
     else:
         field = StackField(stack, grid, model=model, backend=backend, threads=1)
-        unit_flux, iterations, residual = field.solve(gap, tol=tol, maxiter=maxiter)
+        unit_flux, iterations, residual = field.solve_flux(gap, tol=tol, maxiter=maxiter)
         flux, attraction = voltage * unit_flux, voltage ** 2 * field.attraction(gap, unit_flux)
     if residual > tol:
         warnings.warn(f"field solve stopped at relative residual {residual:.3g} > tol = {tol:g} after "

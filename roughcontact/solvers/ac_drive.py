@@ -91,7 +91,7 @@ class _Correction:
         """(t(g), c(g)) [Pa] at the gap of the surrogate solve ``result``: c = t − t_S with t_S the traction that
         solve balanced (its last field evaluation)."""
         gap = np.asarray(result.gap, dtype=np.float64)
-        self.flux, _, residual = self.drive.solve(gap, initial=self.flux, tol=self.tol)
+        self.flux, _, residual = self.drive.solve_flux(gap, initial=self.flux, tol=self.tol)
         self.residual = max(self.residual, residual)
         traction = -self.squared_voltage * self.drive.attraction_phasors(gap, self.flux)[0]
         return traction, traction - np.asarray(result.interaction_traction, dtype=np.float64)

@@ -209,7 +209,7 @@ def _hard_wall_at_separation(heights, body, separation: float, tol: float, x0, r
         return solve_contact(heights, body, penetration=top - mean - separation, tol=tol, x0=x0, warn=False)
     target, allowed = mean + separation, tol * rms
 
-    def solve(pressure, start):
+    def solve_at_load(pressure, start):
         return solve_contact(heights, body, mean_pressure=pressure, tol=tol, x0=start, warn=False)
 
     def excess(result):                                # s(P̄) − s*: decreasing in P̄
@@ -217,7 +217,7 @@ def _hard_wall_at_separation(heights, body, separation: float, tol: float, x0, r
 
     pressure = x0.mean_pressure if x0 is not None and x0.mean_pressure > 0 else \
         (top - mean - separation) / body.pixel_compliance / heights.size
-    result = solve(pressure, x0)
+    result = solve_at_load(pressure, x0)
     low = high = last = None                           # [log P̄, s − s*, result] on either side of the target
     for _ in range(SEPARATION_SOLVES):
         miss = excess(result)
@@ -229,13 +229,13 @@ def _hard_wall_at_separation(heights, body, separation: float, tol: float, x0, r
         else:
             high = point
         if low is None or high is None:                # expand until the target is bracketed
-            result = solve(np.exp(point[0] + (2.0 if high is None else -2.0)), result)
+            result = solve_at_load(np.exp(point[0] + (2.0 if high is None else -2.0)), result)
             continue
         if side == last:                               # Illinois: an end kept twice running has its value halved
             (high if side == "low" else low)[1] *= 0.5
         last = side
         log_pressure = low[0] - low[1] * (high[0] - low[0]) / (high[1] - low[1])
-        result = solve(np.exp(log_pressure), min(low, high, key=lambda item: abs(item[1]))[2])
+        result = solve_at_load(np.exp(log_pressure), min(low, high, key=lambda item: abs(item[1]))[2])
     return dataclasses.replace(result, solver=dataclasses.replace(
         result.solver, converged=False,
         message=f"no flat position within {allowed:.3g} m of the mean separation {separation:.6g} m after "

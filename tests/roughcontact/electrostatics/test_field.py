@@ -128,9 +128,9 @@ def test_flux_scales_with_voltage_and_warm_start_converges_at_once():
     gap = rough_gap((32, 32), rng)
     grid = Grid(gap.shape, (1e-4, 1e-4))
     field = StackField(STACK, grid)
-    flux, iterations, residual = field.solve(gap)
+    flux, iterations, residual = field.solve_flux(gap)
     assert iterations > 3 and residual <= 1e-10
-    again, restart_iterations, _ = field.solve(gap, initial=flux)
+    again, restart_iterations, _ = field.solve_flux(gap, initial=flux)
     assert restart_iterations <= 1 and np.allclose(again, flux, rtol=1e-12)
     assert np.allclose(solve_field(STACK, gap, grid.lengths, 30.0).flux, 30.0 * flux, rtol=1e-9)
 
