@@ -129,8 +129,9 @@ class ElectrostaticInteraction(Interaction):
 
     ``frequency`` [Hz] drives the layered field with a sinusoid of RMS ``voltage`` through the leaky stratum
     corneum (``stack.sigma_sc``; :mod:`roughcontact.electrostatics.ac`): the solve balances the time-averaged
-    attraction (:mod:`roughcontact.solvers.ac_drive`, ``docs/guide/ac_drive.md``). ``None`` (the default) is the
-    dielectric stratum corneum, as is ``math.inf``; 0 is a DC voltage. It needs ``field="layered"``.
+    attraction (:mod:`roughcontact.solvers.deferred_correction`, ``docs/guide/ac_drive.md``). ``None`` (the
+    default) is the dielectric stratum corneum, as is ``math.inf``; 0 is a DC voltage. It needs
+    ``field="layered"``.
     """
 
     stack: DielectricStack = DielectricStack()

@@ -1,6 +1,6 @@
 """Prototype: the contact equilibrium under the time-averaged AC attraction by deferred correction.
 
-The library's solver (``ElectrostaticInteraction(stack, U, frequency=f)``, ``roughcontact.solvers.ac_drive``)
+The library's solver (``ElectrostaticInteraction(stack, U, frequency=f)``, ``roughcontact.solvers.deferred_correction``)
 grew out of this; the script keeps the design's measurements (both surrogates, every step) of docs/dev/roadmap.md.
 
     python studies/ac_coupling.py                     # 128², 1 N, 100 V RMS, DC and the crossover
@@ -33,7 +33,7 @@ import numpy as np
 from roughcontact import ElectrostaticInteraction, solve_contact
 from roughcontact.electrostatics import EPSILON_0, solve_ac_field, solve_field
 from roughcontact.io import output_directory, parse_arguments, write_csv
-from roughcontact.solvers.ac_drive import NO_ELASTANCE, surrogate_permittivity
+from roughcontact.solvers.deferred_correction import NO_ELASTANCE, surrogate_permittivity
 from roughcontact.study.patch import default_scene_patch
 
 COLUMNS = ("frequency_Hz", "surrogate", "eps_eff", "step", "gap_change", "mean_pressure_Pa", "contact_fraction",

@@ -7,9 +7,9 @@
 The default scene's patch (realisation 0) at the apparent pressure of ``--force`` (the Hertz mean over the
 footprint) is solved to equilibrium under the time-averaged attraction of ``--voltage`` RMS at each frequency
 (``ElectrostaticInteraction(stack, U, frequency=f)``, the deferred correction of
-``roughcontact.solvers.ac_drive``; each solve cold, from the hard-wall start), at DC and at ω = ∞ (the dielectric
-layered solve). Per frequency, of the solved equilibrium: the mean time-averaged attraction ⟨σ̄⟩ and its ratio to
-the dielectric one, A/A0, the Eq. 25 gap, the field-equivalent gap (Eq. 21 inverted: what the seed's friction
+``roughcontact.solvers.deferred_correction``; each solve cold, from the hard-wall start), at DC and at ω = ∞ (the
+dielectric layered solve). Per frequency, of the solved equilibrium: the mean time-averaged attraction ⟨σ̄⟩ and
+its ratio to the dielectric one, A/A0, the Eq. 25 gap, the field-equivalent gap (Eq. 21 inverted: what the seed's friction
 model must be fed), the AC-equivalent gap (the uniform gap with the same attraction under the same drive), the
 2ω modulation depth |⟨σ̂₂⟩|/⟨σ̄⟩ and the number of corrections. For comparison, the **fixed gap** of the
 dielectric solve with the field alone solved at each frequency (the layered ⟨σ̄⟩, its ratio and the per-pixel

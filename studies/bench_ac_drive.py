@@ -12,7 +12,7 @@ footprint) and ``--voltage`` RMS, solved cold to ``--tol``. The reference is the
   path through the snap-ins of the patch;
 * ``dc-direct``: the conservative DC law (no elastance of the stratum corneum) by the energy method;
 * ``ac-drive``: ``ElectrostaticInteraction(stack, U, frequency=f)`` at each of ``--frequencies``, by the
-  deferred correction (``roughcontact.solvers.ac_drive``);
+  deferred correction (``roughcontact.solvers.deferred_correction``);
 * ``surrogate``: each drive's surrogate law alone (the dielectric law at its matched ε_eff, no correction), the
   share of a drive's cost that is its law's own solve path.
 
@@ -33,7 +33,7 @@ import time
 
 from roughcontact import ElectrostaticInteraction, solve_contact
 from roughcontact.io import best_of, count_argument, output_directory, parse_arguments, summed_ratios, write_csv
-from roughcontact.solvers.ac_drive import NO_ELASTANCE
+from roughcontact.solvers.deferred_correction import NO_ELASTANCE
 from roughcontact.study.patch import default_scene_patch
 
 COLUMNS = ("n", "realisation", "solve", "frequency_Hz", "eps_sc", "iterations", "solve_iterations", "fft_pairs", "correction_fft_pairs",

@@ -52,7 +52,7 @@ import numpy as np
 from roughcontact import ElectrostaticInteraction, solve_contact
 from roughcontact.electrostatics import EPSILON_0, solve_field
 from roughcontact.io import output_directory, parse_arguments, write_csv
-from roughcontact.solvers import energy_cg
+from roughcontact.solvers import projected_cg_gap
 from roughcontact.study.apparent import apparent_scale
 from roughcontact.study.patch import patch_body, profile_surface
 from roughcontact.study.scene import load_scene
@@ -129,12 +129,12 @@ def strip_rows(stack, pixels) -> list:
 def fixed_field_tolerance(tol: float):
     """The layered law's field solves at ``tol`` throughout a contact solve instead of the solver's adaptive
     tolerance (0.1 × its residual, within [1e-12, 1e-4]): the solver's module bounds pinned while inside."""
-    bounds = energy_cg.FIELD_TOL_FLOOR, energy_cg.FIELD_TOL_CEILING
-    energy_cg.FIELD_TOL_FLOOR = energy_cg.FIELD_TOL_CEILING = tol
+    bounds = projected_cg_gap.FIELD_TOL_FLOOR, projected_cg_gap.FIELD_TOL_CEILING
+    projected_cg_gap.FIELD_TOL_FLOOR = projected_cg_gap.FIELD_TOL_CEILING = tol
     try:
         yield
     finally:
-        energy_cg.FIELD_TOL_FLOOR, energy_cg.FIELD_TOL_CEILING = bounds
+        projected_cg_gap.FIELD_TOL_FLOOR, projected_cg_gap.FIELD_TOL_CEILING = bounds
 
 
 def fem_strip_rows(stack, pixels) -> list:

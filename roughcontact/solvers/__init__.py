@@ -1,8 +1,9 @@
 """Contact solvers. Layer 3: imports the body, the interaction laws and io below it.
 
 Inside, imports run one way: :mod:`.inputs` and :mod:`.result` (what every solver takes and returns) ←
-:mod:`.polonsky_keer` (the hard wall) ← :mod:`.energy_cg` (smooth laws; its cold start is a hard-wall solve) ←
-:mod:`.dispatch` (:func:`solve_contact`, which picks the method) ← :mod:`.sweep` (:func:`load_path`) ←
+:mod:`.polonsky_keer` (the hard wall) ← :mod:`.projected_cg_gap` (smooth laws; its cold start is a hard-wall
+solve) ← :mod:`.deferred_correction` (an AC drive, around the smooth solve) ← :mod:`.dispatch`
+(:func:`solve_contact`, which picks the method) ← :mod:`.sweep` (:func:`load_path`) ←
 :mod:`.problem` (:class:`ContactProblem`) ← :mod:`.continuation` (approach/retract paths and pull-off).
 """
 from __future__ import annotations

@@ -1,8 +1,8 @@
 """The contact solve: :func:`solve_contact` hands a problem to a method of the registry :data:`METHODS` —
 Polonsky–Keer's constrained conjugate gradients for the hard wall (:mod:`.polonsky_keer`), the minimum of the
-total energy over the gap for a smooth law with the wall (:mod:`.energy_cg`), the deferred correction around it
-for the time-averaged attraction of an AC drive (:mod:`.ac_drive`) — after checking that the method solves the
-law and takes every option given."""
+total energy over the gap for a smooth law with the wall (:mod:`.projected_cg_gap`), the deferred correction
+around it for the time-averaged attraction of an AC drive (:mod:`.deferred_correction`) — after checking that the
+method solves the law and takes every option given."""
 from __future__ import annotations
 
 import warnings
@@ -16,14 +16,14 @@ from surfaces.validation import check_bool, check_choice, check_real
 from ..body import ElasticHalfSpace
 from ..interactions import Interaction
 from ..io.results import ConvergenceWarning
-from .ac_drive import METHOD as DEFERRED_CORRECTION
-from .ac_drive import driven, solve_driven
-from .energy_cg import METHOD as ENERGY_CG
-from .energy_cg import solve_smooth
+from .deferred_correction import METHOD as DEFERRED_CORRECTION
+from .deferred_correction import driven, solve_driven
 from .inputs import _check_body, _checked_interaction, default_tolerance
 from .polonsky_keer import COLD_STARTS
 from .polonsky_keer import METHOD as POLONSKY_KEER
 from .polonsky_keer import solve_hard_wall
+from .projected_cg_gap import METHOD as PROJECTED_CG_GAP
+from .projected_cg_gap import solve_smooth
 from .result import ContactResult
 
 #: Relative tolerance below which a solve in float32 may not converge: its residual is computed from fields
@@ -50,7 +50,7 @@ class Method:
 
 #: The contact methods by name.
 METHODS = {POLONSKY_KEER: Method(POLONSKY_KEER, False, solve_hard_wall, ("cold_start", "preconditioned")),
-           ENERGY_CG: Method(ENERGY_CG, True, solve_smooth),
+           PROJECTED_CG_GAP: Method(PROJECTED_CG_GAP, True, solve_smooth),
            DEFERRED_CORRECTION: Method(DEFERRED_CORRECTION, True, solve_driven)}
 
 
@@ -59,12 +59,13 @@ def method_for(interaction: Interaction, method=None) -> Method:
     one for the law (Polonsky–Keer for the hard wall and a law that vanishes, e.g. at 0 V; the energy method
     for a smooth law; the deferred correction for an AC drive through a leaky stratum corneum)."""
     smooth = interaction.smooth and not interaction.vanishes
-    needed = METHODS[(DEFERRED_CORRECTION if driven(interaction) else ENERGY_CG) if smooth else POLONSKY_KEER]
+    needed = METHODS[(DEFERRED_CORRECTION if driven(interaction) else PROJECTED_CG_GAP) if smooth else POLONSKY_KEER]
     if method is None:
         return needed
     chosen = METHODS[check_choice("method", method, tuple(METHODS))]
     if chosen is not needed:
-        solves = {POLONSKY_KEER: "the hard wall (or a law that vanishes)", ENERGY_CG: "a smooth law that attracts",
+        solves = {POLONSKY_KEER: "the hard wall (or a law that vanishes)",
+                  PROJECTED_CG_GAP: "a smooth law that attracts",
                   DEFERRED_CORRECTION: "an AC drive through a leaky stratum corneum"}[chosen.name]
         raise ValueError(f"method = {method!r} solves {solves}; the interaction {type(interaction).__name__} needs "
                          f"method = {needed.name!r}")
@@ -91,9 +92,9 @@ def solve_contact(surface, body: ElasticHalfSpace, *, mean_pressure=None, total_
         (the default) or a smooth law acting with the wall. A law that vanishes (0 V) is solved as the hard wall.
     method : str, optional
         A name of :data:`METHODS`: ``"polonsky-keer"`` (:mod:`.polonsky_keer`; the hard wall) or
-        ``"projected-cg-gap"`` (:mod:`.energy_cg`; smooth laws) or ``"deferred-correction"`` (:mod:`.ac_drive`; an
-        ``ElectrostaticInteraction`` with a ``frequency``). By default the one that solves ``interaction``;
-        a method that does not solve it raises ``ValueError``.
+        ``"projected-cg-gap"`` (:mod:`.projected_cg_gap`; smooth laws) or ``"deferred-correction"``
+        (:mod:`.deferred_correction`; an ``ElectrostaticInteraction`` with a ``frequency``). By default the one
+        that solves ``interaction``; a method that does not solve it raises ``ValueError``.
     tol : float, optional
         Relative tolerance of the method's convergence criterion (its module docstring), in (0, 1); by default
         :func:`default_tolerance` of the body's dtype (1e-8 in float64, 1e-6 in float32). In float32 a tolerance

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from roughcontact.solvers import energy_cg
+from roughcontact.solvers import projected_cg_gap
 from roughcontact.study.scene import load_scene
 
 
@@ -61,10 +61,10 @@ def test_interpolated_gap_is_periodic_and_linear(edges):
 
 
 def test_fixed_field_tolerance_pins_and_restores_the_solvers_bounds(edges):
-    bounds = energy_cg.FIELD_TOL_FLOOR, energy_cg.FIELD_TOL_CEILING
+    bounds = projected_cg_gap.FIELD_TOL_FLOOR, projected_cg_gap.FIELD_TOL_CEILING
     with edges.fixed_field_tolerance(1e-12):
-        assert energy_cg.FIELD_TOL_FLOOR == energy_cg.FIELD_TOL_CEILING == 1e-12
-    assert (energy_cg.FIELD_TOL_FLOOR, energy_cg.FIELD_TOL_CEILING) == bounds
+        assert projected_cg_gap.FIELD_TOL_FLOOR == projected_cg_gap.FIELD_TOL_CEILING == 1e-12
+    assert (projected_cg_gap.FIELD_TOL_FLOOR, projected_cg_gap.FIELD_TOL_CEILING) == bounds
 
 
 def test_fast_run_tables_are_consistent(edges, read_csv, tmp_path):

@@ -1,5 +1,5 @@
-"""The contact equilibrium under an AC drive (ElectrostaticInteraction(frequency=f), solvers/ac_drive.py): the
-dielectric and DC limits, the true time-averaged equilibrium rebuilt independently from the raw fields with
+"""The contact equilibrium under an AC drive (ElectrostaticInteraction(frequency=f),
+solvers/deferred_correction.py): the dielectric and DC limits, the true time-averaged equilibrium rebuilt independently from the raw fields with
 solve_ac_field, the frozen-traction construction, position control, a free window, the rough patch's
 frequency sweep, non-convergence and bad input."""
 import dataclasses
@@ -14,7 +14,7 @@ from roughcontact import ElasticHalfSpace, ElectrostaticInteraction, solve_conta
 from roughcontact.electrostatics import DielectricStack, EPSILON_0, crossover_frequency, solve_ac_field
 from roughcontact.interactions import ExponentialAdhesion, Interaction
 from roughcontact.io import ConvergenceWarning
-from roughcontact.solvers import ContactProblem, ac_drive, load_cycle, pull_off
+from roughcontact.solvers import ContactProblem, deferred_correction, load_cycle, pull_off
 from roughcontact.study.apparent import apparent_contact
 from roughcontact.study.patch import patch_body, patch_surface
 from roughcontact.study.scene import load_scene
@@ -232,7 +232,7 @@ def test_non_convergence_is_warned_and_reported_never_nan(patch, monkeypatch):
     surface, half = patch
     with pytest.warns(ConvergenceWarning, match="stopped"):
         cut = solve_contact(surface, half, mean_pressure=LOAD, interaction=drive(1e3), maxiter=5)
-    monkeypatch.setattr(ac_drive, "MAX_CORRECTIONS", 1)
+    monkeypatch.setattr(deferred_correction, "MAX_CORRECTIONS", 1)
     with pytest.warns(ConvergenceWarning, match="not converged: the deferred correction"):
         one = solve_contact(surface, half, mean_pressure=LOAD, interaction=drive(1e3))
     for res in (cut, one):

@@ -1,4 +1,4 @@
-"""Interaction laws and the contact solver for smooth laws with the wall (roughcontact.solvers.energy_cg).
+"""Interaction laws and the contact solver for smooth laws with the wall (roughcontact.solvers.projected_cg_gap).
 
 References: finite differences of the laws; the hard wall (Polonsky–Keer) at a vanishing law; parallel plates;
 Johnson's (1995) adhesive sinusoid in the JKR limit; force balance, complementarity and u = K p recomputed
@@ -40,9 +40,9 @@ def test_law_traction_and_stiffness_are_derivatives(law, gaps):
                                  ElectrostaticInteraction(DielectricStack(eps_a=2.0), -150.0, field="parallel_plate"),
                                  ExponentialAdhesion(0.05, 2e-7), MaugisDugdale(0.05, 2e-7)])
 def test_solver_kernel_evaluates_the_laws_as_their_methods(law):
-    # the solver evaluates the built-in laws in a numba kernel (energy_cg._law_at), a second writing of the
+    # the solver evaluates the built-in laws in a numba kernel (projected_cg_gap._law_at), a second writing of the
     # formulas of roughcontact.interactions: the two must agree to round-off
-    from roughcontact.solvers.energy_cg import _evaluate, _law_at, _law_code
+    from roughcontact.solvers.projected_cg_gap import _evaluate, _law_at, _law_code
 
     gaps = np.concatenate([[0.0, 1.999e-7, 2.001e-7], np.random.default_rng(0).uniform(0, 5e-6, 50)])
     code = _law_code(law)
@@ -169,7 +169,7 @@ def test_no_tunnelling_into_contact(monkeypatch):
     law = johnson_law(0.5, np.sqrt(1 / n))
     res = solve_contact(surface, half, mean_pressure=0.0, interaction=law)
     assert res.converged and 0.2 < np.count_nonzero(res.contact) / n / 2 < 0.2515    # measured 0.2363
-    monkeypatch.setattr("roughcontact.solvers.energy_cg.APPROACH", np.inf)
+    monkeypatch.setattr("roughcontact.solvers.projected_cg_gap.APPROACH", np.inf)
     assert solve_contact(surface, half, mean_pressure=0.0, interaction=law).contact_fraction == 1.0
 
 
@@ -221,7 +221,7 @@ def test_step_curvature_is_the_energy_second_difference():
     # (gap_solver._step_curvature); it must be Π's second derivative along that step. The central second
     # difference over Δg ~ 2.5 nm at gaps ≥ 0.2 µm differs by the law's fourth-order term: measured 8.3e-5,
     # 1.3e-3 at 10 nm, falling 4× per halving of Δg.
-    from roughcontact.solvers.energy_cg import _Energy, _evaluate, _law_code, _step_curvature
+    from roughcontact.solvers.projected_cg_gap import _Energy, _evaluate, _law_code, _step_curvature
     surface, half = rough_patch()
     law = ElectrostaticInteraction(STACK, 100.0)
     h = surface.heights.reshape(-1)

@@ -3,7 +3,7 @@
 Under a sinusoidal drive at a frequency f (``ElectrostaticInteraction(stack, U, frequency=f)``, U the RMS
 voltage) a leaky stratum corneum makes the layered field's time-averaged attraction σ̄(g)
 (:mod:`roughcontact.electrostatics.ac`) a non-conservative traction t(g) = −σ̄(g): its Jacobian is not
-symmetric (``docs/dev/roadmap.md``), so there is no energy for :mod:`.energy_cg` to minimise. A conservative
+symmetric (``docs/dev/roadmap.md``), so there is no energy for :mod:`.projected_cg_gap` to minimise. A conservative
 **surrogate** law S carries the gap dependence and the rest of the true traction is frozen at the last gap:
 
     g_{n+1} = argmin Π_S(g) − ⟨c_n g⟩,   c_n = t(g_n) − t_S(g_n),
@@ -25,8 +25,9 @@ warm-started energy solve of the surrogate, and nothing of that solver changes.
 
 Stopping rule: the change of the correction between the last two gaps, measured as the displacement it
 causes, sqrt(⟨(K Δc̃)²⟩ + (Φ_L ⟨Δc⟩)²) ≤ tol · gap_scale (the energy solve's own criterion,
-:mod:`.energy_cg`; Φ_L the compliance of the longest wavelength, gap_scale the rms height). The returned gap then solves the surrogate problem to ``tol`` and
-the true one to within that change: its true residual is at most about twice ``tol``.
+:mod:`.projected_cg_gap`; Φ_L the compliance of the longest wavelength, gap_scale the rms height). The returned
+gap then solves the surrogate problem to ``tol`` and the true one to within that change: its true residual is at
+most about twice ``tol``.
 """
 from __future__ import annotations
 
@@ -43,7 +44,7 @@ from ..electrostatics import EPSILON_0
 from ..electrostatics.ac import ACStackField, inverse_permittivity
 from ..interactions import ElectrostaticInteraction
 from ..io.results import ConvergenceWarning
-from .energy_cg import FIELD_TOL_FLOOR, _start as energy_start, solve_smooth
+from .projected_cg_gap import FIELD_TOL_FLOOR, _start as energy_start, solve_smooth
 from .inputs import _heights
 from .result import ContactResult
 
@@ -128,7 +129,7 @@ def solve_driven(surface, body, law, *, mean_pressure=None, total_force=None, pe
                  maxiter=10000, x0=None, callback=None, warn=True) -> ContactResult:
     """The equilibrium of ``surface`` on the flat under the time-averaged attraction of the AC drive ``law``
     (module docstring); load control (``mean_pressure`` [Pa] or ``total_force`` [N]) or ``penetration`` [m], as
-    for :func:`~roughcontact.solvers.energy_cg.solve_smooth`, whose ``tol``, ``maxiter``, ``callback`` and
+    for :func:`~roughcontact.solvers.projected_cg_gap.solve_smooth`, whose ``tol``, ``maxiter``, ``callback`` and
     ``warn`` every energy solve takes.
 
     The result's ``interaction_traction`` is the true t(g) = −σ̄(g) at the returned gap and ``pressure`` the
