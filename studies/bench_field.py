@@ -115,15 +115,15 @@ def rows_for(name, n, args, realisation=0):
             result, seconds = best_of(lambda: solve_contact(surface, body, mean_pressure=pressure, tol=args.tol,
                                                             interaction=law, warn=False),
                                       args.repeat, clock=time.process_time)
-            reference = reference or (seconds, result.params["fft_pairs"])
+            reference = reference or (seconds, result.solver.fft_pairs)
             rows.append(dict(patch=name, n=n, realisation=realisation, voltage_V=voltage, field=field, time_s=seconds,
                              matched_voltage_V=solved_voltage if matched else "", matched_force_ratio=matched or "",
                              time_ratio=seconds / reference[0], iterations=result.iterations,
                              unstable_steps=result.unstable_steps,
                              field_fft_pairs=result.solver.details.get("field_fft_pairs", 0),
                              field_evaluations=result.solver.details.get("field_evaluations", 0),
-                             fft_pairs=result.params["fft_pairs"],
-                             fft_pair_ratio=result.params["fft_pairs"] / reference[1],
+                             fft_pairs=result.solver.fft_pairs,
+                             fft_pair_ratio=result.solver.fft_pairs / reference[1],
                              contact_fraction=result.contact_fraction,
                              electrostatic_force_N=result.electrostatic_force,
                              field_equivalent_gap_m=result.field_equivalent_gap,
@@ -132,7 +132,7 @@ def rows_for(name, n, args, realisation=0):
                 layered_force = result.electrostatic_force
             at = f" (at {solved_voltage:.0f} V: F_el x{matched:.3f})" if matched else ""
             print(f"{name:5s} {n:4d}² r{realisation} {voltage:5.0f} V {field:22s} {seconds:8.3f} s  "
-                  f"x{rows[-1]['time_ratio']:.2f}  {result.params['fft_pairs']:7.1f} FFT pairs  "
+                  f"x{rows[-1]['time_ratio']:.2f}  {result.solver.fft_pairs:7.1f} FFT pairs  "
                   f"x{rows[-1]['fft_pair_ratio']:.2f}  A/A0 {result.contact_fraction:.4f}{at}", flush=True)
     return rows
 

@@ -36,10 +36,10 @@ def rows_for(pixel: float, realisations: int, scene, pressures) -> list:
                                              warn=False)
                     solve()
                     result, seconds = best_of(solve, 1, clock=time.process_time)
-                    total["steps"] += result.iterations + result.params.get("preconditioned_stalled_at", 0)
-                    total["fft_pairs"] += result.params["fft_pairs"]
+                    total["steps"] += result.iterations + result.solver.details.get("preconditioned_stalled_at", 0)
+                    total["fft_pairs"] += result.solver.fft_pairs
                     total["cpu_s"] += seconds
-                    total["cycled"] += "preconditioned_stalled_at" in result.params
+                    total["cycled"] += "preconditioned_stalled_at" in result.solver.details
     return [{"pixel_um": pixel * 1e6, "preconditioned": flag, "solves": realisations * 2 * len(FORCES), **total}
             for flag, total in totals.items()]
 

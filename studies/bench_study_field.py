@@ -8,9 +8,9 @@ Runs the study of the default scene (or ``--scene``) at ``--preset`` in this pro
 CPU time is the study's), once with ``field = "parallel_plate"`` and once with ``field = "layered"``,
 alternating ``--repeat`` times, after one point of each (the first load at the last voltage) that compiles
 the kernels, plans the FFTs and builds the bodies, untimed. For each run: wall time, CPU time, contact solves,
-and the solver work in FFT pairs (each contact solve's ``params["fft_pairs"]``, the layered field's CG passes
-included, plus the field solves of the 0 V points' small-voltage limit), and the layered/per-pixel ratios. FFT pairs do not depend on
-the machine's other load; wall and CPU times do (run on an idle machine for the docs' timing).
+and the solver work in FFT pairs (each contact solve's ``solver.fft_pairs``, the layered field's CG passes
+included, plus the field solves of the 0 V points' small-voltage limit), and the layered/per-pixel ratios. FFT
+pairs do not depend on the machine's other load; wall and CPU times do (run on an idle machine for the docs' timing).
 Writes ``bench_study_field.csv`` with its provenance into ``--output``.
 """
 from __future__ import annotations
@@ -48,7 +48,7 @@ class WorkCounter:
 
         def solve_contact(*args, **kwargs):
             result = self.solve(*args, **kwargs)
-            self.fft_pairs += result.params.get("fft_pairs", 0.0)
+            self.fft_pairs += result.solver.fft_pairs
             return result
 
         def solve_field(*args, **kwargs):

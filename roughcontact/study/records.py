@@ -34,7 +34,7 @@ def unit_attraction(stack, field: str, result, voltage: float, frequency: float 
     own attraction at ``voltage`` > 0 (F_el/(A0 U²), time-averaged under a drive of ``frequency`` [Hz]), at 0 V
     from the field of the hard-wall gap at 1 V (σ_el ∝ U², so this is the small-voltage limit; under the drive
     at that frequency)."""
-    grid = result.params["grid"]
+    grid = result.grid
     if voltage > 0:
         return result.electrostatic_force / grid.area / voltage ** 2
     gap = np.asarray(result.gap, dtype=np.float64)
@@ -91,7 +91,7 @@ def patch_record(stack, field, voltage, results, lengths, spacing, solves, secon
     drive of ``frequency`` [Hz] or dielectric) over the apparent area (gaps in float64)."""
     gaps = np.stack([np.asarray(res.gap, dtype=np.float64) for res in results])
     d_eq = stack.equivalent_gap(gaps)
-    periodic = results[0].params["grid"].periodic
+    periodic = results[0].grid.periodic
     fractions = tuple(float(np.mean([ridge_area_fraction(np.asarray(res.contact), spacing[0], length, periodic)
                                      for res in results])) for length in lengths)
     offset = stack.eps_a * stack.dielectric_offset

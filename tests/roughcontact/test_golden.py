@@ -47,7 +47,21 @@ PINNED = {"ROUGHCONTACT_FFTW_PLANNER": "FFTW_ESTIMATE", "ROUGHCONTACT_FFT_THREAD
 SKIPPED = {"wall_time", "seconds", "version"}            # clocks and the release string: not answers
 STACK = DielectricStack()
 #: The result attributes recorded beside its fields (they were fields before the typed SolverReport).
-LEGACY_FIELDS = ("iterations", "residuals", "converged", "message", "wall_time", "params", "unstable_steps")
+REPORT_ATTRIBUTES = ("iterations", "residuals", "converged", "message", "wall_time", "unstable_steps")
+
+
+def report_record(result) -> dict:
+    """The solver's settings and diagnostics of ``result`` as one dict, the record's ``params`` entry (the layout
+    the records were first written in: the report's entries, the body's E*, the control and the law's class)."""
+    report = result.solver
+    record = {"E_star": report.kernel.get("E_star"), "grid": result.grid, "tol": report.tol,
+              "maxiter": report.maxiter, "method": report.method, "start": report.start,
+              "control": result.control, "requested": result.requested,
+              "interaction": type(result.interaction).__name__, "kernel": report.kernel,
+              "version": report.version, "fft_pairs": report.fft_pairs, **report.details}
+    if report.method != "polonsky-keer":
+        record["detached"] = report.detached
+    return record
 
 
 def digest(value):
@@ -58,7 +72,7 @@ def digest(value):
         return "sha256:" + hashlib.sha256(payload).hexdigest()
     if isinstance(value, ContactResult):     # recorded as before its SolverReport: the same numbers, one layout
         record = {f.name: getattr(value, f.name) for f in dataclasses.fields(value) if f.name not in ("grid", "solver")}
-        record.update({name: getattr(value, name) for name in LEGACY_FIELDS})
+        record.update({name: getattr(value, name) for name in REPORT_ATTRIBUTES}, params=report_record(value))
         return {"__type__": "ContactResult", **{name: digest(v) for name, v in record.items() if name not in SKIPPED}}
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         return {"__type__": type(value).__name__,

@@ -19,7 +19,7 @@ def check_contact_state(heights, result):
     (to TOL_FACTOR × the solve's tol × the height range); ``result.gap`` equal to g off the contact set."""
     h = np.asarray(getattr(heights, "heights", heights))
     raw = h.max() - result.penetration - h + result.displacement
-    bound = TOL_FACTOR * result.params["tol"] * np.ptp(h)
+    bound = TOL_FACTOR * result.solver.tol * np.ptp(h)
     assert np.isfinite(result.pressure).all() and np.isfinite(result.displacement).all()
     assert (result.pressure >= 0).all()
     assert raw.min() >= -bound, f"interpenetration: raw gap {raw.min():.3g} m < -{bound:.3g} m"

@@ -209,7 +209,7 @@ def test_nested_cold_start_levels_and_fallbacks(periodic):
     field = bump(grid, radius)
     nested = solve_contact(field, half, penetration=2e-6, tol=1e-10)
     pk = solve_contact(field, half, penetration=2e-6, tol=1e-10, cold_start="pk")
-    assert nested.params["start"] == "nested" and len(nested.params["nested_iterations"]) == 2   # 64², 128²
+    assert nested.solver.start == "nested" and len(nested.solver.details["nested_iterations"]) == 2   # 64², 128²
     coarse = half.coarsened()
     assert coarse.grid == grid.coarsened(2) and coarse.description == half.description | {
         "transform_shape": [n // 2 for n in half.transform_shape]}
@@ -218,13 +218,13 @@ def test_nested_cold_start_levels_and_fallbacks(periodic):
     np.testing.assert_allclose(nested.pressure, pk.pressure, rtol=0, atol=1e-6 * pk.pressure.max())
     # the coarse 2 × 2 mean (0, a, a, 2a), a = Δx²/(2R), lowers the apex by a = 3.8e-9 m: 5e-10 m misses it
     shallow = solve_contact(field, half, penetration=5e-10, tol=1e-10)
-    assert shallow.params["start"] == "pk" and shallow.params["nested_iterations"] == []
+    assert shallow.solver.start == "pk" and shallow.solver.details["nested_iterations"] == []
     # an all-zero warm start carries no information: the cold start, bit for bit (heights given as an array)
     zero = solve_contact(field.heights, half, penetration=2e-6, tol=1e-10, x0=np.zeros(grid.shape))
-    assert zero.params["start"] == "nested" and np.array_equal(zero.pressure, nested.pressure)
+    assert zero.solver.start == "nested" and np.array_equal(zero.pressure, nested.pressure)
     odd = Grid((255, 256), (1e-3, 1e-3), periodic=periodic)
     result = solve_contact(bump(odd, radius), ElasticHalfSpace(odd, E_star=E_STAR), penetration=2e-6, tol=1e-10)
-    assert result.converged and result.params["start"] == "pk"
+    assert result.converged and result.solver.start == "pk"
     with pytest.raises(ValueError, match="cold_start"):
         solve_contact(field, half, penetration=2e-6, cold_start="uniform")
 
@@ -251,7 +251,7 @@ def test_penetration_beyond_the_mean_plane_is_refused():
 def test_far_beyond_full_contact_is_exact_at_once():
     surface, half = bench_like()
     res = solve_contact(surface, half, mean_pressure=1e30)
-    assert res.converged and res.iterations == 0 and res.params["full_contact"] and res.contact_fraction == 1.0
+    assert res.converged and res.iterations == 0 and res.solver.details["full_contact"] and res.contact_fraction == 1.0
     check_contact_state(surface, res)
 
 
@@ -265,11 +265,11 @@ def test_float32_default_tolerance_and_stall():
             pytest.warns(ConvergenceWarning, match="tol = 1e-12 is below float32's round-off floor"):
         stalled = solve_contact(surface, half, mean_pressure=1e3, tol=1e-12)
     assert not stalled.converged and stalled.iterations < 1000
-    assert stalled.params["start"] != "x0" and "warm_start_stalled_at" not in stalled.params
+    assert stalled.solver.start != "x0" and "warm_start_stalled_at" not in stalled.solver.details
     # a warm-started solve that stalls is solved again from the cold start (which a warm start's cycle can miss)
     with pytest.warns(UserWarning, match="stalled"), pytest.warns(ConvergenceWarning, match="round-off floor"):
         retried = solve_contact(surface, half, mean_pressure=2e3, tol=1e-12, x0=res)
-    assert retried.params["warm_start_stalled_at"] > 0 and retried.params["start"] != "x0"
+    assert retried.solver.details["warm_start_stalled_at"] > 0 and retried.solver.start != "x0"
 
 
 def test_flags_and_sweeps_are_checked_when_called():
@@ -291,7 +291,7 @@ def test_a_preconditioned_cycle_is_solved_again_without_the_preconditioner():
     pressure = dict(zip(scene.loads.normal_forces, (scale[1][0] for scale in apparent_scale(scene))))[2.0]
     heights, _, body = profile_surface(scene, 0.25e-6, realisation=1)
     result = solve_contact(heights, body, mean_pressure=pressure, preconditioned=True)
-    assert result.converged and result.params["preconditioned_stalled_at"] >= 200
+    assert result.converged and result.solver.details["preconditioned_stalled_at"] >= 200
     assert not result.solver.details["preconditioned"]
     check_contact_state(heights, result)
 

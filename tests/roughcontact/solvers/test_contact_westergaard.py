@@ -52,7 +52,7 @@ def test_half_width_mean_gap_pressure_energy(solutions, sinusoid, s):
     error = np.abs(result.pressure[:, 0] - ref.westergaard_pressure(x, p_mean, H0, LAMBDA, E_STAR))[core]
     assert error.max() < 5e-6 * P_STAR
     # energy per area (¼ − ½ ln s) s² h0 p*; measured ≤ 8.0e-7 (s = 0.01), assert 3e-6 (margin 3.7)
-    assert result.elastic_energy / result.params["grid"].area == pytest.approx(
+    assert result.elastic_energy / result.grid.area == pytest.approx(
         ref.westergaard_elastic_energy_density(p_mean, H0, LAMBDA, E_STAR), rel=3e-6)
 
 
@@ -98,9 +98,9 @@ def test_full_contact_is_exact_without_iterating(sinusoid):
     secant = list(load_path(field, half, loads, tol=1e-10))
     previous = list(load_path(field, half, loads, tol=1e-10, predictor="previous"))
     assert all(r.converged and r.contact_fraction == 1.0 for r in secant + previous)
-    assert all(r.iterations == 0 and r.params["full_contact"] for r in secant + previous)
+    assert all(r.iterations == 0 and r.solver.details["full_contact"] for r in secant + previous)
     just_below = solve_contact(field, half, mean_pressure=0.99 * P_STAR)
-    assert not just_below.params["full_contact"] and just_below.contact_fraction < 1.0
+    assert not just_below.solver.details["full_contact"] and just_below.contact_fraction < 1.0
     expected = loads[2] + P_STAR * np.cos(2 * np.pi * x / LAMBDA)
     np.testing.assert_allclose(secant[2].pressure[:, 0], expected, rtol=0, atol=1e-9 * P_STAR)
     with pytest.raises(ValueError, match="predictor"):

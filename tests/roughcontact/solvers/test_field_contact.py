@@ -50,7 +50,7 @@ def test_default_patch_converges_and_attracts_more_than_the_per_pixel_law(defaul
     per_pixel = solve_contact(heights, body, mean_pressure=pressure, tol=1e-8,
                               interaction=ElectrostaticInteraction(STACK, voltage, field="parallel_plate"))
     assert res.converged and per_pixel.converged
-    history = np.array(res.params["energy_history"])
+    history = np.array(res.solver.details["energy_history"])
     assert np.all(np.diff(history) <= 1e-12 * np.abs(history).max())         # the energy never rises
     imbalance, mismatch = field_equilibrium(res, heights, body)
     # tol 1e-8 bounds the displacement error; the traction it leaves on open pixels measured <= 2.7e-6 of the

@@ -92,7 +92,7 @@ def test_vanishing_attraction_matches_polonsky_keer():
     hard = solve_contact(surface, half, mean_pressure=1e3, tol=1e-10)
     res = solve_contact(surface, half, mean_pressure=1e3, interaction=ElectrostaticInteraction(STACK, 1e-6),
                         tol=1e-10)
-    assert res.converged and res.params["method"] == "projected-cg-gap"
+    assert res.converged and res.solver.method == "projected-cg-gap"
     np.testing.assert_array_equal(res.contact, hard.contact)
     # measured 3e-9 of max p; the bound is the solvers' tolerance times a margin of 100 on the gap scale
     assert np.max(np.abs(res.pressure - hard.pressure)) <= 1e-6 * hard.pressure.max()
@@ -178,7 +178,7 @@ def test_tensile_load_beyond_pull_off_is_reported():
     surface, half = sinusoid(n)
     with pytest.warns(UserWarning, match="no equilibrium"):
         res = solve_contact(surface, half, mean_pressure=-0.5, interaction=johnson_law(0.2, np.sqrt(1 / n)))
-    assert not res.converged and res.params["detached"] and res.contact_fraction == 0
+    assert not res.converged and res.detached and res.contact_fraction == 0
     assert np.isfinite(res.gap).all() and np.isfinite(res.pressure).all()
 
 
@@ -193,7 +193,7 @@ def test_rough_patch_grows_with_voltage():
     gaps = [res.equivalent_gap for res in results]
     assert np.all(np.diff(areas) > 0) and np.all(np.diff(forces) > 0) and np.all(np.diff(gaps) < 0)
     for res in results[1:]:
-        history = np.array(res.params["energy_history"])
+        history = np.array(res.solver.details["energy_history"])
         assert np.all(np.diff(history) <= 1e-12 * np.abs(history).max())   # the energy never rises
         assert res.equivalent_gap == STACK.equivalent_gap(res.gap)
         imbalance = check_equilibrium(res, surface, half, tol_traction=1e-6 * 1e3)
@@ -388,7 +388,7 @@ def test_float32_electrostatic_solve():
     single = ElasticHalfSpace(surface.grid, E_star=1e6, dtype=np.float32)
     law = ElectrostaticInteraction(STACK, 30.0)
     res = solve_contact(surface, single, mean_pressure=1e3, interaction=law)
-    assert res.converged and res.params["tol"] == 1e-5 and res.gap.dtype == np.float32
+    assert res.converged and res.solver.tol == 1e-5 and res.gap.dtype == np.float32
     polished = solve_contact(surface, half, mean_pressure=1e3, interaction=law, tol=1e-8, x0=res)
     assert polished.converged
     np.testing.assert_array_equal(polished.contact, res.contact)

@@ -85,7 +85,8 @@ def test_an_unconverged_law_node_marks_the_law_and_its_records(scene, law, monke
     def one_unconverged(*arguments, **keywords):
         result = solve(*arguments, **keywords)
         calls.append(None)
-        return dataclasses.replace(result, converged=False) if len(calls) == 5 else result
+        unconverged = dataclasses.replace(result, solver=dataclasses.replace(result.solver, converged=False))
+        return unconverged if len(calls) == 5 else result
 
     monkeypatch.setattr(coupled, "solve_contact", one_unconverged)
     failed = interface_law(roughness_heights(scene, 0), patch_body(scene), scene.screen.stack(), 150.0,

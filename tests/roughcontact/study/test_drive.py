@@ -111,7 +111,7 @@ def test_sweep_records_are_the_direct_solves_under_the_same_drive(sweep, sweep_r
                 previous = direct
                 point = sweep_result.points[i][j][k]
                 assert point.voltage == voltage and direct.converged and point.converged[1]
-                area = direct.params["grid"].area
+                area = direct.grid.area
                 assert point.equivalent_gap[1] == stack.equivalent_gap(direct.gap)
                 assert point.contact_fraction[1] == direct.contact_fraction
                 if voltage > 0:
@@ -126,7 +126,7 @@ def test_sweep_records_are_the_direct_solves_under_the_same_drive(sweep, sweep_r
                 else:
                     # 0 V: the hard wall at every frequency; the field-equivalent gap is that of the drive's field
                     # on the hard-wall gap in the small-voltage limit
-                    solution = solve_ac_field(stack, np.asarray(direct.gap), direct.params["grid"].lengths, 1.0,
+                    solution = solve_ac_field(stack, np.asarray(direct.gap), direct.grid.lengths, 1.0,
                                               frequency=frequency)
                     assert point.field_equivalent_gap[1] == pytest.approx(
                         stack.gap_for_attraction(solution.mean_attraction, 1.0), rel=1e-12)   # the same solve

@@ -229,7 +229,8 @@ def test_failed_warm_start_is_retried_cold_and_failures_leave_the_means(tiny, mo
 
     def warm_fails(*args, x0=None, **kwargs):
         result = solve(*args, x0=x0, **kwargs)
-        return dataclasses.replace(result, converged=False) if x0 is not None else result
+        unconverged = dataclasses.replace(result, solver=dataclasses.replace(result.solver, converged=False))
+        return unconverged if x0 is not None else result
 
     monkeypatch.setattr(resolved, "solve_contact", warm_fails)
     retried = run_study(tiny, workers=1)
