@@ -22,7 +22,6 @@ Construction (SFinGe-like, Cappelli et al. ICPR 2000; references in ``docs/guide
 """
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -513,22 +512,11 @@ def _steering(model, target: Grid, seam, origin, period, period_map) -> _Steerin
     return _Steering(theta, 2 * np.pi / local, list(wavenumbers))
 
 
-def _fft_threads(threads, workers) -> int:
-    """``scipy.fft``'s ``workers`` from ``threads`` (None: all cores, −1) or the deprecated ``workers``."""
-    if workers is not None:
-        if threads is not None:
-            raise TypeError("give threads or its former name workers, not both")
-        warnings.warn("fingerprint(workers=) is now threads= (workers is accepted for one release)",
-                      DeprecationWarning, stacklevel=3)
-        return check_integer("workers", workers, low=-1) or -1
-    return -1 if threads is None else check_integer("threads", threads, low=1)
-
-
 def fingerprint(grid: Grid, pattern: str = "left_loop", ridge_period=RIDGE_PERIOD,
                 ridge_height: float = RIDGE_HEIGHT, ridge_width_ratio: float = RIDGE_WIDTH_RATIO,
                 pore_density: float = PORE_DENSITY, pore_diameter: float = PORE_DIAMETER,
                 pore_depth: float = PORE_DEPTH, cores=None, deltas=None, rotation: float = 0.0, rng=None,
-                threads=None, workers=None) -> HeightField:
+                threads=None) -> HeightField:
     """Synthetic fingerprint height field [m], zero mean, crests towards the counter-face (SI units; defaults
     and sources in ``docs/guide/fingerprint.md``).
 
@@ -544,8 +532,6 @@ def fingerprint(grid: Grid, pattern: str = "left_loop", ridge_period=RIDGE_PERIO
     rng : None, int seed or ``numpy.random.Generator`` (an int seed, or the fresh one drawn for None, is
         stored in the metadata).
     threads : FFT threads for ``scipy.fft`` (None: all cores), as ``threads`` in ``roughcontact``.
-    workers : the former name of ``threads`` (−1 = all cores), accepted with a ``DeprecationWarning`` for one
-        release.
 
     Notes
     -----
@@ -562,7 +548,7 @@ def fingerprint(grid: Grid, pattern: str = "left_loop", ridge_period=RIDGE_PERIO
     pore_density, pore_diameter, pore_depth = _check_pores(pore_density, pore_diameter, pore_depth, ratio,
                                                            float(np.min(period)))
     rng, seed = check_rng(rng)
-    threads = _fft_threads(threads, workers)
+    threads = -1 if threads is None else check_integer("threads", threads, low=1)   # scipy.fft's workers
 
     seam = _SEAM_PERIODS * float(np.max(period))
     domain, offsets = _generation_grid(grid, seam)

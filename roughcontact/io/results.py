@@ -100,7 +100,6 @@ def _result_types() -> dict:
     while pending:
         kind = pending.pop()
         found[kind.__qualname__] = kind
-        found.update(dict.fromkeys(getattr(kind, "former_names", ()), kind))   # a renamed class's saved files
         pending.extend(kind.__subclasses__())
     return found
 
@@ -145,15 +144,10 @@ def _join(kind, fields, arrays, prefix, unknown: set):
         if key.startswith(prefix) and "." not in name:
             array.flags.writeable = False     # results are immutable: read-only as when they were made
             kwargs[name] = array
-    for f in dataclasses.fields(kind):        # files written before save_npz kept tuples stored them as lists
-        if isinstance(kwargs.get(f.name), list) and "tuple" in str(f.type):
-            kwargs[f.name] = tuple(kwargs[f.name])
     names = {f.name for f in dataclasses.fields(kind)}
     required = {f.name for f in dataclasses.fields(kind)
                 if f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING}
-    # a class may take the fields of its former layout (``legacy_fields``) and derive its current ones from them
-    legacy = set(getattr(kind, "legacy_fields", ())) & set(kwargs)
-    extra, missing = sorted(set(kwargs) - names - legacy), [] if legacy else sorted(required - set(kwargs))
+    extra, missing = sorted(set(kwargs) - names), sorted(required - set(kwargs))
     if extra or missing:
         problems = [f"the fields {', '.join(extra)} that a {kind.__qualname__} does not have"] if extra else []
         raise ValueError(f"its {kind.__qualname__} record has " + " and ".join(
@@ -179,8 +173,9 @@ def _read(path) -> tuple:
         raise ValueError(f"{path} is not a saved result: not a readable .npz archive ({error})") from None
     if not isinstance(metadata, dict) or not isinstance(metadata.get("fields"), dict):
         raise ValueError(f"{path} is not a saved result: its metadata record has no fields")
-    stored = _array_record(arrays)
-    expected = metadata.get("arrays", stored)           # (files written before the record: not checked)
+    stored, expected = _array_record(arrays), metadata.get("arrays")
+    if expected is None:
+        raise ValueError(f"{path} is not a saved result: its metadata has no record of its arrays")
     if not isinstance(expected, dict):
         raise ValueError(f"{path} is not a saved result: its record of arrays is not a table")
     if stored != expected:
@@ -208,7 +203,7 @@ class SavableResult:
     @classmethod
     def load(cls, path):
         arrays, metadata = _read(path)
-        if metadata.get("kind") not in (cls.__qualname__, *getattr(cls, "former_names", ())):
+        if metadata.get("kind") != cls.__qualname__:
             raise ValueError(f"{path} holds a {metadata.get('kind')!r}, not a {cls.__qualname__}")
         unknown = set()
         try:

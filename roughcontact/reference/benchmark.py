@@ -7,8 +7,6 @@ iterations — the realistic use and the hard case for the solver. Results depen
 """
 from __future__ import annotations
 
-import warnings
-
 import numpy as np
 
 import surfaces
@@ -25,14 +23,9 @@ HURST, RMS_SLOPE, CUTOFF_PIXELS = 0.8, 0.1, 4
 SWEEP_STEPS = 20
 
 
-def rough_surface(n: int, rng=0, periodic: bool = True, *, seed=None) -> surfaces.HeightField:
+def rough_surface(n: int, rng=0, periodic: bool = True) -> surfaces.HeightField:
     """The benchmark surface on an n² grid (``rng`` 0: the one of docs/dev/benchmarks.md); ``periodic=False``: the
-    same heights on a free-surface (non-periodic) grid. ``seed``, the former name of ``rng``, is accepted with a
-    ``DeprecationWarning`` for one release."""
-    if seed is not None:
-        warnings.warn("rough_surface(seed=) is now rng=, as everywhere in surfaces and roughcontact", DeprecationWarning,
-                      stacklevel=2)
-        rng = seed
+    same heights on a free-surface (non-periodic) grid."""
     grid = surfaces.Grid((n, n), (LENGTH, LENGTH), periodic=True)
     field = surfaces.self_affine(grid, hurst=HURST, rms_slope=RMS_SLOPE, short_cutoff=CUTOFF_PIXELS * LENGTH / n,
                                  rng=rng)

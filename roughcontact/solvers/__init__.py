@@ -8,13 +8,13 @@ solve) ‚Üê :mod:`.deferred_correction` (an AC drive, around the smooth solve) ‚Ü
 """
 from __future__ import annotations
 
-from .continuation import JUMP_AREA, LoadCycle, LoadPath, PullOff, load_cycle, pull_off
+from .continuation import JUMP_AREA, LoadCycle, PullOff, load_cycle, pull_off
 from .dispatch import solve_contact
 from .inputs import default_tolerance
 from .problem import ContactProblem
 from .result import PERIMETER_CORRECTION, ContactResult, SolverReport, SolverState, boundary_edges
 from .sweep import PREDICTORS, load_path
 
-__all__ = ["ContactProblem", "ContactResult", "JUMP_AREA", "LoadCycle", "LoadPath", "PERIMETER_CORRECTION", "PREDICTORS",
-           "PullOff", "SolverReport", "SolverState", "boundary_edges", "default_tolerance", "load_cycle", "load_path", "pull_off",
+__all__ = ["ContactProblem", "ContactResult", "JUMP_AREA", "LoadCycle", "PERIMETER_CORRECTION", "PREDICTORS", "PullOff",
+           "SolverReport", "SolverState", "boundary_edges", "default_tolerance", "load_cycle", "load_path", "pull_off",
            "solve_contact"]

@@ -10,9 +10,7 @@ found by :func:`pull_off` (bracketed along the path, then bisected).
 """
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass, field
-from typing import ClassVar
 
 import numpy as np
 
@@ -29,8 +27,7 @@ JUMP_AREA = 0.02
 @dataclass(frozen=True, eq=False)
 class LoadCycle(SavableResult):
     """The equilibria of :func:`load_cycle` along a sequence of external loads ``loads`` [Pa] (mean pressures),
-    in order (named ``LoadPath`` before; files saved under that name load, and the name stays an alias for one
-    release).
+    in order.
 
     Per step: ``contact_fraction``, ``mean_gap`` [m], ``flat_position`` s [m], ``converged``, ``detached``
     (a tensile load beyond pull-off: no equilibrium) and ``unstable_steps`` (the solve's steps along which the
@@ -50,9 +47,6 @@ class LoadCycle(SavableResult):
     jumps: tuple
     jump_area: float
     results: tuple = field(default=(), repr=False)
-
-    #: the class's former name, under which files were saved (they load as a LoadCycle)
-    former_names: ClassVar[tuple] = ("LoadPath",)
 
 
 def _jump(previous: ContactResult, current: ContactResult, jump_area: float):
@@ -113,13 +107,12 @@ class PullOff(SavableResult):
     solves: int
 
 
-def pull_off(problem: ContactProblem, start: ContactResult, step, tol=1e-3, max_steps=200, *, rtol=None,
+def pull_off(problem: ContactProblem, start: ContactResult, step, tol=1e-3, max_steps=200,
              **solver_options) -> PullOff:
     """Retract from the equilibrium ``start`` by decreasing the external load in steps of ``step`` [Pa] (each
     solve from the last attached equilibrium, at most ``max_steps`` of them) until the contact detaches, then
-    bisect between the last attached and the first detached load to ``tol`` of the step (``rtol``, its former
-    name, is accepted for one release). ``problem`` needs a law that attracts (the hard wall and a 0 V law
-    separate at zero load: no pull-off to find)."""
+    bisect between the last attached and the first detached load to ``tol`` of the step. ``problem`` needs a law
+    that attracts (the hard wall and a 0 V law separate at zero load: no pull-off to find)."""
     if not isinstance(problem, ContactProblem):
         raise TypeError(f"problem must be a ContactProblem, got {type(problem).__name__}")
     if not problem.interaction.smooth or problem.interaction.vanishes:
@@ -128,10 +121,6 @@ def pull_off(problem: ContactProblem, start: ContactResult, step, tol=1e-3, max_
     if not isinstance(start, ContactResult) or not start.converged:
         raise ValueError("start must be a converged ContactResult on the branch to retract along")
     step = check_positive("step", step)
-    if rtol is not None:
-        warnings.warn("pull_off(rtol=) is now spelled tol=, as in every solver; rtol is accepted for one release",
-                      DeprecationWarning, stacklevel=2)
-        tol = rtol
     tol = check_real("tol", tol, low=0.0, high=1.0, low_open=True, high_open=True)
     max_steps = check_integer("max_steps", max_steps, low=1)
     attached, solves = start, 0
@@ -162,7 +151,4 @@ def pull_off(problem: ContactProblem, start: ContactResult, step, tol=1e-3, max_
                    bracket=(attached.mean_pressure, detached_load), last_attached=attached, solves=solves)
 
 
-#: The former name of :class:`LoadCycle` (one release).
-LoadPath = LoadCycle
-
-__all__ = ["LoadCycle", "LoadPath", "PullOff", "load_cycle", "pull_off", "JUMP_AREA"]
+__all__ = ["LoadCycle", "PullOff", "load_cycle", "pull_off", "JUMP_AREA"]

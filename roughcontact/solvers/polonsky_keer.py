@@ -322,7 +322,7 @@ def solve_hard_wall(surface, body: ElasticHalfSpace, interaction: Interaction | 
                              f"the mean gap s − ⟨h⟩ must stay > 0, i.e. penetration < max(h) − ⟨h⟩ = {limit!r} m (use "
                              "load control for full contact)")
 
-    params = {"tol": tol, "maxiter": int(maxiter), "start": "x0" if warm is not None else "pk",
+    settings = {"tol": tol, "maxiter": int(maxiter), "start": "x0" if warm is not None else "pk",
               "control": next(iter(given)), "requested": float(next(iter(given.values()))),
               "details": {"preconditioned": preconditioned, "nested_iterations": [], "restart_every_entry_from": None,
                           "full_contact": False}}
@@ -331,34 +331,34 @@ def solve_hard_wall(surface, body: ElasticHalfSpace, interaction: Interaction | 
     h = heights.reshape(-1)
     if not load_control and flat_position >= h_max:          # the flat does not reach the surface
         zeros = np.zeros(n_points, body.dtype)
-        return _result(zeros, zeros.copy(), h, flat_position, body, interaction, params, 0, [0.0], True,
+        return _result(zeros, zeros.copy(), h, flat_position, body, interaction, settings, 0, [0.0], True,
                        "no contact: penetration <= 0", start, 0)
     if load_control and mean_pressure <= 0:                 # nothing presses: a law that vanishes (0 V) at 0 or less
         zeros = np.zeros(n_points, body.dtype)
         if mean_pressure == 0:
-            return _result(zeros, zeros.copy(), h, h_max, body, interaction, params, 0, [0.0], True,
+            return _result(zeros, zeros.copy(), h, h_max, body, interaction, settings, 0, [0.0], True,
                            "zero load: the flat touches the highest point and presses nothing", start, 0)
         message = (f"detached: no equilibrium under the tensile load {mean_pressure:.6g} Pa, since the law "
                    f"{type(interaction).__name__} exerts no traction (it vanishes); the bodies separate")
         if warn:
             warnings.warn(message, ConvergenceWarning, stacklevel=3)
-        return _result(zeros, zeros.copy(), h, h_max, body, interaction, params, 0, [math.inf], False, message,
+        return _result(zeros, zeros.copy(), h, h_max, body, interaction, settings, 0, [math.inf], False, message,
                        start, 0, detached=True)
     coarse_pressure = None
     if warm is None and cold_start == "nested":             # solved first, before the fine work arrays exist
         field = surface if isinstance(surface, HeightField) else HeightField(grid, heights)
-        coarse_pressure, params["details"]["nested_iterations"] = _nested_start(
+        coarse_pressure, settings["details"]["nested_iterations"] = _nested_start(
             field, body, mean_pressure, flat_position, tol, maxiter, preconditioned)
         del field                                           # (a grid copy when the heights came as an array)
-        params["start"] = "pk" if coarse_pressure is None else "nested"
+        settings["start"] = "pk" if coarse_pressure is None else "nested"
     # grid-sized work arrays (aligned: the periodic FFT uses them in place); t and z_in stay 0 outside I_c
     p, u, t, r = (body.empty().reshape(-1) for _ in range(4))
     z_in = body.empty().reshape(-1) if preconditioned else t
     if load_control and body.periodic:                      # full contact is exact: no iteration
         shift = _full_contact(h, body, mean_pressure, p, u)
         if shift is not None:
-            params["details"]["full_contact"] = True
-            return _result(p, u, h, shift, body, interaction, params, 0, [0.0], True,
+            settings["details"]["full_contact"] = True
+            return _result(p, u, h, shift, body, interaction, settings, 0, [0.0], True,
                            "full contact: the pressure that flattens h, p̄ + K⁻¹(h − ⟨h⟩), is positive everywhere "
                            "(exact)", start, 2)
     index = np.empty(n_points, np.int32 if n_points < 2 ** 31 else np.int64)   # the contact set I_c, sorted
@@ -371,7 +371,7 @@ def solve_hard_wall(surface, body: ElasticHalfSpace, interaction: Interaction | 
         _repeat_into(coarse_pressure, p.reshape(grid.shape))
         del coarse_pressure                                 # (a quarter grid array, not kept through the solve)
     solver = _PolonskyKeer(body, heights, (p, u, t, r, z_in), index, mean_pressure, flat_position, preconditioned,
-                           params["details"])
+                           settings["details"])
     iterations, residuals, converged, message, stalled = solver.iterate(tol, maxiter, callback)
     cycled = stalled and min(residuals) > CYCLE_ABOVE_ROUND_OFF * np.finfo(body.dtype).eps
     if stalled and (warm_started or (preconditioned and cycled)):
@@ -389,7 +389,7 @@ def solve_hard_wall(surface, body: ElasticHalfSpace, interaction: Interaction | 
     solver.finish()
     if not converged and warn:
         warnings.warn(message, ConvergenceWarning, stacklevel=3)
-    return _result(p, u, h, solver.shift, body, interaction, params, iterations, residuals, converged, message, start,
+    return _result(p, u, h, solver.shift, body, interaction, settings, iterations, residuals, converged, message, start,
                    solver.transforms)
 
 
@@ -570,7 +570,7 @@ def _checked_load(total_force, mean_pressure, grid, interaction) -> float:
     return value / grid.area if name == "total_force" else value
 
 
-def _result(p, u, h, shift, body, interaction, params, iterations, residuals, converged, message, start, transforms,
+def _result(p, u, h, shift, body, interaction, settings, iterations, residuals, converged, message, start, transforms,
             detached=False):
     grid = body.grid
     gap = np.empty(p.size, body.dtype)
@@ -582,9 +582,9 @@ def _result(p, u, h, shift, body, interaction, params, iterations, residuals, co
         array.flags.writeable = False
     report = SolverReport(
         method=METHOD, converged=bool(converged), message=message, iterations=int(iterations),
-        residuals=np.asarray(residuals, dtype=np.float64), tol=params["tol"], maxiter=params["maxiter"],
-        start=params["start"], fft_pairs=transforms / 2, wall_time=time.perf_counter() - start, detached=detached,
-        kernel=body.description, version=__version__, details=params["details"])
+        residuals=np.asarray(residuals, dtype=np.float64), tol=settings["tol"], maxiter=settings["maxiter"],
+        start=settings["start"], fft_pairs=transforms / 2, wall_time=time.perf_counter() - start, detached=detached,
+        kernel=body.description, version=__version__, details=settings["details"])
     return ContactResult(
         pressure=pressure, displacement=displacement, gap=gap, contact=contact,
         contact_fraction=float(np.count_nonzero(contact)) / contact.size,
@@ -592,4 +592,5 @@ def _result(p, u, h, shift, body, interaction, params, iterations, residuals, co
         penetration=float(h.max()) - float(shift), elastic_energy=body.elastic_energy(pressure, displacement),
         grid=grid, solver=report, contact_pressure=pressure,
         interaction_traction=np.broadcast_to(np.zeros((), body.dtype), grid.shape),
-        flat_position=float(shift), interaction=interaction, control=params["control"], requested=params["requested"])
+        flat_position=float(shift), interaction=interaction, control=settings["control"],
+        requested=settings["requested"])

@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import MISSING, dataclass, field, fields, replace
-from typing import ClassVar
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -72,31 +71,12 @@ class SolverReport(SavableResult):
     __setstate__ = _read_only_state
 
 
-#: The fields that ContactResult held before its SolverReport (files saved then still load).
-_LEGACY_FIELDS = ("iterations", "residuals", "converged", "message", "wall_time", "params", "unstable_steps")
-#: The keys of the former ``params`` dict that are now typed on the report (or the result).
-_TYPED_PARAMS = ("E_star", "grid", "tol", "maxiter", "method", "start", "fft_pairs", "detached", "control",
-                 "requested", "interaction", "kernel", "version")
-
-
-def _report_from_legacy(legacy: dict) -> SolverReport:
-    """The SolverReport of a result saved before it had one: its former fields and ``params`` dict."""
-    params = legacy.get("params", {})
-    return SolverReport(
-        method=params.get("method", ""), converged=bool(legacy["converged"]), message=legacy["message"],
-        iterations=int(legacy["iterations"]), residuals=legacy["residuals"], tol=params.get("tol", math.nan),
-        maxiter=params.get("maxiter", 0), start=params.get("start", ""), fft_pairs=params.get("fft_pairs", math.nan),
-        wall_time=legacy.get("wall_time", math.nan), unstable_steps=int(legacy.get("unstable_steps", 0)),
-        detached=bool(params.get("detached", False)), kernel=params.get("kernel", {}),
-        version=params.get("version", ""), details={k: v for k, v in params.items() if k not in _TYPED_PARAMS})
-
-
 def _from_report(name: str, doc: str) -> property:
     """A read-only attribute of the result that is the entry ``name`` of its SolverReport."""
     return property(lambda result: getattr(result.solver, name), doc=f"{doc} (``solver.{name}``)")
 
 
-@dataclass(frozen=True, eq=False, init=False)
+@dataclass(frozen=True, eq=False, kw_only=True)
 class ContactResult(SavableResult):
     """Solution of one contact problem. Fields in SI units; see ``docs/reference/conventions.md`` for signs.
 
@@ -110,8 +90,7 @@ class ContactResult(SavableResult):
     ∫V(g) dA. ``control`` ("mean_pressure", "total_force" or "penetration") and ``requested`` say what was
     fixed. ``solver``: the :class:`SolverReport` (method, convergence, cost, start, detachment); its most read
     entries are also attributes of the result: ``converged``, ``message``, ``iterations``, ``residuals``,
-    ``wall_time`` [s], ``unstable_steps``, ``detached``. ``params``, the former dict of the solver's settings,
-    is rebuilt from the report for one release.
+    ``wall_time`` [s], ``unstable_steps``, ``detached``.
     """
 
     pressure: np.ndarray
@@ -133,32 +112,7 @@ class ContactResult(SavableResult):
     control: str = ""
     requested: float = math.nan
 
-    #: the fields of the former layout that the constructor still takes (loading a file saved before the report)
-    legacy_fields: ClassVar[tuple] = _LEGACY_FIELDS
-
-    def __init__(self, **values):
-        """Keyword fields as declared; a file saved before the :class:`SolverReport` gives the former fields
-        ``iterations``, ``residuals``, ``converged``, ``message``, ``wall_time``, ``params`` and
-        ``unstable_steps`` instead of ``grid`` and ``solver``; beside ``solver`` (``dataclasses.replace``) all
-        but ``params`` replace the report's entries (for one release)."""
-        legacy = {name: values.pop(name) for name in _LEGACY_FIELDS if name in values}
-        if legacy and "solver" in values:                   # dataclasses.replace(result, converged=False)
-            if "params" in legacy:
-                raise TypeError("params is rebuilt from the SolverReport: give solver= (with its details) instead")
-            values["solver"] = replace(values["solver"], **legacy)
-        elif legacy:
-            values["solver"] = _report_from_legacy(legacy)
-            values.setdefault("grid", legacy.get("params", {}).get("grid"))
-        for declared in fields(ContactResult):
-            if declared.name in values:
-                value = values.pop(declared.name)
-            elif declared.default is not MISSING:
-                value = declared.default
-            else:
-                raise TypeError(f"ContactResult() missing the field {declared.name!r}")
-            object.__setattr__(self, declared.name, value)
-        if values:
-            raise TypeError(f"ContactResult() got unexpected fields {sorted(values)}")
+    def __post_init__(self):
         if not isinstance(self.grid, Grid) or not isinstance(self.solver, SolverReport):
             raise TypeError(f"ContactResult needs grid (a surfaces.Grid) and solver (a SolverReport), got "
                             f"{type(self.grid).__name__} and {type(self.solver).__name__}")
@@ -172,20 +126,6 @@ class ContactResult(SavableResult):
     unstable_steps = _from_report("unstable_steps", "Steps along which the energy was concave "
                                   "(docs/guide/interactions.md, \"Several equilibria\").")
     detached = _from_report("detached", "Whether a tensile load found no equilibrium (the message says why).")
-
-    @property
-    def params(self) -> dict:
-        """The solver's settings and diagnostics as the former dict (kept readable for one release: read
-        ``grid`` and the typed ``solver`` report instead)."""
-        report = self.solver
-        params = {"E_star": report.kernel.get("E_star"), "grid": self.grid, "tol": report.tol,
-                  "maxiter": report.maxiter, "method": report.method, "start": report.start,
-                  "control": self.control, "requested": self.requested,
-                  "interaction": type(self.interaction).__name__, "kernel": report.kernel,
-                  "version": report.version, "fft_pairs": report.fft_pairs, **report.details}
-        if report.method != "polonsky-keer":
-            params["detached"] = report.detached
-        return params
 
     @functools.cached_property
     def perimeter_edges(self) -> int:

@@ -102,25 +102,20 @@ def _rewritten(path, arrays, metadata=None):
      "its _Toy record has no iterations$"),
     (lambda path: _rewritten(path, _metadata_json(path)[0], {**_metadata_json(path)[1], "arrays": "pressure"}),
      "its record of arrays is not a table"),
+    (lambda path: _rewritten(path, _metadata_json(path)[0], {k: v for k, v in _metadata_json(path)[1].items()
+                                                             if k != "arrays"}),
+     "its metadata has no record of its arrays"),
     (lambda path: _rewritten(path, _metadata_json(path)[0], {**_metadata_json(path)[1], "fields": {
         **_metadata_json(path)[1]["fields"], "grid": {"__result__": "Nope", "fields": {}}}}),
      "its field grid holds a 'Nope', a result class not defined now"),
 ], ids=["empty", "truncated", "text", "npy", "no metadata", "bad JSON", "shape", "dtype", "missing array",
-        "extra field", "missing field", "bad array record", "unknown nested result"])
+        "extra field", "missing field", "bad array record", "no array record", "unknown nested result"])
 def test_a_damaged_or_altered_file_is_a_value_error_naming_it(tmp_path, damage, reason):
     path = _toy().save(tmp_path / "toy.npz")
     damage(path)
     with pytest.raises(ValueError, match=f"^{re.escape(str(path))}(:| is not a saved result:) .*{reason}") as error:
         _Toy.load(path)
     assert "allow_pickle" not in str(error.value)
-
-
-def test_a_file_written_before_the_array_record_still_loads(tmp_path):
-    path = _toy().save(tmp_path / "toy.npz")
-    arrays, metadata = _metadata_json(path)
-    del metadata["arrays"]
-    loaded = _Toy.load(_rewritten(path, {k: v for k, v in arrays.items() if k != "__metadata_json__"}, metadata))
-    np.testing.assert_array_equal(loaded.pressure, _toy().pressure)
 
 
 def test_a_user_dataclass_is_rebuilt_while_its_module_is_imported_and_named_when_not(tmp_path, monkeypatch):

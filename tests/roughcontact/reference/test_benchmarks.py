@@ -23,9 +23,3 @@ def test_contact_patches(periodic, expected):
     contact[2:4, 2:5] = True                                      # a 2×3 block
     contact[0, 0] = contact[-1, 0] = contact[0, -1] = True         # three pixels joined across the periodic edges
     assert contact_patches(contact, periodic=periodic) == expected
-
-
-def test_seed_is_the_former_name_of_rng():
-    with pytest.warns(DeprecationWarning, match="rng"):
-        former = rough_surface(16, seed=5)
-    assert np.array_equal(former.heights, rough_surface(16, rng=5).heights)

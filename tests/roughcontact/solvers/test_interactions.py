@@ -438,20 +438,3 @@ def test_paths_save_and_load_with_their_results(tmp_path):
     assert again.last_attached.interaction == found.last_attached.interaction
     np.testing.assert_array_equal(again.last_attached.pressure, found.last_attached.pressure)
     assert not again.last_attached.pressure.flags.writeable
-
-
-def test_a_load_cycle_saved_under_its_former_name_loads(tmp_path):
-    # LoadCycle was LoadPath: a file whose record names the former class loads as a LoadCycle, the old name is an
-    # alias for one release, and a file of another result class is still refused
-    from roughcontact.solvers import LoadCycle, LoadPath, load_cycle
-    from surfaces.io import load_npz, save_npz
-    surface, half = rough_patch(32)
-    cycle = load_cycle(ContactProblem(surface, half, ElectrostaticInteraction(STACK, 30.0)), [1e3, 0.0])
-    arrays, metadata = load_npz(cycle.save(tmp_path / "cycle.npz"))
-    assert metadata["kind"] == "LoadCycle"
-    renamed = save_npz(tmp_path / "former.npz", arrays, {**metadata, "kind": "LoadPath"})
-    loaded = LoadCycle.load(renamed)
-    assert LoadPath is LoadCycle and isinstance(loaded, LoadCycle)
-    np.testing.assert_array_equal(loaded.contact_fraction, cycle.contact_fraction)
-    with pytest.raises(ValueError, match="not a ContactResult"):
-        ContactResult.load(renamed)

@@ -234,8 +234,12 @@ def test_failed_warm_start_is_retried_cold_and_failures_leave_the_means(tiny, mo
 
     monkeypatch.setattr(resolved, "solve_contact", warm_fails)
     retried = run_study(tiny, workers=1)
-    monkeypatch.setattr(resolved, "solve_contact", lambda *args, **kwargs: dataclasses.replace(
-        solve(*args, **kwargs), converged=kwargs.get("interaction") is None))
+    def voltage_fails(*args, **kwargs):
+        result = solve(*args, **kwargs)
+        converged = kwargs.get("interaction") is None
+        return dataclasses.replace(result, solver=dataclasses.replace(result.solver, converged=converged))
+
+    monkeypatch.setattr(resolved, "solve_contact", voltage_fails)
     failing = run_study(tiny, workers=1)
     monkeypatch.undo()
     cold = [[solve(patch_surface(tiny, r), patch_body(tiny), tol=1e-6, warn=False, interaction=None,
