@@ -7,7 +7,7 @@
 
 * ``field_check_sinusoid.csv``: the second-order coefficient S of the mean attraction of a sinusoidal gap
   g0 + a cos(2πx/λ), σ̄ = σ_el(g0) + a² S, for λ = 10 µm … 5 mm and g0 = 0.5, 1, 2 µm: the exact result
-  (``roughcontact.electrostatics.perturbation``), the FE solve (``roughcontact.electrostatics.fem``,
+  (``roughcontact.reference.perturbation``), the FE solve (``roughcontact.reference.fem``,
   Richardson in a from a = 0.05 g0 and 0.1 g0), the layered model with air columns (``solve_field``, the same
   Richardson), with the air's lateral field (``model="layered_air"``) and the per-pixel law (σ_el''/4), each as a
   ratio to the exact S.
@@ -35,8 +35,8 @@ import numpy as np
 
 from roughcontact import ElasticHalfSpace, ElectrostaticInteraction, solve_contact
 from roughcontact.electrostatics import solve_field
-from roughcontact.electrostatics.fem import field_solve_patch, field_solve_profile
-from roughcontact.electrostatics.perturbation import second_order_attraction
+from roughcontact.reference.fem import field_solve_patch, field_solve_profile
+from roughcontact.reference.perturbation import second_order_attraction
 from roughcontact.io import output_directory, parse_arguments, write_csv
 from roughcontact.study.apparent import apparent_scale
 from roughcontact.study.patch import patch_body, profile_surface

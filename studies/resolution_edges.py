@@ -17,7 +17,7 @@ Six measurements, each a CSV (with the band of the layered F_el that they give):
   edge), on pixels from 0.5 µm down to 0.5 nm: F_el/A0 and its contact-pixel part; on the crack-like strip down
   to 3.9 nm also with the air's lateral field (``model="layered_air"``).
 * ``resolution_edges_fem.csv``: the same crack-like strip with the finite-element field
-  (``roughcontact.electrostatics.fem.field_solve_profile``, optional extra ``fieldcheck``; ``--no-fem`` skips
+  (``roughcontact.reference.fem.field_solve_profile``, optional extra ``fieldcheck``; ``--no-fem`` skips
   it), 500 nm … 7.8 nm columns.
 * ``resolution_edges_cylinder.csv``: the clean model problem, one contact per period (parabolic cylinders of
   ``CYLINDER_RADIUS`` every ``CYLINDER_PERIOD`` at ``CYLINDER_PRESSURE``, the scene's skin and stack), with the
@@ -140,7 +140,7 @@ def fixed_field_tolerance(tol: float):
 def fem_strip_rows(stack, pixels) -> list:
     """F_el/A0 of the finite-element field (``field_solve_profile``, its default rows) on the crack-like strip gap:
     whether the independent reference resolves such an edge (optional extra ``fieldcheck``)."""
-    from roughcontact.electrostatics.fem import field_solve_profile
+    from roughcontact.reference.fem import field_solve_profile
     rows = []
     for n in pixels:
         solution = field_solve_profile(stack, strip_gap("crack", n), STRIP_WINDOW, VOLTAGE)

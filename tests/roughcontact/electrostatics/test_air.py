@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 from roughcontact.electrostatics import DielectricStack, solve_field
-from roughcontact.electrostatics.perturbation import second_order_attraction
+from roughcontact.reference.perturbation import second_order_attraction
 
 STACK = DielectricStack()
 VOLTAGE = 200.0

@@ -32,7 +32,7 @@ from surfaces.validation import (check_choice, check_finite_array, check_integer
                                  check_real)
 
 from ..io.results import ConvergenceWarning
-from .stack import EPSILON_0, DielectricStack
+from ..electrostatics.stack import EPSILON_0, DielectricStack
 
 
 #: Gaps up to this fraction of the air-equivalent offset eps_a c are contact (merged air rows).

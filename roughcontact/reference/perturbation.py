@@ -27,7 +27,7 @@ import numpy as np
 
 from surfaces.validation import check_broadcast, check_finite_array
 
-from .stack import EPSILON_0, DielectricStack
+from ..electrostatics.stack import EPSILON_0, DielectricStack
 
 #: Below this q·d the hyperbolic factors use their Taylor series (error ~ (q d)^6 / 1e3, below rounding).
 _SERIES_LIMIT = 1e-3

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from roughcontact.electrostatics import EPSILON_0, DielectricStack
-from roughcontact.electrostatics.perturbation import (gradient_coefficient, second_order_attraction,
-                                                      second_order_energy)
+from roughcontact.reference.perturbation import (gradient_coefficient, second_order_attraction,
+                                                 second_order_energy)
 
 TABLE1 = DielectricStack()
 HUMID = DielectricStack(d_sc=30e-6, eps_sc=1500.0, d_i=2e-6, eps_i=5.0, eps_a=1.7)
@@ -19,7 +19,7 @@ VOLTAGE = 100.0
 def field_solve():
     pytest.importorskip("skfem", reason="the field check needs the optional extra roughcontact[fieldcheck]")
     pytest.importorskip("pyamg", reason="the field check needs the optional extra roughcontact[fieldcheck]")
-    from roughcontact.electrostatics.fem import field_solve_profile
+    from roughcontact.reference.fem import field_solve_profile
     return field_solve_profile
 
 
@@ -168,7 +168,7 @@ def test_virtual_work_against_air_side_maxwell_stress(field_solve):
 # -- the 3-D solve over 2-D gap fields --------------------------------------------------------------------------
 @pytest.fixture
 def patch_solve(field_solve):
-    from roughcontact.electrostatics.fem import field_solve_patch
+    from roughcontact.reference.fem import field_solve_patch
     return field_solve_patch
 
 
