@@ -28,10 +28,11 @@ import time
 import numpy as np
 from scipy.sparse.linalg import LinearOperator, bicgstab, gmres
 
+from _bench import best_of, count_argument
 from roughcontact import solve_contact
 from roughcontact.electrostatics import ACStackField, StackField
 from roughcontact.fft import default_planner, make_backend
-from roughcontact.io import best_of, count_argument, output_directory, parse_arguments, write_csv
+from roughcontact.io import output_directory, parse_arguments, write_csv
 from roughcontact.study.patch import default_scene_patch
 
 COLUMNS = ("n", "method", "frequency_Hz", "iterations", "fft_pairs", "time_s", "fft_pair_ratio", "time_ratio",

@@ -31,8 +31,9 @@ import dataclasses
 import math
 import time
 
+from _bench import best_of, count_argument, summed_ratios
 from roughcontact import ElectrostaticInteraction, solve_contact
-from roughcontact.io import best_of, count_argument, output_directory, parse_arguments, summed_ratios, write_csv
+from roughcontact.io import output_directory, parse_arguments, write_csv
 from roughcontact.solvers.deferred_correction import NO_ELASTANCE
 from roughcontact.study.patch import default_scene_patch
 

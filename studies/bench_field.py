@@ -35,10 +35,11 @@ import dataclasses
 import math
 import time
 
+from _bench import best_of, count_argument, summed_ratios
 from surfaces import Grid, self_affine
 from roughcontact import ElasticHalfSpace, ElectrostaticInteraction, solve_contact
 from roughcontact.electrostatics import EPSILON_0, DielectricStack, StackField
-from roughcontact.io import best_of, count_argument, output_directory, parse_arguments, summed_ratios, write_csv
+from roughcontact.io import output_directory, parse_arguments, write_csv
 from roughcontact.study.patch import default_scene_patch
 
 COLUMNS = ("patch", "n", "realisation", "voltage_V", "field", "time_s", "time_ratio", "iterations", "unstable_steps", "fft_pairs",

@@ -17,11 +17,12 @@ import time
 
 import numpy as np
 
+from _bench import count_argument
 from roughcontact import solve_contact
 from roughcontact.electrostatics import EPSILON_0
 from roughcontact.electrostatics.field import (FieldLaw, _cg_curvature, _cg_direction, _cg_update, _law_outputs_into,
                                                _law_start_into)
-from roughcontact.io import count_argument, output_directory, parse_arguments, write_csv
+from roughcontact.io import output_directory, parse_arguments, write_csv
 from roughcontact.study.patch import default_scene_patch
 
 COLUMNS = ("n", "pass", "ms", "fft_pairs")

@@ -21,10 +21,11 @@ import time
 
 import numpy as np
 
+from _bench import best_of, count_argument
 from surfaces import Grid, self_affine
 from roughcontact import ElasticHalfSpace, ElectrostaticInteraction, solve_contact
 from roughcontact.electrostatics import DielectricStack
-from roughcontact.io import best_of, count_argument, output_directory, parse_arguments, write_csv
+from roughcontact.io import output_directory, parse_arguments, write_csv
 
 COLUMNS = ("section", "n", "voltage_V", "time_s", "time_ratio", "iterations", "fft_pairs", "fft_pair_ratio",
            "contact_fraction", "equivalent_gap_m", "converged", "relative_difference", "note")

@@ -16,9 +16,10 @@ from __future__ import annotations
 import argparse
 import time
 
+from _bench import best_of
 from field_check import profiles
 from roughcontact import solve_contact
-from roughcontact.io import best_of, output_directory, parse_arguments, write_csv
+from roughcontact.io import output_directory, parse_arguments, write_csv
 from roughcontact.study.apparent import apparent_scale
 from roughcontact.study.scene import load_scene
 

@@ -30,7 +30,11 @@ def wisdom_cache(tmp_path_factory):
 @pytest.fixture(scope="session")
 def load_experiment():
     """``load_experiment(name)`` imports the script ``studies/<name>.py`` as the module ``name``, registered in
-    ``sys.modules`` (dataclasses look their module up there)."""
+    ``sys.modules`` (dataclasses look their module up there); ``studies/`` is put on the path, as ``python
+    studies/<name>.py`` does, so that a script imports its siblings (``_bench``, ``field_check``)."""
+    if str(STUDIES) not in sys.path:
+        sys.path.insert(0, str(STUDIES))
+
     def load(name):
         if name not in sys.modules:
             spec = importlib.util.spec_from_file_location(name, STUDIES / f"{name}.py")

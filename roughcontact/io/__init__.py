@@ -2,11 +2,9 @@
 file the library writes. Layer 1: imports nothing of roughcontact above it."""
 from __future__ import annotations
 
-from .provenance import (OutputPathError, Provenance, best_of, count_argument, output_directory, parse_arguments,
-                         read_csv, save_figure, summed_ratios, write_atomic, write_columns, write_csv)
+from .provenance import (OutputPathError, Provenance, output_directory, parse_arguments, read_csv, save_figure,
+                         write_atomic, write_columns, write_csv)
 from .results import ConvergenceWarning, SavableResult, savable_field
 
-__all__ = ["ConvergenceWarning", "OutputPathError", "Provenance", "SavableResult", "best_of", "count_argument",
-           "output_directory",
-           "parse_arguments", "read_csv", "savable_field", "save_figure", "summed_ratios", "write_atomic", "write_columns",
-           "write_csv"]
+__all__ = ["ConvergenceWarning", "OutputPathError", "Provenance", "SavableResult", "output_directory",
+           "parse_arguments", "read_csv", "savable_field", "save_figure", "write_atomic", "write_columns", "write_csv"]
