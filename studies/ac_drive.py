@@ -9,9 +9,9 @@ footprint) is solved to equilibrium under the time-averaged attraction of ``--vo
 (``ElectrostaticInteraction(stack, U, frequency=f)``, the deferred correction of
 ``roughcontact.solvers.deferred_correction``; each solve cold, from the hard-wall start), at DC and at ω = ∞ (the
 dielectric layered solve). Per frequency, of the solved equilibrium: the mean time-averaged attraction ⟨σ̄⟩ and
-its ratio to the dielectric one, A/A0, the Eq. 25 gap, the field-equivalent gap (Eq. 21 inverted: what the seed's friction
-model must be fed), the AC-equivalent gap (the uniform gap with the same attraction under the same drive), the
-2ω modulation depth |⟨σ̂₂⟩|/⟨σ̄⟩ and the number of corrections. For comparison, the **fixed gap** of the
+its ratio to the dielectric one, A/A0, the Eq. 25 gap, the field-equivalent gap (Eq. 21 inverted: what the seed's
+friction model must be fed), the AC-equivalent gap (the uniform gap with the same attraction under the same
+drive), the 2ω modulation depth |⟨σ̂₂⟩|/⟨σ̄⟩ and the number of corrections. For comparison, the **fixed gap** of the
 dielectric solve with the field alone solved at each frequency (the layered ⟨σ̄⟩, its ratio and the per-pixel
 law's ⟨σ̄⟩). The crossovers: the frequency where ⟨σ̄⟩ is halfway between DC and ω = ∞, measured on the solved
 equilibria and on the fixed gap, and the circuit's f_c = σ_sc/(2π ε0 (ε_sc + d_sc/h_rest)) with

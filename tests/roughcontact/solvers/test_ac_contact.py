@@ -1,7 +1,7 @@
 """The contact equilibrium under an AC drive (ElectrostaticInteraction(frequency=f),
-solvers/deferred_correction.py): the dielectric and DC limits, the true time-averaged equilibrium rebuilt independently from the raw fields with
-solve_ac_field, the frozen-traction construction, position control, a free window, the rough patch's
-frequency sweep, non-convergence and bad input."""
+solvers/deferred_correction.py): the dielectric and DC limits, the true time-averaged equilibrium rebuilt
+independently from the raw fields with solve_ac_field, the frozen-traction construction, position control, a
+free window, the rough patch's frequency sweep, non-convergence and bad input."""
 import dataclasses
 import math
 import warnings
