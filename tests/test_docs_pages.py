@@ -86,8 +86,9 @@ def test_every_page_is_reachable_from_the_index():
 SCRIPT = re.compile(r"(?<![\w/])((?:studies|examples)/[\w.-]+\.(?:py|toml))")
 TEST = re.compile(r"(?<![\w/])(tests/[\w/.-]*?(?:\.py(?:::\w+)?|/))(?![\w.])")
 COMMAND = re.compile(r"(?<![\w/.-])(?<!import )(?<!from )roughcontact ([a-z][\w-]*)")
-#: a header cell that says each row names its own source (literature values, not computed here)
-SOURCED = re.compile(r"\|\s*(?:[\w ]+ and )?(?:source|basis)\s*\|")
+#: the header of a table of literature values or defaults whose rows each cite their source (a value or default
+#: column and a source or basis column): its numbers are quoted, not computed here
+SOURCED = re.compile(r"^(?=.*\|\s*(?:value|default)\s*\|)(?=.*\|\s*(?:[\w ]+ and )?(?:source|basis)\s*\|)")
 TABLE_PAGES = sorted(page for page in (ROOT / "docs").rglob("*.md") if "dev" not in page.relative_to(ROOT).parts)
 
 
@@ -184,3 +185,4 @@ def test_a_table_without_its_command_is_found():
     assert not unreproduced_tables(f"## Presets\n\n```bash\n# a comment\nroughcontact run\n```\n\n{table}")
     assert not unreproduced_tables(f"## Presets\n\n`tests/test_docs_pages.py::sections`\n\n{table}")
     assert not unreproduced_tables("## Sources\n\n| quantity | value | source |\n|---|---|---|\n| ridge period | 0.5 mm | X |\n")
+    assert unreproduced_tables("## Files\n\n| source | how it maps |\n|---|---|\n| columns | column 1 is x |\n")
