@@ -1,5 +1,6 @@
-"""Sphinx configuration of the API reference: one page per public module of ``surfaces`` and ``roughcontact``,
-generated from the numpydoc docstrings (autodoc + napoleon). Build it with warnings as errors:
+"""Sphinx configuration of the API reference: a front page (``index.rst``) with the top-level names and one
+autosummary table per stage, and one page per public module of ``surfaces`` and ``roughcontact``, generated from
+the numpydoc docstrings (autodoc + napoleon + autosummary). Build it with warnings as errors:
 
     python -m sphinx -W --keep-going -b html docs/reference/api docs/reference/api/_build
 
@@ -17,7 +18,8 @@ sys.path.insert(0, str(ROOT))
 
 project = "roughcontact"
 author = "roughcontact developers"
-extensions = ["sphinx.ext.autodoc", "sphinx.ext.napoleon", "sphinx.ext.mathjax"]
+extensions = ["sphinx.ext.autodoc", "sphinx.ext.autosummary", "sphinx.ext.napoleon", "sphinx.ext.mathjax"]
+autosummary_generate = False                   # the tables link to the module pages; no page per object
 napoleon_google_docstring = False
 napoleon_numpy_docstring = True
 autodoc_member_order = "bysource"
