@@ -12,6 +12,7 @@ from ._version import __version__
 # public name -> submodule that defines it
 _LAZY = {
     "DielectricStack": "electrostatics",
+    "LeakyStack": "electrostatics",
     "PowerLawContact": "macro",
     "SlidingFrictionModel": "macro",
     "ElasticHalfSpace": "body",

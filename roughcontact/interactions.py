@@ -32,7 +32,7 @@ import numpy as np
 
 from surfaces.validation import check_choice, check_finite_array, check_positive, check_real
 
-from .electrostatics import DielectricStack
+from .electrostatics import DielectricStack, LeakyStack
 from .electrostatics.stack import check_frequency
 from .io.results import savable_field
 
@@ -128,10 +128,10 @@ class ElectrostaticInteraction(Interaction):
     methods give the parallel-plate values.
 
     ``frequency`` [Hz] drives the layered field with a sinusoid of RMS ``voltage`` through the leaky stratum
-    corneum (``stack.sigma_sc``; :mod:`roughcontact.electrostatics.ac`): the solve balances the time-averaged
-    attraction (:mod:`roughcontact.solvers.deferred_correction`, ``docs/guide/ac_drive.md``). ``None`` (the
-    default) is the dielectric stratum corneum, as is ``math.inf``; 0 is a DC voltage. It needs
-    ``field="layered"``.
+    corneum (``stack.sigma_sc``) and, for a :class:`~roughcontact.electrostatics.LeakyStack`, across its leaking
+    interface (:mod:`roughcontact.electrostatics.ac`): the solve balances the time-averaged attraction
+    (:mod:`roughcontact.solvers.deferred_correction`, ``docs/guide/ac_drive.md``). ``None`` (the default) is the
+    dielectric stratum corneum, as is ``math.inf``; 0 is a DC voltage. It needs ``field="layered"``.
     """
 
     stack: DielectricStack = DielectricStack()
@@ -249,7 +249,8 @@ class MaugisDugdale(Interaction):
 
 #: The laws that results can be saved and loaded with (by class name).
 LAWS = {law.__name__: law for law in (HardWall, ElectrostaticInteraction, ExponentialAdhesion, MaugisDugdale)}
-for _kind in (*LAWS.values(), DielectricStack):        # a result holding a law (and its stack) loads them by name
+# a result holding a law (and its stack) loads them by name
+for _kind in (*LAWS.values(), DielectricStack, LeakyStack):
     savable_field(_kind)
 
 

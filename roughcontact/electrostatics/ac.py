@@ -27,6 +27,35 @@ dielectric model's attraction at U exactly. ``frequency = 0`` is a DC voltage U:
 conductor in the steady state (its elastance vanishes, the Johnsen–Rahbek limit) and the force is constant
 (σ̂₂ = 0); a sinusoid of vanishing frequency has the same σ̄ but |σ̂₂| = σ̄. ``frequency = inf`` is the
 dielectric model.
+
+**A leak across the interface** (:class:`~roughcontact.electrostatics.stack.LeakyStack`). D̂ is the charge phasor
+of a column, its current over iω: what passes the stratum corneum, U − φ_s = M_sc(ω) D̂. An air column of
+elastance R (capacitance 1/R) with a leak of admittance Y = G_g + σ_g/g + Q (iω)^α in parallel passes the current
+iω D̂ = (iω/R + Y) V̂_a, so its voltage is V̂_a = R_ω D̂ and it holds the charge D̂_a = V̂_a/R = t D̂,
+
+    R_ω = t R,   t = 1 / (1 + κ + R C_ℓ),   κ = σ_g/(iω ε0 ε_a),   C_ℓ = (G_g + Q (iω)^α)/(iω) [F/m²];
+
+the rest, (1 − t) D̂, has crossed onto the screen's surface. A surface film of conductance σ_s [S] on the screen
+spreads that surface charge: the surface current −σ_s ∇φ of its potential φ = M_i D̂_i changes the insulator's flux
+to D̂_i = D̂ + σ_s ∇²φ/(iω), so that φ = M'_i D̂ with the Fourier multiplier
+
+    M̂'_i(q, ω) = M̂_i(q) / (1 + σ_s q² M̂_i(q)/(iω))     (M̂'_i(0) = M̂_i(0): the film conserves charge),
+
+a diffusion of coefficient 1/(ρ_s C_i) over the screen. The system keeps its form,
+
+    (M(ω) + R_ω) D̂ = U,   M̂(q, ω) = tanh(q d_sc)/(ε0 ε*_sc q) + M̂'_i(q, ω),
+
+complex symmetric, with M(ω) still one multiplier on the grid and R_ω still diagonal: COCG solves it as before.
+The force is the air's: σ̄_k = ½ Σ_j |D̂_a,j|² ∂R_j/∂g_k (the virtual work of the air capacitors at their charges;
+ε0 ε_a |V̂_a|²/(2 g²), the Maxwell stress, on a flat column); the leak and the film carry current, store no energy
+and feel no force. At a contact pixel (g = 0, R = 0) the air capacitor shorts the areal leak G_g + Q (iω)^α:
+the column holds the whole charge and attracts with |D̂|²/(2 ε0 ε_a), as without the leak, which reaches it only
+through its neighbours (M). A conducting medium in the gap (σ_g) drains every column alike, t = 1/(1 + κ) at
+contact too.
+With ``contact_transfer`` the conducted charge that reaches a contact passes to the screen there and the skin
+keeps the flux of its own polarisation, t = ε_sc/ε*_sc (:func:`column_transfer`). At DC (``frequency = 0``) a gap
+conductance (or a constant-phase element with α < 1) drains every open column (t = 0): the force is what the
+contacts keep, nothing with ``contact_transfer`` and σ_sc > 0, nothing under σ_g.
 """
 from __future__ import annotations
 
@@ -43,7 +72,7 @@ from surfaces.validation import check_real
 from ..io.results import ConvergenceWarning
 from .field import (DEFAULT_TOL, FieldSolution, StackField, _cg_curvature, _cg_direction, _cg_start, _cg_update,
                     _grid_and_gap)
-from .stack import EPSILON_0, DielectricStack, check_frequency, slab_elastance
+from .stack import EPSILON_0, DielectricStack, LeakyStack, check_frequency, slab_elastance
 
 
 def inverse_permittivity(stack: DielectricStack, frequency) -> complex:
@@ -70,11 +99,88 @@ def crossover_frequency(stack: DielectricStack, rest_thickness: float) -> float:
 
 def complex_elastance(stack: DielectricStack, q: np.ndarray, frequency, model: str = "layered") -> np.ndarray:
     """M̂(q, ω) ε0 [m] (complex): the solid layers' air-equivalent thickness seen by the flux mode q at
-    ``frequency`` [Hz]; ``model="parallel_plate"`` its uniform value d_sc/ε*_sc + d_i/eps_i."""
+    ``frequency`` [Hz], the insulator's with the screen's surface film of a :class:`LeakyStack` (module docstring);
+    ``model="parallel_plate"`` its uniform value d_sc/ε*_sc + d_i/eps_i (q = 0, where the film does not act)."""
     factor = inverse_permittivity(stack, frequency)
     if model == "parallel_plate":
         return np.full(q.shape, factor * stack.d_sc + stack.d_i / stack.eps_i)
-    return factor * slab_elastance(q, stack.d_sc, 1.0) + slab_elastance(q, stack.d_i, stack.eps_i)
+    insulator = slab_elastance(q, stack.d_i, stack.eps_i)
+    frequency = check_frequency(frequency)
+    if isinstance(stack, LeakyStack) and stack.surface_conductance and frequency < math.inf:
+        if frequency == 0.0:                             # DC: the film is an equipotential, only its mean is charged
+            insulator = np.where(q == 0, insulator, 0.0)
+        else:                                            # σ_s/(iω ε0) [m]: the film's spreading per unit q² M̂_i ε0
+            spreading = stack.surface_conductance / (2j * math.pi * frequency * EPSILON_0)
+            insulator = insulator / (1.0 + spreading * q * q * insulator)
+    return factor * slab_elastance(q, stack.d_sc, 1.0) + insulator
+
+
+def leak_capacitance(stack: DielectricStack, frequency) -> complex:
+    """C_ℓ = (G_g + Q (iω)^α)/(iω) [F/m²] (complex): the areal gap leak of a :class:`LeakyStack` as a capacitance
+    in parallel with an air column at ``frequency`` [Hz]. 0 without one and at ω = ∞; at DC ``inf`` where G_g > 0
+    or a constant-phase element has α < 1 (it then takes every open column's charge), Q for a capacitance (α = 1)."""
+    frequency = check_frequency(frequency)
+    if not isinstance(stack, LeakyStack) or not (stack.gap_conductance or stack.gap_cpe) or frequency == math.inf:
+        return 0j
+    if frequency == 0.0:
+        draining = stack.gap_conductance > 0.0 or stack.gap_cpe_exponent < 1.0
+        return complex(math.inf) if draining else complex(stack.gap_cpe)
+    cpe = stack.gap_cpe * (2j * math.pi * frequency) ** stack.gap_cpe_exponent if stack.gap_cpe else 0.0
+    return (stack.gap_conductance + cpe) / (2j * math.pi * frequency)
+
+
+def medium_ratio(stack: DielectricStack, frequency) -> complex:
+    """κ = σ_g/(iω ε0 ε_a) (complex): the conducting medium of a :class:`LeakyStack`'s gap against the air's own
+    capacitance, the same for every column (σ_g/g beside ε0 ε_a/g). 0 without one and at ω = ∞, ``inf`` at DC."""
+    frequency = check_frequency(frequency)
+    if not isinstance(stack, LeakyStack) or not stack.gap_conductivity or frequency == math.inf:
+        return 0j
+    if frequency == 0.0:
+        return complex(math.inf)
+    return stack.gap_conductivity / (2j * math.pi * frequency * EPSILON_0 * stack.eps_a)
+
+
+def column_transfer(stack: DielectricStack, column: np.ndarray, frequency):
+    """t = D̂_a/D̂ per pixel (complex): the share of a column's charge phasor that its air capacitor holds, for the
+    air columns' elastance ``column`` R [m²/F] at ``frequency`` [Hz]; None where nothing leaks (t = 1).
+
+    An open column (R > 0) holds t = 1/(1 + κ + R C_ℓ) (:func:`medium_ratio`, :func:`leak_capacitance`; 0 at DC
+    under a conductance); a contact column (R = 0) t = 1/(1 + κ), with ``contact_transfer`` times ε_sc/ε*_sc =
+    iω ε0 ε_sc/(σ_sc + iω ε0 ε_sc), the share of the stratum corneum's polarisation (0 at DC for σ_sc > 0)."""
+    frequency = check_frequency(frequency)
+    if not (isinstance(stack, LeakyStack) and stack.leaks) or frequency == math.inf:
+        return None
+    medium = medium_ratio(stack, frequency)
+    if math.isinf(medium.real):
+        return np.zeros(column.shape, complex)
+    at_contact = (stack.eps_sc * inverse_permittivity(stack, frequency) if stack.contact_transfer else 1.0) / \
+        (1.0 + medium)
+    capacitance = leak_capacitance(stack, frequency)
+    if math.isinf(capacitance.real):
+        return np.where(column > 0, 0j, at_contact)
+    return np.where(column > 0, 1.0 / (1.0 + medium + column * capacitance), at_contact)
+
+
+def circuit_thickness(stack: DielectricStack, rest_thickness: float, frequency) -> complex:
+    """h* [m] (complex) with D̂_a = ε0 U/h*, the charge phasor that the air of a uniform open gap holds, at
+    ``frequency`` [Hz] for the air + insulator thickness ``rest_thickness`` h_rest = g/ε_a + d_i/ε_i [m]: the series
+    circuit stratum corneum | air with its leak | insulator,
+
+        h* = h_rest + d_sc/ε*_sc + a (κ + (g/ε_a) C_ℓ/ε0),   a = d_sc/ε*_sc + d_i/ε_i   (linear in g),
+
+    h_rest + d_sc/ε*_sc without a gap leak (:func:`medium_ratio`, :func:`leak_capacitance`); ``inf`` where a DC leak
+    drains the gap."""
+    rest_thickness = check_real("rest_thickness", rest_thickness, low=0.0, low_open=True)
+    offset = stack.d_sc * inverse_permittivity(stack, frequency)
+    thickness = rest_thickness + offset
+    medium, capacitance = medium_ratio(stack, frequency), leak_capacitance(stack, frequency)
+    air = max(rest_thickness - stack.d_i / stack.eps_i, 0.0)             # g/ε_a [m]
+    if medium == 0 and (capacitance == 0 or air == 0.0):
+        return complex(thickness)
+    if math.isinf(medium.real) or (math.isinf(capacitance.real) and air > 0.0):
+        return complex(math.inf)
+    drain = medium + (air * capacitance / EPSILON_0 if air > 0.0 else 0.0)
+    return complex(thickness + (offset + stack.d_i / stack.eps_i) * drain)
 
 
 class ACStackField(StackField):
@@ -86,6 +192,9 @@ class ACStackField(StackField):
     def __init__(self, stack: DielectricStack, grid, frequency, model: str = "layered", backend: str = "pyfftw",
                  threads=None):
         self.frequency = check_frequency(frequency)
+        if isinstance(stack, LeakyStack) and stack.surface_conductance and model == "parallel_plate":
+            raise ValueError(f"surface_conductance = {stack.surface_conductance!r} S spreads charge between columns; "
+                             "it needs model = 'layered' (the parallel plate has no lateral coupling)")
         super().__init__(stack, grid, model=model, backend=backend, threads=threads)
         padded = self.padded_grid
         self._complex_multiplier = complex_elastance(stack, np.hypot(*padded.wavevectors(real=True)),
@@ -126,9 +235,12 @@ class ACStackField(StackField):
         return out
 
     def solve_columns(self, column, initial=None, tol: float = DEFAULT_TOL, maxiter=None) -> tuple:
-        """The unit-voltage flux phasor D̂₁ [C/m²/V] with (M(ω) + R) D̂₁ = 1 for the column elastance R [m²/F];
-        returns ``(D̂₁, iterations, relative residual)``."""
+        """The unit-voltage charge phasor D̂₁ [C/m²/V] with (M(ω) + R_ω) D̂₁ = 1 for the air columns' elastance R
+        [m²/F] (R_ω = t R with a leak, :func:`column_transfer`); returns ``(D̂₁, iterations, relative residual)``."""
         maxiter = 10 * column.size if maxiter is None else maxiter
+        transfer = column_transfer(self.stack, column, self.frequency)
+        if transfer is not None:
+            column = transfer * column
         inverse_diagonal = 1.0 / (self._complex_diagonal + column)
         if self.model == "parallel_plate":
             self.residual = np.zeros(column.shape, complex)
@@ -165,13 +277,21 @@ class ACStackField(StackField):
         self.residual = self._work[1]
         return iterations, float(np.sqrt(rr / column.size))
 
+    def air_flux(self, gap: np.ndarray, unit_flux: np.ndarray, factor=None) -> np.ndarray:
+        """D̂_a = t D̂ per pixel: the charge phasor that the air capacitors of ``gap`` hold for the charge phasor
+        ``unit_flux`` (:func:`column_transfer`; ``unit_flux`` itself where nothing leaks)."""
+        transfer = column_transfer(self.stack, self.column_elastance(gap, factor), self.frequency)
+        return unit_flux if transfer is None else transfer * unit_flux
+
     def attraction_phasors(self, gap: np.ndarray, unit_flux: np.ndarray) -> tuple:
-        """(σ̄/U², σ̂₂/U²) [Pa/V²] per pixel for the unit-voltage flux phasor D̂₁ of ``gap``: the time average
-        ½ Σ_j |D̂_j|² ∂R_j/∂g_k and the complex 2ω amplitude ½ Σ_j D̂_j² ∂R_j/∂g_k.
+        """(σ̄/U², σ̂₂/U²) [Pa/V²] per pixel for the unit-voltage charge phasor D̂₁ of ``gap``: with the air's share
+        D̂_a = t D̂₁ (:meth:`air_flux`), the time average ½ Σ_j |D̂_a,j|² ∂R_j/∂g_k and the complex 2ω amplitude
+        ½ Σ_j D̂_a,j² ∂R_j/∂g_k.
 
         The virtual-work kernel K(x) = ½ Σ_j x_j² ∂R_j/∂g_k of the dielectric field is linear in x²; with
-        D̂ = a + ib: |D̂|² = a² + b², Re D̂² = a² − b², Im D̂² = ((a + b)² − (a − b)²)/2."""
+        D̂_a = a + ib: |D̂_a|² = a² + b², Re D̂_a² = a² − b², Im D̂_a² = ((a + b)² − (a − b)²)/2."""
         factor = self.slope_factor(gap)
+        unit_flux = self.air_flux(gap, unit_flux, factor)
         real, imaginary = np.ascontiguousarray(unit_flux.real), np.ascontiguousarray(unit_flux.imag)
         of_real, of_imaginary = self.attraction(gap, real, factor), self.attraction(gap, imaginary, factor)
         oscillation = (of_real - of_imaginary) + 0.5j * (self.attraction(gap, real + imaginary, factor)
@@ -196,13 +316,15 @@ class ACFieldSolution(FieldSolution):
     """The field of the stack over one gap field under a sinusoidal drive of RMS ``voltage`` U [V] at
     ``frequency`` [Hz] (``solve_ac_field``; 0 is a DC voltage U, inf the dielectric model). SI units.
 
-    ``flux`` is the RMS phasor D̂ [C/m²] (complex), ``attraction`` the time-averaged attraction σ̄ [Pa] per pixel
-    and ``oscillation`` the complex amplitude σ̂₂ [Pa] of its 2ω component, σ(t) = σ̄ + Re(σ̂₂ e^{2iωt}) (zero at
-    DC). ``mean_attraction``, ``electrostatic_force`` and ``field_equivalent_gap`` are those of σ̄ (the uniform gap
-    whose Eq. 21 attraction at U is ⟨σ̄⟩)."""
+    ``flux`` is the RMS phasor D̂ [C/m²] (complex) of the charge through a column (its current over iω), ``air_flux``
+    the part D̂_a that its air capacitor holds (``flux`` itself where the interface does not leak, module docstring),
+    ``attraction`` the time-averaged attraction σ̄ [Pa] per pixel and ``oscillation`` the complex amplitude σ̂₂ [Pa]
+    of its 2ω component, σ(t) = σ̄ + Re(σ̂₂ e^{2iωt}) (zero at DC). ``mean_attraction``, ``electrostatic_force`` and
+    ``field_equivalent_gap`` are those of σ̄ (the uniform gap whose Eq. 21 attraction at U is ⟨σ̄⟩)."""
 
     frequency: float
     oscillation: np.ndarray
+    air_flux: np.ndarray
 
     @property
     def energy(self):
@@ -217,17 +339,25 @@ class ACFieldSolution(FieldSolution):
     @property
     def ac_equivalent_gap(self) -> float:
         """The uniform gap d [m] whose time-averaged attraction under the same drive equals ⟨σ̄⟩: the series circuit
-        |a + d/ε_a| = U √(ε0/(2 ε_a ⟨σ̄⟩)) with a = d_sc/ε*_sc + d_i/ε_i solved for d (``field_equivalent_gap`` at
-        ω = ∞). Negative above full contact's attraction; ``nan`` at U = 0 and where not even a negative d reaches
-        ⟨σ̄⟩."""
-        if self.voltage == 0.0:
+        |a' + b d| = U √(ε0/(2 ε_a ⟨σ̄⟩)) (:func:`circuit_thickness`: a' = a (1 + κ), b = (1 + a C_ℓ/ε0)/ε_a with
+        a = d_sc/ε*_sc + d_i/ε_i; a' = a and b = 1/ε_a without a gap leak) solved for d (``field_equivalent_gap`` at
+        ω = ∞). Negative above full contact's attraction; ``nan`` at U = 0, where ⟨σ̄⟩ = 0, where a DC leak drains
+        every gap and where not even a negative d reaches ⟨σ̄⟩."""
+        medium, capacitance = medium_ratio(self.stack, self.frequency), leak_capacitance(self.stack, self.frequency)
+        if self.voltage == 0.0 or self.mean_attraction <= 0.0 or math.isinf(medium.real) or \
+                math.isinf(capacitance.real):
             return float("nan")
         stack = self.stack
         offset = inverse_permittivity(stack, self.frequency) * stack.d_sc + stack.d_i / stack.eps_i    # a [m]
-        thickness = abs(self.voltage) * math.sqrt(EPSILON_0 / (2 * stack.eps_a * self.mean_attraction))   # |h| [m]
-        if thickness < abs(offset.imag):
+        slope = (1.0 + offset * capacitance / EPSILON_0) / stack.eps_a                                  # b
+        offset = offset * (1.0 + medium)                                                                # a'
+        thickness = abs(self.voltage) * math.sqrt(EPSILON_0 / (2 * stack.eps_a * self.mean_attraction))  # |h| [m]
+        # |a' + b d|² = |h|²: |b|² d² + 2 Re(a' b̄) d + |a'|² − |h|² = 0, the larger root
+        along, norm = (offset * slope.conjugate()).real, abs(slope) ** 2
+        discriminant = along ** 2 - norm * (abs(offset) ** 2 - thickness ** 2)
+        if discriminant < 0.0:
             return float("nan")
-        return float(stack.eps_a * (math.sqrt(thickness ** 2 - offset.imag ** 2) - offset.real))
+        return float((math.sqrt(discriminant) - along) / norm)
 
     @property
     def mean_oscillation(self) -> float:
@@ -261,4 +391,5 @@ def solve_ac_field(stack: DielectricStack, gap, lengths=None, voltage: float = 1
                            flux=(voltage * unit_flux).reshape(shape),
                            attraction=(squared_voltage * mean).reshape(shape), iterations=iterations,
                            residual=residual, frequency=field.frequency,
-                           oscillation=(squared_voltage * oscillation).reshape(shape))
+                           oscillation=(squared_voltage * oscillation).reshape(shape),
+                           air_flux=(voltage * field.air_flux(gap, unit_flux)).reshape(shape))

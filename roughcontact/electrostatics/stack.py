@@ -9,7 +9,8 @@ attractive electrostatic stress σ_el >= 0. As a surface traction in the contact
 ``V(d) = -w(d)`` (:meth:`DielectricStack.energy`) and ``σ_el = dV/dd``.
 
 The layers' shared pieces of the field models live here too: :func:`slab_elastance`, a flat slab's exact
-response per Fourier mode, and :func:`check_frequency`, a drive frequency's validation.
+response per Fourier mode, and :func:`check_frequency`, a drive frequency's validation. :class:`LeakyStack` is a
+stack whose skin–screen interface leaks under a drive (``docs/guide/ac_drive.md``, "A leak across the interface").
 
 Pure numpy: importing this module loads neither numba nor an FFT library.
 """
@@ -195,3 +196,72 @@ class DielectricStack:
                 raise ValueError("weights must have a positive sum (an empty apparent area was given)")
             mean = float(np.sum(weights * inverse_square) / total)
         return float(offset * (mean ** -0.5 - 1.0))
+
+
+@dataclass(frozen=True)
+class LeakyStack(DielectricStack):
+    """A :class:`DielectricStack` whose skin–screen interface passes charge under an AC or DC drive
+    (:mod:`roughcontact.electrostatics.ac`; ``docs/guide/ac_drive.md``, "A leak across the interface"). Like
+    ``sigma_sc``, the leak acts only under a drive: every dielectric number (Eq. 21, ``solve_field``, the layered law
+    without a frequency) is the :class:`DielectricStack`'s, the high-frequency limit.
+
+    * ``gap_conductance`` G_g [S/m², >= 0], ``gap_conductivity`` σ_g [S/m, >= 0] and a constant-phase element
+      ``gap_cpe`` Q [S s^α/m², >= 0] of exponent ``gap_cpe_exponent`` α (0 < α <= 1): the admittance per unit area
+      Y = G_g + σ_g/g + Q (iω)^α in parallel with an air column of gap g (:meth:`gap_admittance`). G_g is uniform
+      over the columns and vanishes beside a closing gap's capacitance; σ_g fills the gap with a conducting medium,
+      which drains every column at its own rate σ_g/(ε0 ε_a), contact columns included;
+    * ``surface_conductance`` σ_s = 1/ρ_s [S, >= 0] (siemens per square): the screen's surface film, which spreads
+      charge laterally over the insulator, a diffusion of coefficient 1/(ρ_s C_i) (layered field only; it needs
+      ``contact_transfer``: the film touches the skin at every contact);
+    * ``contact_transfer``: at a contact pixel the stratum corneum's conducted (free) charge passes to the screen
+      and the skin keeps the flux of its own polarisation, ε_sc/ε*_sc of the total (without it, a contact column
+      keeps the whole charge, as in the dielectric model, less what σ_g drains).
+
+    All zero (and ``contact_transfer`` false) is the :class:`DielectricStack` itself: the same numbers bit for bit.
+    """
+
+    gap_conductance: float = 0.0
+    gap_conductivity: float = 0.0
+    gap_cpe: float = 0.0
+    gap_cpe_exponent: float = 1.0
+    surface_conductance: float = 0.0
+    contact_transfer: bool = False
+
+    def __post_init__(self):
+        super().__post_init__()
+        for name in ("gap_conductance", "gap_conductivity", "gap_cpe", "surface_conductance"):
+            object.__setattr__(self, name, check_real(name, getattr(self, name), low=0.0))
+        object.__setattr__(self, "gap_cpe_exponent", check_real("gap_cpe_exponent", self.gap_cpe_exponent, low=0.0,
+                                                                high=1.0, low_open=True))
+        if not isinstance(self.contact_transfer, (bool, np.bool_)):
+            raise TypeError(f"contact_transfer must be true or false, got {self.contact_transfer!r}")
+        object.__setattr__(self, "contact_transfer", bool(self.contact_transfer))
+        if self.surface_conductance and not self.contact_transfer:
+            raise ValueError(f"surface_conductance = {self.surface_conductance!r} S needs contact_transfer = True: the "
+                             "screen's film touches the skin at every contact, where the conducted charge passes "
+                             "(without it the contacts would hold the film's charge, and at DC an undetermined share)")
+
+    @property
+    def leaks(self) -> bool:
+        """Whether any element of the leak is on (else the interface holds its charge, as a DielectricStack's)."""
+        return bool(self.gap_conductance or self.gap_conductivity or self.gap_cpe or self.surface_conductance
+                    or self.contact_transfer)
+
+    def gap_admittance(self, frequency: float, gap: float) -> complex:
+        """Y = G_g + σ_g/g + Q (iω)^α [S/m²] at ``frequency`` [Hz] (finite) in parallel with an air column of ``gap``
+        g [m] (> 0): the leak of a uniform gap."""
+        frequency = check_frequency(frequency)
+        gap = check_real("gap", gap, low=0.0, low_open=True)
+        if frequency == math.inf:
+            raise ValueError("gap_admittance needs a finite frequency; at frequency = inf the leak carries no charge")
+        cpe = self.gap_cpe * (2j * math.pi * frequency) ** self.gap_cpe_exponent if self.gap_cpe else 0.0
+        return complex(self.gap_conductance + self.gap_conductivity / gap + cpe)
+
+    def leak_corner_frequency(self, gap: float) -> float:
+        """f_g = G / (2π (C_g + C_i)) [Hz] for a uniform air ``gap`` g [m] (> 0), G = G_g + σ_g/g, C_g = ε0 ε_a/g,
+        C_i = ε0 ε_i/d_i: the corner of the conductances with the stratum corneum taken as a conductor
+        (σ_sc/ε_sc → ∞). There the time average is F/F_∞ = (f/f_g)² / (1 + (f/f_g)²) of its value without the
+        leak."""
+        gap = check_real("gap", gap, low=0.0, low_open=True)
+        capacitance = EPSILON_0 * (self.eps_a / gap + self.eps_i / self.d_i)
+        return (self.gap_conductance + self.gap_conductivity / gap) / (2 * math.pi * capacitance)
