@@ -21,7 +21,13 @@ law's uniform response there and is the true law itself at DC (ε_eff → ∞). 
 point; the match makes the corrections small. A frozen traction field c acts on the body like a change of its
 heights by −K c and of the external load by −⟨c⟩ (g = s − h + K p_S + K c with ⟨p_S⟩ = P̄ − ⟨c⟩; the flat keeps
 its position, so the penetration δ = max(h) − s becomes δ + max(h − K c) − max(h)): each step is an ordinary
-warm-started energy solve of the surrogate, and nothing of that solver changes.
+warm-started energy solve of the surrogate, and nothing of that solver changes. Across a leaking interface
+(:class:`~roughcontact.electrostatics.LeakyStack`) the surrogate folds the gap's conducting medium into the air
+(ε_a/|t_m|, U √|t_m|, t_m = 1/(1 + σ_g/(iω ε0 ε_a)) the share of its charge every column keeps), takes ε_eff from
+the series circuit with the leak at h_rest (:func:`~roughcontact.electrostatics.circuit_thickness`) and scales its
+voltage so that its mean attraction at the starting gap is the drive's: a leak moves the attraction between the
+contacts and the open gap, which the uniform mode alone does not see. Where the drive leaves no attraction the
+surrogate is the hard wall.
 
 Stopping rule: the change of the correction between the last two gaps, measured as the displacement it
 causes, sqrt(⟨(K Δc̃)²⟩ + (Φ_L ⟨Δc⟩)²) ≤ tol · gap_scale (the energy solve's own criterion,
@@ -40,8 +46,9 @@ import numpy as np
 
 from surfaces.validation import check_real
 
-from ..electrostatics import EPSILON_0
-from ..electrostatics.ac import ACStackField, inverse_permittivity
+from ..electrostatics import EPSILON_0, DielectricStack, LeakyStack
+from ..electrostatics.ac import ACStackField, circuit_thickness, medium_ratio
+from ..electrostatics.field import StackField
 from ..interactions import ElectrostaticInteraction
 from ..io.results import ConvergenceWarning
 from .projected_cg_gap import FIELD_TOL_FLOOR, _start as energy_start, solve_smooth
@@ -55,18 +62,25 @@ FIELD_TOL_FACTOR = 1e-2    # the corrections' field solves to this times tol (no
 NO_ELASTANCE = 1e300
 
 
+def leaking(stack) -> bool:
+    """Whether ``stack`` is a :class:`~roughcontact.electrostatics.LeakyStack` whose interface leaks."""
+    return isinstance(stack, LeakyStack) and stack.leaks
+
+
 def driven(law) -> bool:
-    """Whether ``law`` is an AC drive that dissipates in the stratum corneum (0 ≤ f < ∞, σ_sc > 0): the laws this
-    module solves. ``frequency`` None or ∞, or σ_sc = 0, is the dielectric law (the energy solve)."""
+    """Whether ``law`` is an AC drive that dissipates, in the stratum corneum (σ_sc > 0) or across a leaking
+    interface (0 ≤ f < ∞): the laws this module solves. ``frequency`` None or ∞, or a lossless stack (σ_sc = 0, no
+    leak), is the dielectric law (the energy solve)."""
     return (isinstance(law, ElectrostaticInteraction) and law.frequency is not None and law.frequency != math.inf
-            and law.stack.sigma_sc > 0.0)
+            and (law.stack.sigma_sc > 0.0 or leaking(law.stack)))
 
 
 def surrogate_permittivity(stack, rest_thickness: float, frequency: float) -> float:
-    """ε_eff with |h_rest + d_sc/ε*_sc| = h_rest + d_sc/ε_eff for the air + insulator thickness ``rest_thickness``
-    h_rest [m] at ``frequency`` [Hz]: the real permittivity whose uniform mode has the drive's |D̂|
-    (:data:`NO_ELASTANCE` at DC)."""
-    excess = abs(rest_thickness + stack.d_sc * inverse_permittivity(stack, frequency)) - rest_thickness
+    """ε_eff with |h*| = h_rest + d_sc/ε_eff for the air + insulator thickness ``rest_thickness`` h_rest [m] at
+    ``frequency`` [Hz], h* the series circuit's thickness (:func:`~roughcontact.electrostatics.circuit_thickness`;
+    h_rest + d_sc/ε*_sc without a leak): the real permittivity whose uniform mode has the air's |D̂_a| under the
+    drive (:data:`NO_ELASTANCE` at DC without a leak; 0 where a DC leak drains the gap)."""
+    excess = abs(circuit_thickness(stack, rest_thickness, frequency)) - rest_thickness
     return stack.d_sc / excess if excess > stack.d_sc / NO_ELASTANCE else NO_ELASTANCE
 
 
@@ -75,18 +89,51 @@ class _Correction:
     warm-started from the last, to ``tol``) and the surrogate law, its ε_eff matched at ``gap`` with
     h_rest = 1/⟨1/(ε0 R + d_i/ε_i)⟩, the DC capacitance thickness of the air + insulator columns (at DC the
     conducting stratum corneum is an equipotential and the thin insulator barely couples the columns: within
-    1.1 % of the DC field's ε0 U/⟨D_DC⟩ on the default scene's 128² patch)."""
+    1.1 % of the DC field's ε0 U/⟨D_DC⟩ on the default scene's 128² patch). Across a leaking interface the
+    surrogate is :meth:`_leak_surrogate`."""
 
     def __init__(self, law: ElectrostaticInteraction, grid, gap, tol: float):
         stack = law.stack
         self.drive = ACStackField(stack, grid, law.frequency)
         columns = EPSILON_0 * self.drive.column_elastance(gap) + stack.d_i / stack.eps_i
         self.rest_thickness = 1.0 / float(np.mean(1.0 / columns))
-        self.permittivity = surrogate_permittivity(stack, self.rest_thickness, law.frequency)
-        self.surrogate = ElectrostaticInteraction(dataclasses.replace(stack, eps_sc=self.permittivity), law.voltage)
         self.squared_voltage, self.tol = law.voltage ** 2, tol
         self.flux = None
         self.residual = 0.0                              # the largest relative residual of a field solve
+        self.matching_pairs = 0                          # FFT pairs of the leak surrogate's dielectric solve
+        if leaking(stack):
+            self.permittivity, self.surrogate = self._leak_surrogate(law, grid, gap)
+        else:
+            self.permittivity = surrogate_permittivity(stack, self.rest_thickness, law.frequency)
+            self.surrogate = ElectrostaticInteraction(dataclasses.replace(stack, eps_sc=self.permittivity),
+                                                      law.voltage)
+
+    def _leak_surrogate(self, law: ElectrostaticInteraction, grid, gap) -> tuple:
+        """(ε_eff, S) across a leaking interface: the dielectric layered law with the gap's medium (σ_g) folded into
+        the air, ε_a/|t_m| and U √|t_m| with t_m = 1/(1 + κ) (the share every column keeps; it scales the column's
+        elastance and the attraction alike), ε_eff from the series circuit at h_rest (``inf`` drained: no stratum
+        corneum elastance) and the voltage then scaled so that S's mean attraction at ``gap`` is the drive's (one
+        field solve each; a leak concentrates or removes the attraction at contacts, which the uniform mode does
+        not see). The hard wall (0 V) where the drive leaves no attraction."""
+        stack, frequency = law.stack, law.frequency
+        self.flux, _, residual = self.drive.solve_flux(gap, tol=self.tol)
+        self.residual = max(self.residual, residual)
+        drive = float(np.mean(self.drive.attraction_phasors(gap, self.flux)[0]))          # ⟨σ̄⟩/U² [Pa/V²]
+        if drive <= 0.0:
+            return 0.0, ElectrostaticInteraction(stack, 0.0)
+        kept = abs(1.0 / (1.0 + medium_ratio(stack, frequency)))                           # |t_m|
+        insulator = stack.d_i / stack.eps_i
+        rest = (self.rest_thickness - insulator) * kept + insulator
+        excess = kept * abs(circuit_thickness(stack, self.rest_thickness, frequency)) - rest
+        permittivity = stack.d_sc / excess if stack.d_sc / NO_ELASTANCE < excess < math.inf else NO_ELASTANCE
+        surrogate_stack = DielectricStack(d_sc=stack.d_sc, eps_sc=permittivity, d_i=stack.d_i, eps_i=stack.eps_i,
+                                          eps_a=stack.eps_a / kept)
+        field = StackField(surrogate_stack, grid, threads=1)
+        flux, iterations, residual = field.solve_flux(gap, tol=self.tol)
+        self.matching_pairs, self.residual = iterations + 1, max(self.residual, residual)
+        surrogate = float(np.mean(field.attraction(gap, flux)))                              # per V² at U √|t_m| = 1
+        voltage = abs(law.voltage) * math.sqrt(drive / surrogate)
+        return permittivity, ElectrostaticInteraction(surrogate_stack, voltage)
 
     def __call__(self, result) -> tuple:
         """(t(g), c(g)) [Pa] at the gap of the surrogate solve ``result``: c = t − t_S with t_S the traction that
@@ -134,12 +181,14 @@ def solve_driven(surface, body, law, *, mean_pressure=None, total_force=None, pe
 
     The result's ``interaction_traction`` is the true t(g) = −σ̄(g) at the returned gap and ``pressure`` the
     solved traction p_S + c (their difference on the open gap is the last correction's change);
-    ``interaction_energy`` is ``nan`` where the stack dissipates (f > 0: no energy exists), the DC law's at f = 0.
+    ``interaction_energy`` is ``nan`` where the stack dissipates (f > 0, or a leaking interface: no energy exists),
+    the DC law's at f = 0.
     ``solver.details`` holds ``frequency`` [Hz], ``voltage`` (RMS) [V], ``corrections`` (the energy solves after
     the first, the surrogate's alone), ``correction_size`` (the last change of c, in units of ``tol``'s measure)
     with ``correction_sizes`` (one per solve, the first is c itself), ``surrogate_eps_sc`` ε_eff,
-    ``rest_thickness`` h_rest [m], ``solve_iterations`` per solve and ``correction_fft_pairs``, the real FFT pairs
-    of the AC field solves (``fft_pairs`` counts them with the solves' and the hard-wall start's).
+    ``surrogate_eps_a`` and ``surrogate_voltage`` [V] (the drive's own without a leak), ``rest_thickness`` h_rest
+    [m], ``solve_iterations`` per solve and ``correction_fft_pairs``, the real FFT pairs of the AC field solves
+    and of the leak surrogate's matching (``fft_pairs`` counts them with the solves' and the hard-wall start's).
     """
     began = time.perf_counter()
     grid = body.grid
@@ -186,13 +235,16 @@ def solve_driven(surface, body, law, *, mean_pressure=None, total_force=None, pe
     if result.converged and correction.residual > correction.tol:
         message = (f"not converged: an AC field solve stopped at relative residual {correction.residual:.3g} "
                    f"> {correction.tol:g}")
-    message += f" (AC drive {law.frequency:g} Hz, {law.voltage:g} V RMS)"
+    leak = ", leaking interface" if leaking(law.stack) else ""
+    message += f" (AC drive {law.frequency:g} Hz, {law.voltage:g} V RMS{leak})"
     if not converged and warn:
         warnings.warn(message, ConvergenceWarning, stacklevel=3)
-    correction_pairs = correction.drive.fft_pairs
+    correction_pairs = correction.drive.fft_pairs + correction.matching_pairs
+    surrogate = correction.surrogate
     details = {"frequency": law.frequency, "voltage": law.voltage, "corrections": len(iterations) - 1,
                "correction_size": sizes[-1] if sizes else math.inf, "correction_sizes": sizes,
                "surrogate_eps_sc": correction.permittivity, "rest_thickness": correction.rest_thickness,
+               "surrogate_voltage": surrogate.voltage, "surrogate_eps_a": surrogate.stack.eps_a,
                "solve_iterations": iterations, "correction_fft_pairs": float(correction_pairs)}
     report = dataclasses.replace(result.solver, method=METHOD, converged=converged, message=message,
                                  iterations=sum(iterations), start=start_kind, fft_pairs=float(pairs + correction_pairs),
@@ -216,7 +268,7 @@ def _driven_result(result, body, heights, law, frozen, traction, report, control
                                                               ("contact_pressure", contact_pressure))}
     for values in arrays.values():
         values.flags.writeable = False
-    energy = result.interaction_energy if law.frequency == 0.0 else math.nan
+    energy = result.interaction_energy if law.frequency == 0.0 and not leaking(law.stack) else math.nan
     return dataclasses.replace(
         result, **arrays, mean_pressure=result.mean_pressure + float(np.mean(frozen)),
         penetration=float(heights.max()) - result.flat_position,
