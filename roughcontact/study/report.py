@@ -24,7 +24,7 @@ from .friction import (FRICTION_MIN_LOADS, HOLDS_WITHIN, assumption_errors, bott
 from .presets import applicability, describe
 from .records import CONFIDENCE, confidence_interval
 from .run import StudyResult
-from .scene import measured_topography
+from .scene import LEAK_KEYS, measured_topography
 
 MICRO = 1e6          # m -> µm in tables and figures
 MM2 = 1e6            # m² -> mm²
@@ -622,6 +622,15 @@ def sweep_crossover(result: StudyResult) -> tuple:
     return np.vectorize(lambda thickness: crossover_frequency(stack, thickness))(rest), rest
 
 
+def _leak_phrase(screen) -> str:
+    """", the interface leaks (…)" naming the leak keys a scene sets (``docs/guide/ac_drive.md``), else ""."""
+    if not screen.leaks:
+        return ""
+    keys = ", ".join(f"{key} = {getattr(screen, key)!r}" for key, absent in LEAK_KEYS.items()
+                     if getattr(screen, key) != absent)
+    return f", the skin–screen interface leaks ({keys}; \"A leak across the interface\")"
+
+
 def _sweep_samples(result: StudyResult) -> dict:
     """Per-realisation F_el [N], F_el over that of the same realisation at the highest frequency (the paired
     ratio: the realisations' spread cancels), d_eq [µm] and A_R/A0 [%] of a sweep, shape (loads, voltages,
@@ -689,7 +698,8 @@ def sweep_report_text(result: StudyResult, nc_written: bool, seconds: float | No
             describe(preset, scene.study.preset) + applicability(scene), "",
             "The drive (`[screen] frequency`, `docs/guide/ac_drive.md`): each voltage is the RMS value of a "
             "sinusoid at each frequency (0 Hz: DC), the stratum corneum conducts with σ_sc = "
-            f"{scene.screen.sigma_sc:g} S/m, and every patch is the skin's quasi-static equilibrium under the "
+            f"{scene.screen.sigma_sc:g} S/m{_leak_phrase(scene.screen)}, and every patch is the skin's quasi-static "
+            "equilibrium under the "
             "time-averaged attraction of the layered field (the 2ω oscillation and the skin's viscoelasticity are "
             "not modelled). F_el is that time average; d_eq is seed Eq. 25 of the solved gap, d_field the uniform "
             "gap whose dielectric Eq. 21 attraction is the solved one, A_R the real contact closed with a disc of "

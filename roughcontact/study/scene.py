@@ -28,7 +28,7 @@ from surfaces import Grid, HeightField, read_topography
 from surfaces.ridges import ridge_fraction
 from surfaces.validation import check_integer, check_real
 
-from ..electrostatics import DielectricStack
+from ..electrostatics import DielectricStack, LeakyStack
 from ..electrostatics.stack import SIGMA_SC
 from ..interactions import FIELDS, ElectrostaticInteraction
 
@@ -126,6 +126,10 @@ field = "layered"
 # seed's model, its high-frequency limit). frequency = 1000.0 (Hz, RMS voltages) drives the layered field through
 # the leaky stratum corneum, 0.0 is DC; a strictly increasing list (frequency = [10.0, 100.0, 1000.0]) sweeps it.
 # sigma_sc (S/m, default 2e-4, references.md §11): the stratum corneum's conductivity, used only with a frequency.
+# A leak across the skin-screen interface (docs/guide/ac_drive.md, "A leak across the interface"; references.md
+# §11), only with a frequency, every key 0 (false) by default: gap_conductance (S/m^2) and gap_conductivity (S/m)
+# in parallel with the air gap, gap_cpe (S s^a/m^2) with gap_cpe_exponent a, surface_conductance (S, 1/rho_s) of
+# the screen's surface film, contact_transfer (the conducted charge passes to the screen at contacts).
 
 [loads]
 # The seed's range: 0.5-2 N and 0-200 V (seed Table 1, Fig. 9).
@@ -366,10 +370,17 @@ class Skin(_Section):
     layer_thickness: float = _field(_Real(0.0))
 
 
+#: The keys of a leak across the interface (:class:`LeakyStack`), each with its value when absent (no leak).
+LEAK_KEYS = {"gap_conductance": 0.0, "gap_conductivity": 0.0, "gap_cpe": 0.0, "gap_cpe_exponent": 1.0,
+             "surface_conductance": 0.0, "contact_transfer": False}
+
+
 @dataclass(frozen=True)
 class Screen(_Section):
     """Dielectric stack (``roughcontact.electrostatics.DielectricStack`` fields) and the ``field`` model of its
-    attraction over a gap field ("layered" or "parallel_plate", ``ElectrostaticInteraction.field``)."""
+    attraction over a gap field ("layered" or "parallel_plate", ``ElectrostaticInteraction.field``); under a drive
+    (``frequency``) the stratum corneum's ``sigma_sc`` and a leak across the interface (:data:`LEAK_KEYS`, the
+    fields of :class:`~roughcontact.electrostatics.LeakyStack`)."""
     section = "screen"
     d_sc: float = _field(_Real(0.0, low_open=True))
     eps_sc: float = _field(_Real(0.0, low_open=True))
@@ -379,20 +390,40 @@ class Screen(_Section):
     field: str = _field(_Choice(FIELDS))
     frequency: tuple | None = _field(_Frequencies(), default=None)
     sigma_sc: float = _field(_Real(0.0), default=SIGMA_SC)
+    gap_conductance: float = _field(_Real(0.0), default=0.0)
+    gap_conductivity: float = _field(_Real(0.0), default=0.0)
+    gap_cpe: float = _field(_Real(0.0), default=0.0)
+    gap_cpe_exponent: float = _field(_Real(0.0, 1.0, low_open=True), default=1.0)
+    surface_conductance: float = _field(_Real(0.0), default=0.0)
+    contact_transfer: bool = _field(_BOOLEAN, default=False)
 
     def __post_init__(self):
         super().__post_init__()
         if self.frequency is None and self.sigma_sc != SIGMA_SC:
             raise ValueError(f"screen.sigma_sc = {self.sigma_sc!r} S/m acts only under a drive, but screen.frequency "
                              "is not set (the dielectric model); valid: set screen.frequency, or leave sigma_sc out")
+        leak = [key for key, absent in LEAK_KEYS.items() if getattr(self, key) != absent]
+        if self.frequency is None and leak:
+            raise ValueError(f"screen.{leak[0]} = {getattr(self, leak[0])!r} is a leak across the interface, which "
+                             "acts only under a drive, but screen.frequency is not set (the dielectric model); valid: "
+                             f"set screen.frequency, or leave {', '.join(leak)} out")
         if self.frequency is not None and self.field != "layered":
             raise ValueError(f"screen.frequency = {list(self.frequency)!r} Hz needs screen.field = \"layered\" (the "
                              f"drive acts through the layered field), got field = {self.field!r}")
+        self.stack()                                    # the leak's own relations (LeakyStack)
+
+    @property
+    def leaks(self) -> bool:
+        """Whether a key of the leak (:data:`LEAK_KEYS`) is set."""
+        return any(getattr(self, key) != absent for key, absent in LEAK_KEYS.items())
 
     def stack(self):
-        """The :class:`DielectricStack` of the screen, with the stratum corneum's conductivity ``sigma_sc``."""
-        return DielectricStack(**{key: value for key, value in dataclasses.asdict(self).items()
-                                  if key not in ("field", "frequency")})
+        """The :class:`DielectricStack` of the screen, with the stratum corneum's conductivity ``sigma_sc``; a
+        :class:`LeakyStack` where a leak is set."""
+        keys = {key: value for key, value in dataclasses.asdict(self).items() if key not in ("field", "frequency")}
+        if self.leaks:
+            return LeakyStack(**keys)
+        return DielectricStack(**{key: value for key, value in keys.items() if key not in LEAK_KEYS})
 
     def interaction(self, voltage: float, frequency: float | None = None):
         """The attraction at ``voltage`` [V] (RMS under a drive of ``frequency`` [Hz]; None: the dielectric model)
@@ -402,11 +433,15 @@ class Screen(_Section):
         return ElectrostaticInteraction(self.stack(), voltage=voltage, field=self.field, frequency=frequency)
 
     def items(self) -> dict:
-        """The keys as written in a scene file: ``frequency`` and ``sigma_sc`` only where a frequency is set (a
-        scene without the drive reads and writes as before it existed)."""
+        """The keys as written in a scene file: ``frequency`` and ``sigma_sc`` only where a frequency is set, the
+        leak's only where one is set (a scene without the drive or the leak reads and writes as before they
+        existed)."""
         data = dataclasses.asdict(self)
         if self.frequency is None:
             del data["frequency"], data["sigma_sc"]
+        if not self.leaks:
+            for key in LEAK_KEYS:
+                del data[key]
         return data
 
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from roughcontact.cli import main
-from roughcontact.electrostatics import DielectricStack, crossover_frequency, solve_ac_field
+from roughcontact.electrostatics import DielectricStack, LeakyStack, crossover_frequency, solve_ac_field
 from roughcontact.interactions import ElectrostaticInteraction
 from roughcontact.io import read_csv
 from roughcontact.solvers import solve_contact
@@ -69,6 +69,39 @@ def test_drive_keys_parse_and_round_trip(sweep):
 ])
 def test_bad_drive_keys_are_refused_naming_them(text, kind, message):
     with pytest.raises(kind, match=r"line \d+: scene key screen\.") as error:
+        load_scene(text="[screen]\n" + text + "\n")
+    assert error.match(message)
+
+
+LEAK = ("frequency = [10.0, 1000.0]\ngap_conductivity = 1.2e-7\ngap_conductance = 0.01\ngap_cpe = 1e-5\n"
+        "gap_cpe_exponent = 0.7\nsurface_conductance = 1e-8\ncontact_transfer = true\n")
+
+
+def test_leak_keys_parse_and_round_trip():
+    """The leak's keys make the screen's stack a LeakyStack, written back only where set; without them the stack is
+    the DielectricStack and the scene's text has none of them (its fingerprint above is unchanged)."""
+    scene = load_scene(text="[screen]\n" + LEAK)
+    stack = scene.screen.stack()
+    assert stack == LeakyStack(gap_conductance=0.01, gap_conductivity=1.2e-7, gap_cpe=1e-5, gap_cpe_exponent=0.7,
+                               surface_conductance=1e-8, contact_transfer=True)
+    assert scene.screen.interaction(100.0, 10.0).stack == stack
+    assert load_scene(text=scene.to_toml()) == scene and "contact_transfer = true" in scene.to_toml()
+    plain = load_scene(text="[screen]\nfrequency = 10.0\n")
+    assert type(plain.screen.stack()) is DielectricStack and "gap_" not in plain.to_toml()
+
+
+@pytest.mark.parametrize("text, message", [
+    ("gap_conductance = 0.061", r"screen.gap_conductance = 0.061 is a leak across the interface, which acts only "
+                                r"under a drive, but screen.frequency is not set"),
+    ("frequency = 10.0\ngap_conductivity = -1e-7", r"screen.gap_conductivity = -1e-07 is out of range; valid range "
+                                                   r"\[0, inf\)"),
+    ("frequency = 10.0\ngap_cpe_exponent = 1.5", r"screen.gap_cpe_exponent = 1.5 is out of range; valid range "
+                                                 r"\(0, 1\]"),
+    ("frequency = 10.0\ncontact_transfer = 1", r"screen.contact_transfer must be true or false"),
+    ("frequency = 10.0\nsurface_conductance = 1e-8", r"surface_conductance = 1e-08 S needs contact_transfer = True"),
+])
+def test_bad_leak_keys_are_refused_naming_them(text, message):
+    with pytest.raises(ValueError, match=r"line \d+: scene key screen\.") as error:
         load_scene(text="[screen]\n" + text + "\n")
     assert error.match(message)
 
