@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -97,10 +98,12 @@ def patch_record(stack, field, voltage, results, lengths, spacing, solves, secon
     offset = stack.eps_a * stack.dielectric_offset
     attraction = float(np.mean([unit_attraction(stack, field, res, voltage, frequency)   # rings: equal area
                                 for res in results]))
-    d_field = stack.gap_for_attraction(attraction, 1.0)
+    # no attraction left (a leak across the interface at DC): no finite uniform gap attracts that little
+    d_field = stack.gap_for_attraction(attraction, 1.0) if attraction > 0 else math.inf
     return PatchRecord(
         equivalent_gap=float(d_eq), field_equivalent_gap=d_field,
-        ridge_equivalent_gap=ridge_equivalent_gap(stack, max(d_field, 0.0), fractions[0]),
+        ridge_equivalent_gap=ridge_equivalent_gap(stack, max(d_field, 0.0), fractions[0]) if d_field < math.inf
+        else math.inf,
         mean_gap=float(gaps.mean()),
         contact_fraction=float(np.mean([res.contact_fraction for res in results])), ridge_area_fractions=fractions,
         electrostatic_attraction=attraction * voltage ** 2,

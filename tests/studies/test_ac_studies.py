@@ -59,3 +59,17 @@ def test_deferred_correction_converges(fast_run, read_csv):
                        if row["frequency_Hz"] == frequency and row["surrogate"] == surrogate and row["gap_change"]]
             # a contraction: each correction moves the gap less than the last, three steps gain two digits
             assert all(b <= a for a, b in zip(changes, changes[1:])) and changes[-1] < 1e-2 * changes[0]
+
+
+def test_leak_sweep_falls_towards_dc_where_the_plain_drive_rises(fast_run, read_csv):
+    """studies/ac_leak.py in fast mode (64², one realisation, DC, 100 Hz, 10 kHz): with the gap's conducting
+    medium F_el vanishes at DC and falls below its 10 kHz value at 100 Hz; without it F_el rises towards DC."""
+    rows = read_csv(fast_run("ac_leak") / "ac_leak.csv")
+    leak = [row for row in rows if row["scene"] == "leak"]
+    plain = [row for row in rows if row["scene"] == "no_leak"]
+    assert [float(row["frequency_Hz"]) for row in leak] == [0.0, 100.0, 1e4] == [float(row["frequency_Hz"])
+                                                                                   for row in plain]
+    forces = [float(row["electrostatic_force_N"]) for row in leak]
+    assert forces[0] == 0.0 < forces[1] < 0.5 * forces[2] and float(leak[-1]["ratio_to_highest"]) == 1.0
+    assert float(plain[0]["ratio_to_highest"]) > float(plain[1]["ratio_to_highest"]) > 1.0
+    assert all(row["converged"] == row["realisations"] == "1" for row in rows)
