@@ -38,7 +38,8 @@ from roughcontact.study.scene import load_scene
 
 FREQUENCIES = (0.0, 10.0, 30.0, 100.0, 300.0, 1e3, 3e3, 1e4, 3e4, 1e5)
 #: the elements of the leak of ``--elements`` (orders of the measured 250 Hz corner, references §11)
-ELEMENTS = {"none": {}, "gap_conductance": dict(gap_conductance=0.061), "gap_conductivity": dict(gap_conductivity=1.5e-8),
+ELEMENTS = {"none": {}, "gap_conductance": dict(gap_conductance=0.061),
+            "gap_conductivity": dict(gap_conductivity=1.5e-8),
             "gap_cpe": dict(gap_cpe=1e-3, gap_cpe_exponent=0.7), "contact_transfer": dict(contact_transfer=True),
             "surface_film": dict(surface_conductance=1e-8, contact_transfer=True)}
 ELEMENT_COLUMNS = ("element", "frequency_Hz", "ratio_to_dielectric", "iterations", "fft_pairs", "cpu_s",
