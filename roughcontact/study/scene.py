@@ -22,6 +22,7 @@ import json
 import re
 import sys
 from dataclasses import dataclass, field
+from importlib import resources
 from pathlib import Path
 
 from surfaces import Grid, HeightField, read_topography
@@ -47,142 +48,9 @@ SCALES = ("resolved", "coupled")
 #: Boundaries of a measured topography (``roughness.boundary``): mirrored periodic, declared periodic, free.
 BOUNDARIES = ("mirrored", "periodic", "free")
 
-#: The default scene: every value with its source (docs/references.md sections) or marked as an estimate.
-DEFAULT_SCENE_TOML = """\
-# roughcontact scene: the default fingerpad on a capacitive touchscreen (SI units: m, Pa, N, V).
-# Sources: docs/references.md (section numbers given per value); [estimate] marks a modelling choice.
-
-[fingerpad]
-# Apparent contact area A0(F_N): "power_law" A0 = area_prefactor * F_N^area_exponent (seed Eq. 27, Dzidek et
-# al. 2017, references.md §0.5) with uniform nominal pressure F_N/A0, or "fingertip": a Hertzian cap of
-# radius and E_star (seed R* = 1 cm, E* = 47.4 kPa, references.md §1.1), Hertz pressure over the disc.
-# layer = true (fingertip only): the cap is pressed onto the [skin] layer bonded on tissue of E_star, solved on
-# a free grid of layer_grid x layer_grid pixels (roughcontact.study.fingertip; docs/findings/equivalent_gap.md, "The apparent
-# scale on the layered skin": A0 2.5-4.2 % smaller, the outer ring's pressure 10-18 % higher at 0.5-2 N).
-model = "power_law"
-area_prefactor = 9.19e-05      # m^2 N^-area_exponent (91.9 mm^2)
-area_exponent = 0.37
-radius = 0.01                  # m
-E_star = 47400.0               # Pa
-layer = false
-layer_grid = 128
-
-[ridges]
-# Parallel fingerprint ridges (surfaces.parallel_ridges), references.md §1.1.
-enabled = true
-period = 0.00045               # m, adult mean ridge breadth 0.43-0.48 mm (Kralik & Novotny 2003)
-height = 5e-05                 # m, crest to furrow, 50-100 um (OCT, Adams et al. 2013)
-width_ratio = 1.5              # ridge/furrow width at mid-height: 0.27 mm ridges, 0.18 mm furrows
-# Sweat pores on the crests, placed at random per realisation: 300-1000 cm^-2 (seed), openings 88-220 um
-# (Ashbaugh 1999), references.md §1.1. Off by default: a one-period patch (0.2 mm^2) holds one pore at 500 cm^-2,
-# so pores are a scene choice (pore_density = 5e6), not averaged into the default numbers.
-pore_density = 0.0             # 1/m^2
-pore_diameter = 0.00012        # m, opening
-pore_depth = 2e-05             # m, dimple depth seen by a flat counter-face [estimate]
-
-[roughness]
-# Self-affine micro-roughness on the ridges (surfaces.self_affine, spectrum of references.md §3.1).
-# [estimate]: skin spectra (Persson, Kovalev & Gorb 2013, references.md §2) give micrometre rms heights at
-# wavelengths below the ridge width; the values below are chosen in that range.
-enabled = true
-hurst = 0.8
-rms_height = 3e-06             # m
-long_cutoff = 6e-05            # m, below the ridge width (0.27 mm) [estimate]
-short_cutoff = 1e-05           # m, raised to preset pixels_per_cutoff pixels where the grid is coarser
-# A measured surface instead (docs/surfaces.md, "Measured topographies"): topography = "scan.x3p" (any format
-# surfaces.read_topography reads, or a HeightField saved as .npz; a relative path starts at the scene file's
-# folder) is the whole patch, ridges included (set ridges.enabled = false), solved as one realisation on the
-# scan's own pixels. boundary: "mirrored" (the scan and its mirror images, periodic: the unbiased choice for a
-# window of a larger contact), "periodic" (the scan declared periodic as it is) or "free" (a free surface
-# around it: the scan is the whole footprint); detrend: "plane" (the instrument's tilt) or "mean"; missing:
-# "refuse" undefined points, or fill them by harmonic interpolation ("harmonic").
-topography = ""
-boundary = "mirrored"
-detrend = "plane"
-missing = "refuse"
-
-[skin]
-# Stiff stratum corneum layer on soft tissue (references.md §2): hydrated stratum corneum 5-30 MPa (the
-# roughness-scale E* of 10 MPa), viable epidermis/dermis 0.05-2 MPa, Poisson ratio 0.48-0.5.
-# layer_thickness = 0 gives a half-space of E_star. The 30 um layer is an [estimate]: the outer, stiffer
-# part of the 250-300 um stratum corneum that the micro-roughness sees.
-E_star = 100000.0              # Pa, tissue under the layer (or the half-space)
-poisson = 0.5
-layer_E_star = 10000000.0      # Pa
-layer_thickness = 3e-05        # m
-
-[screen]
-# Dielectric stack, seed Table 1 (references.md §0.1).
-d_sc = 0.00025                 # m, stratum corneum thickness
-eps_sc = 3000.0
-d_i = 1e-06                    # m, insulator thickness
-eps_i = 3.9
-eps_a = 1.0
-# The field of the stack over the gap field (docs/guide/electrostatics.md): "layered" (the stratum corneum and the
-# insulator couple the columns; validated against a finite-element solve) or "parallel_plate" (seed Eq. 21 pixel
-# by pixel, the seed's assumption). The report compares the two on every solved gap either way.
-field = "layered"
-# The drive (docs/guide/ac_drive.md): without a frequency key the stratum corneum is a perfect dielectric (the
-# seed's model, its high-frequency limit). frequency = 1000.0 (Hz, RMS voltages) drives the layered field through
-# the leaky stratum corneum, 0.0 is DC; a strictly increasing list (frequency = [10.0, 100.0, 1000.0]) sweeps it.
-# sigma_sc (S/m, default 2e-4, references.md §11): the stratum corneum's conductivity, used only with a frequency.
-
-[loads]
-# The seed's range: 0.5-2 N and 0-200 V (seed Table 1, Fig. 9).
-normal_forces = [0.5, 1.0, 1.5, 2.0]            # N
-voltages = [0.0, 50.0, 100.0, 150.0, 200.0]     # V
-
-[ridge_area]
-# A_R: contact at the ridge scale = the real contact closed morphologically with a disc of this diameter
-# (micro-contacts closer than it merge); the sensitivity to it is reported at the factors given.
-# [estimate]: twice the roughness long cutoff and below the furrow width (0.18 mm), so that micro-contacts
-# on one ridge merge and neighbouring ridges never do.
-coarse_graining = 0.00012      # m
-sensitivity = [0.5, 0.75, 1.25]
-
-[study]
-preset = "standard"
-seed = 0                       # realisation r uses rng seed + r
-
-# Accuracy presets, chosen from the measured speed-accuracy front (errors and costs: docs/guide/presets.md): patch
-# side = periods ridge periods on grid x grid pixels; realisations of the roughness; solver tolerance; rings of
-# equal area over the apparent contact (fingertip model only); pixels_per_cutoff: the shortest roughness
-# wavelength in pixels; dtype of the solves ("float64" or "float32"); warm_start: each solve starts from its
-# neighbour along load (true) or cold; scales: "resolved" (ridges and roughness in one grid) or "coupled"
-# (the roughness reduced to an interface law).
-[presets.draft]
-grid = 128
-periods = 1
-realisations = 2
-tolerance = 1e-06
-rings = 2
-pixels_per_cutoff = 2.0
-dtype = "float64"
-warm_start = true
-scales = "resolved"
-
-[presets.standard]
-grid = 256
-periods = 1
-realisations = 5
-tolerance = 1e-05
-rings = 3
-pixels_per_cutoff = 4.0
-dtype = "float64"
-warm_start = true
-scales = "resolved"
-
-[presets.reference]
-grid = 512
-periods = 1
-realisations = 8
-tolerance = 1e-08
-rings = 4
-pixels_per_cutoff = 4.0
-dtype = "float64"
-warm_start = true
-scales = "resolved"
-"""
+#: The default scene, the package file ``default_scene.toml`` beside this module: every value with its source
+#: (docs/references.md sections) or marked as an estimate.
+DEFAULT_SCENE_TOML = resources.files(__package__).joinpath("default_scene.toml").read_text(encoding="utf-8")
 
 
 # ---------------------------------------------------------------------------------------------------------
