@@ -24,7 +24,6 @@ from .friction import (FRICTION_MIN_LOADS, HOLDS_WITHIN, assumption_errors, bott
 from .presets import applicability, describe
 from .records import CONFIDENCE, confidence_interval
 from .run import StudyResult
-from .scene import measured_topography
 
 MICRO = 1e6          # m -> µm in tables and figures
 MM2 = 1e6            # m² -> mm²
@@ -384,7 +383,7 @@ def _patch_sentence(result: StudyResult, realisations: int) -> str:
     scene, preset = result.scene, result.scene.preset
     roughness = scene.roughness
     if roughness.topography:
-        grid = measured_topography(roughness).grid
+        grid = result.plan.grid
         return (f"patch the measured topography `{Path(roughness.topography).name}` ({roughness.boundary} "
                 f"boundary, {roughness.detrend} removed), {grid.shape[0]} × {grid.shape[1]} pixels over "
                 f"{grid.lengths[0] * 1e3:g} × {grid.lengths[1] * 1e3:g} mm, one realisation (a measured surface: no "

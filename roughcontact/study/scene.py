@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import hashlib
 import json
 import re
 import sys
@@ -395,14 +396,34 @@ def _items(section) -> dict:
 def measured_topography(roughness: Roughness):
     """The scene's measured patch: ``roughness.topography`` read as a HeightField (a saved ``.npz`` field, or
     any format of ``surfaces.read_topography``, which needs the optional SurfaceTopography), its tilt or mean
-    removed (``detrend``), then mirrored, declared periodic or left free (``boundary``); None without one."""
+    removed (``detrend``), then mirrored, declared periodic or left free (``boundary``); None without one.
+
+    A file is read once per content: the fields read are cached by the SHA-256 of the file's bytes and the read
+    options, so a scan replaced under the same path is read again. The field's metadata names the file
+    (``source``), the SHA-256 of its bytes (``sha256``) and the read options."""
     if not roughness.topography:
         return None
-    return _measured(roughness.topography, roughness.boundary, roughness.detrend, roughness.missing)
+    return _measured(roughness.topography, file_digest(roughness.topography), roughness.boundary, roughness.detrend,
+                     roughness.missing)
+
+
+def file_digest(path) -> str:
+    """The SHA-256 of the bytes of the file ``path`` (hex); a ValueError naming the file if it cannot be read."""
+    digest = hashlib.sha256()
+    try:
+        with open(path, "rb") as stream:
+            for block in iter(lambda: stream.read(1 << 20), b""):
+                digest.update(block)
+    except FileNotFoundError:
+        raise ValueError(f"cannot read the topography {path}: no such file") from None
+    except OSError as error:
+        raise ValueError(f"cannot read the topography {path}: {error.strerror or error}") from None
+    return digest.hexdigest()
 
 
 @functools.lru_cache(maxsize=4)
-def _measured(path: str, boundary: str, detrend: str, missing: str):
+def _measured(path: str, digest: str, boundary: str, detrend: str, missing: str):
+    """The patch of the scan ``path`` whose bytes have the SHA-256 ``digest`` (the cache's key with the options)."""
     if path.endswith(".npz"):
         field = HeightField.load(path).detrended(detrend)
     else:
@@ -410,9 +431,13 @@ def _measured(path: str, boundary: str, detrend: str, missing: str):
     if field.grid.is_profile:
         raise ValueError(f"{path} is a line scan ({field.grid.shape[0]} points); the patch needs a 2-D map")
     if boundary == "mirrored":
-        return field.mirrored()
-    grid = Grid(field.grid.shape, field.grid.lengths, periodic=boundary == "periodic")
-    return HeightField(grid, field.heights, {"generator": f"declared {boundary}", "parts": [field.metadata]})
+        field = field.mirrored()
+    else:
+        field = HeightField(Grid(field.grid.shape, field.grid.lengths, periodic=boundary == "periodic"), field.heights,
+                            {"generator": f"declared {boundary}", "parts": [field.metadata]})
+    return HeightField(field.grid, field.heights, {"generator": "measured patch", "source": path, "sha256": digest,
+                                                   "boundary": boundary, "detrend": detrend, "missing": missing,
+                                                   "parts": [field.metadata]})
 
 
 def _toml_value(value) -> str:
@@ -500,9 +525,11 @@ def _read_scene_file(path) -> str:
                          f"column {column} (TOML files are UTF-8; save it as UTF-8 in the editor)") from None
 
 
-def load_scene(path=None, *, text: str | None = None, preset: str | None = None) -> Scene:
+def load_scene(path=None, *, text: str | None = None, preset: str | None = None, read_scan: bool = True) -> Scene:
     """The scene of the TOML file ``path`` (or of the TOML ``text``; neither: the default scene), every value
-    not given taken from :data:`DEFAULT_SCENE_TOML`; ``preset`` overrides ``study.preset``."""
+    not given taken from :data:`DEFAULT_SCENE_TOML`; ``preset`` overrides ``study.preset``. A measured
+    topography is read once to validate it, unless ``read_scan`` is False (a results directory's scene, whose
+    patch is stored beside it: the scan may have moved since)."""
     if path is not None and text is not None:
         raise ValueError("give a scene path or its text, not both")
     origin = "the default scene" if path is None and text is None else str(path) if path is not None else "scene"
@@ -538,12 +565,13 @@ def load_scene(path=None, *, text: str | None = None, preset: str | None = None)
                      "a named preset, or [presets.auto] (roughcontact run --preset auto --target-error chooses it)")
     scene = Scene(**sections, presets=presets)
     scene = scene if preset is None else scene.with_preset(preset)
-    return _with_measured_topography(scene, path, origin, text)
+    return _with_measured_topography(scene, path, origin, text, read_scan)
 
 
-def _with_measured_topography(scene: Scene, path, origin, text) -> Scene:
-    """``scene`` with ``roughness.topography`` made absolute (from the scene file's folder) and read once, so
-    that a missing or unreadable scan, ridges on top of it or a coupled preset stop at validation."""
+def _with_measured_topography(scene: Scene, path, origin, text, read_scan: bool = True) -> Scene:
+    """``scene`` with ``roughness.topography`` made absolute (from the scene file's folder) and read once (with
+    ``read_scan``), so that a missing or unreadable scan, ridges on top of it or a coupled preset stop at
+    validation."""
     roughness = scene.roughness
     if not roughness.topography:
         return scene
@@ -558,8 +586,9 @@ def _with_measured_topography(scene: Scene, path, origin, text) -> Scene:
         raise _error(origin, text, ("roughness",), "topography", f"presets.{scene.study.preset}.scales = "
                      "'coupled' reduces synthetic roughness to an interface law; a measured topography is solved "
                      "resolved", 'scales = "resolved"')
-    try:
-        measured_topography(roughness)
-    except (ValueError, TypeError, ImportError, OSError) as error:
-        raise _error(origin, text, ("roughness",), "topography", str(error), None) from None
+    if read_scan:
+        try:
+            measured_topography(roughness)
+        except (ValueError, TypeError, ImportError, OSError) as error:
+            raise _error(origin, text, ("roughness",), "topography", str(error), None) from None
     return dataclasses.replace(scene, roughness=roughness)
