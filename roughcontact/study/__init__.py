@@ -8,7 +8,9 @@ patch grid, closing lengths, cut-off, a measured patch, the tasks with their con
 task's records, a point's intervals) ← :mod:`.resolved` (ridges and roughness in one grid) and :mod:`.coupled`
 (the roughness as an interface law on the ridges) ← :mod:`.execution` (task store, results directory, pool,
 dask) ← :mod:`.run` (:func:`run_study`) ← :mod:`.friction` (the seed's friction law fed bottom-up) ←
-:mod:`.report` (results on disk).
+:mod:`.tables` (the CSV tables and the samples they share) ← :mod:`.dataset` (``results.nc``) and
+:mod:`.figures` (the PNG figures) ← :mod:`.report` (``report.md``, and :func:`write_results`, all of it on
+disk).
 
 The names below load their module on first use (PEP 562), so ``roughcontact.study.scene`` stays light.
 """
