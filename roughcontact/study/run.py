@@ -156,7 +156,9 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
     script that uses the pool needs Python's ``if __name__ == "__main__":`` guard around its work (the workers
     import it). Interrupted (Ctrl-C), the waiting tasks are cancelled and the pool's workers stopped (a cluster's
     running tasks finish and are dropped); the finished ones stay in the task store. ``tasks``: a task directory
-    that several studies share (tasks with equal inputs are solved once; default: ``directory/tasks``).
+    that several studies share (tasks with equal inputs are solved once; default: ``directory/tasks``, none
+    without a ``directory``); with ``tasks`` and no ``directory`` the study keeps its tasks there and writes
+    nothing else.
     """
     if not isinstance(progress, bool):
         raise TypeError(f"progress must be True or False, got {progress!r}")
@@ -167,9 +169,10 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
                          f"{scene.study.preset}.scales = 'coupled': the interface law of the micro-roughness is the "
                          "dielectric one; a drive frequency needs scales = \"resolved\"")
     results = None if directory is None else ResultsDirectory(output_directory(directory), plan, tasks)
+    store = results.tasks if results is not None else None if tasks is None else TaskStore(output_directory(tasks))
     records = {}
-    if results is not None:
-        records = {task.index: done for task in plan.tasks if (done := results.tasks.load(plan, task)) is not None}
+    if store is not None:
+        records = {task.index: done for task in plan.tasks if (done := store.load(plan, task)) is not None}
     todo = [task for task in plan.tasks if task.index not in records]
     executor = make_executor(workers, dask, len(todo)) if todo else InProcess()
     bar, points_per_task = None, len(plan.normal_forces) / plan.realisations
@@ -187,8 +190,8 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
             for future in executor.as_completed(list(futures)):
                 task = futures[future]
                 records[task.index] = future.result()
-                if results is not None:
-                    results.tasks.save(plan, task, records[task.index])
+                if store is not None:
+                    store.save(plan, task, records[task.index])
                 if bar is not None:
                     bar.update(points_per_task)
     except BrokenProcessPool as error:

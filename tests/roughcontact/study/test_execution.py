@@ -167,6 +167,21 @@ def test_variant_scenes_share_one_task_directory(tiny, tiny_result, tmp_path):
         [point.equivalent_gap for row in tiny_result.points for point in row[:1]]
     assert len(list(shared.glob("*.json"))) == 6 and not (tmp_path / "a" / "tasks").exists()
     assert numbers(open_results(tmp_path / "b", tasks=shared)) == numbers(second)
+    # a task directory alone (no results directory): the tasks are kept there and nothing else is written
+    alone = run_study(load_scene(text=TINY.replace("150.0]", "150.0, 200.0]"), preset="draft"), workers=1,
+                      tasks=shared)
+    assert alone.computed == 2 and sorted(path.name for path in tmp_path.iterdir()) == ["a", "b", "tasks"]
+    assert len(list(shared.glob("*.json"))) == 8
+
+
+def test_the_command_shares_a_task_directory(tiny, tmp_path, capsys):
+    run_study(tiny, tmp_path / "a", workers=1, tasks=tmp_path / "tasks")
+    variant = tmp_path / "variant.toml"
+    variant.write_text(TINY.replace("voltages = [0.0, 150.0]", "voltages = [0.0, 100.0]"))
+    assert main(["run", str(variant), "--preset", "draft", "--out", str(tmp_path / "b"), "--tasks",
+                 str(tmp_path / "tasks"), "--workers", "1"]) == 0
+    assert "2 points computed (4 contact solves), 2 resumed" in capsys.readouterr().out
+    assert not (tmp_path / "b" / "tasks").exists() and len(list((tmp_path / "tasks").glob("*.json"))) == 6
 
 
 def test_an_empty_scene_file_is_written_again(tiny, tiny_result, finished, tmp_path):
