@@ -99,7 +99,7 @@ def _cmd_run(args, provenance) -> int:
                                       getattr(args, "target_error", None))
         output = output_directory(args.out)
         result = study.run_study(scene, output, progress=True, workers=getattr(args, "workers", None),
-                           dask=getattr(args, "dask", None))
+                                 dask=getattr(args, "dask", None), tasks=getattr(args, "tasks", None))
     except (ValueError, ImportError) as error:   # a scene key or parameter the preset cannot resolve, another
         print(f"roughcontact run: error: {error}", file=sys.stderr)        # scene, dask not installed
         return USAGE_ERROR
@@ -150,6 +150,9 @@ def build_parser() -> argparse.ArgumentParser:
                           "reference setting's own error (the floor, docs/guide/presets.md)")
     run.add_argument("--out", default=DEFAULT_RUN_OUTPUT,
                      help="results directory; created if missing, but its parent must exist")
+    run.add_argument("--tasks", metavar="DIR", default=argparse.SUPPRESS,
+                     help="a task directory that runs of several scenes share: a task whose inputs another run has "
+                          "solved is read back (default: OUT/tasks)")
     executors = run.add_mutually_exclusive_group()
     executors.add_argument("--workers", type=int, default=argparse.SUPPRESS,
                            help="processes of the local pool, each with cores/N FFT threads; 1 runs in this "

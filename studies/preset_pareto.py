@@ -45,6 +45,7 @@ import numpy as np
 from roughcontact.io import output_directory, parse_arguments, save_figure, write_atomic, write_csv
 from roughcontact.study.friction import bottom_up_friction
 from roughcontact.study.patch import patch_body
+from roughcontact.study.plan import plan_study
 from roughcontact.study.presets import SETTING_KEYS, TABLE_PATH, write_table
 from roughcontact.study.records import PointResult
 from roughcontact.study.run import StudyResult, run_study
@@ -150,8 +151,8 @@ def merged(variant: str, setting: dict, records: list) -> StudyResult:
 
     shape = (len(NORMAL_FORCES), len(VOLTAGES))
     points = tuple(tuple(point(i, j) for j in range(shape[1])) for i in range(shape[0]))
-    return StudyResult(scene=scene, points=points, coarse_graining=tuple(records[0]["coarse_graining"]),
-                       short_cutoff=records[0]["short_cutoff"], computed=shape[0] * shape[1],
+    # the plan's closing lengths and cut-off are the records' (they do not depend on the seed)
+    return StudyResult(plan=plan_study(scene), points=points, computed=shape[0] * shape[1],
                        solves=sum(record["solves"] for record in records))
 
 

@@ -913,7 +913,7 @@ DAMAGES = [
      "equivalent_gap = nan"),
     ("edited-record", lambda task: _edited(task, lambda s: s["records"][0].__setitem__("equivalent_gap", 1e-6)),
      "digest"),
-    ("other-scene", lambda task: _edited(task, lambda s: s.__setitem__("scene", "0" * 16)), "another scene"),
+    ("other-inputs", lambda task: _edited(task, lambda s: s["inputs"].__setitem__("voltage", 1.0)), "other inputs"),
     ("one-record-short", lambda task: _edited(task, lambda s: s["records"].pop()), "one record per load"),
 ]
 
@@ -937,13 +937,14 @@ def test_resume_solves_a_damaged_task_again(finished, tmp_path, damage, reason):
 
 
 def test_resume_with_the_scene_file_deleted_and_another_scene(finished, tmp_path):
-    """scene.toml deleted, another scene run into the directory: the old tasks are of another scene (named,
-    solved again), so the numbers are the new scene's, as from a fresh directory."""
+    """scene.toml deleted, another scene run into the directory: the old tasks are keyed by their inputs, so
+    only those with the new scene's inputs (0 V) are reused, and the numbers are the new scene's, as from a
+    fresh directory."""
     directory, _ = _damaged(finished, tmp_path, lambda task: None)
     (directory / "scene.toml").unlink()
     other = load_scene(text=TINY.replace("voltages = [0.0, 150.0]", "voltages = [0.0, 100.0]"), preset="draft")
-    with pytest.warns(Warning, match="another scene"):
-        resumed = run_study(other, directory, workers=1)
+    resumed = run_study(other, directory, workers=1)
+    assert resumed.computed == len(other.loads.normal_forces)              # the 100 V points only
     fresh = run_study(other, tmp_path / "fresh", workers=1)
     assert [p.voltage for row in resumed.points for p in row] == [p.voltage for row in fresh.points for p in row]
     assert all(a.equivalent_gap == b.equivalent_gap for row_a, row_b in zip(resumed.points, fresh.points)
@@ -962,8 +963,8 @@ def test_finished_results_misused(finished, tmp_path):
     with pytest.raises(ValueError, match="c2.*-1"):
         bottom_up_friction(result, c2=-1.0)
     with pytest.raises(Exception) as locked:                    # the directory while another run holds it
-        from roughcontact.study import TaskStore
-        holder = TaskStore(finished[0], result.scene)
+        from roughcontact.study import ResultsDirectory
+        holder = ResultsDirectory(finished[0], result.plan)
         try:
             run_study(result.scene, finished[0], workers=1)
         finally:

@@ -3,10 +3,14 @@ Layer 4: imports the solvers, the body, the interaction laws, the macroscopic mo
 
 Inside, imports run one way: :mod:`.scene` (the scene file) ← :mod:`.presets` (the measured preset table);
 :mod:`.fingertip` (the cap on the layered skin) ← :mod:`.apparent` (apparent area and nominal pressures) and
-:mod:`.patch` (the periodic patch and what is measured on its gap) ← :mod:`.records` (a task's records, a
-point's intervals) ← :mod:`.resolved` (ridges and roughness in one grid) and :mod:`.coupled` (the roughness as
-an interface law on the ridges) ← :mod:`.execution` (task store, pool, dask) ← :mod:`.run` (:func:`run_study`)
-← :mod:`.friction` (the seed's friction law fed bottom-up) ← :mod:`.report` (results on disk).
+:mod:`.patch` (the periodic patch and what is measured on its gap) ← :mod:`.plan` (the study planned once: the
+patch grid, closing lengths, cut-off, a measured patch, the tasks with their content keys) and :mod:`.records` (a
+task's records, a point's intervals) ← :mod:`.resolved` (ridges and roughness in one grid) and :mod:`.coupled`
+(the roughness as an interface law on the ridges) ← :mod:`.execution` (task store, results directory, pool,
+dask) ← :mod:`.run` (:func:`run_study`) ← :mod:`.friction` (the seed's friction law fed bottom-up) ←
+:mod:`.tables` (the CSV tables and the samples they share) ← :mod:`.dataset` (``results.nc``) and
+:mod:`.figures` (the PNG figures) ← :mod:`.report` (``report.md``, and :func:`write_results`, all of it on
+disk).
 
 The names below load their module on first use (PEP 562), so ``roughcontact.study.scene`` stays light.
 """
@@ -30,11 +34,15 @@ _LAZY = {
     "PatchRecord": "records",
     "PointResult": "records",
     "confidence_interval": "records",
+    "StudyPlan": "plan",
+    "Task": "plan",
+    "plan_study": "plan",
     "solve_chain": "resolved",
     "InterfaceLaw": "coupled",
     "coupled_chain": "coupled",
     "interface_law": "coupled",
     "TaskStore": "execution",
+    "ResultsDirectory": "execution",
     "StaleTaskWarning": "execution",
     "StudyResult": "run",
     "run_study": "run",

@@ -38,8 +38,8 @@ from surfaces import Grid
 from ..interactions import ElectrostaticInteraction, Interaction
 from ..solvers import solve_contact
 from .apparent import apparent_scale, ring_count
-from .patch import (closing_lengths, gap_slope, patch_body, patch_grid, ridge_area_fraction, ridge_equivalent_gap,
-                    ridge_heights, roughness_heights)
+from .patch import gap_slope, patch_body, ridge_area_fraction, ridge_equivalent_gap, ridge_heights, roughness_heights
+from .plan import as_plan
 from .records import PatchRecord, field_ratio, unit_attraction
 
 #: Pixels per ridge period of the ridge-scale grid of :func:`coupled_chain`.
@@ -282,23 +282,26 @@ def coupled_point(ridges, body, law: InterfaceLaw, pressure: float, tol: float =
     return point, result
 
 
-def ridge_grid(scene):
-    """The ridge-scale grid of :func:`coupled_chain`: the patch at :data:`RIDGE_PIXELS_PER_PERIOD` pixels per
-    ridge period, or the patch grid where that is coarser."""
-    grid = patch_grid(scene)
-    pixels = min(grid.shape[0], RIDGE_PIXELS_PER_PERIOD * scene.preset.periods)
-    return Grid((pixels, pixels), grid.lengths, periodic=True)
+def ridge_grid(plan):
+    """The ridge-scale grid of :func:`coupled_chain`: the patch of ``plan`` (a StudyPlan or a Scene) at
+    :data:`RIDGE_PIXELS_PER_PERIOD` pixels per ridge period, or the patch grid where that is coarser."""
+    plan = as_plan(plan)
+    pixels = min(plan.grid.shape[0], RIDGE_PIXELS_PER_PERIOD * plan.scene.preset.periods)
+    return Grid((pixels, pixels), plan.grid.lengths, periodic=True)
 
 
-def coupled_chain(scene, realisation: int, voltage_index: int, threads: int | None = None,
+def coupled_chain(plan, realisation: int, voltage_index: int, threads: int | None = None,
                   apparent: tuple | None = None) -> tuple:
     """The coupled path's task of the study (the counterpart of :func:`roughcontact.study.solve_chain`): the
     micro-roughness of ``realisation`` reduced to one :class:`InterfaceLaw` at voltage
     ``loads.voltages[voltage_index]`` (:data:`LAW_NODES` nodes on the patch grid, the preset's tolerance, the
-    scene's coarse-graining lengths), then :func:`ridge_chain` with it. Returns one
+    scene's coarse-graining lengths), then :func:`ridge_chain` with it. ``plan``: the study's
+    :class:`~roughcontact.study.plan.StudyPlan`, or a Scene (planned here). Returns one
     :class:`~roughcontact.study.PatchRecord` per load; the law's solves and seconds are counted in the first
     load's record. ``threads`` FFT threads (default: ``roughcontact.fft.default_threads``); ``apparent``, the
     scene's :func:`~roughcontact.study.apparent_scale` (computed when not given)."""
+    plan = as_plan(plan)
+    scene = plan.scene
     if not scene.roughness.enabled:
         raise ValueError("presets.*.scales = 'coupled' needs micro-roughness (roughness.enabled = true): without "
                          "it there is no interface law; use scales = 'resolved'")
@@ -309,20 +312,23 @@ def coupled_chain(scene, realisation: int, voltage_index: int, threads: int | No
         raise ValueError(f"ridges.pore_density = {scene.ridges.pore_density!r} 1/m² with presets.*.scales = "
                          "'coupled': the coupled path has no pores; set pore_density = 0 or scales = 'resolved'")
     start = time.perf_counter()
-    law = interface_law(roughness_heights(scene, realisation), patch_body(scene, threads=threads),
-                        scene.screen.stack(), scene.loads.voltages[voltage_index], tol=scene.preset.tolerance,
-                        coarse_graining=closing_lengths(scene), field=scene.screen.field)
-    return ridge_chain(scene, law, threads, spent=(len(law.separations), time.perf_counter() - start),
+    law = interface_law(roughness_heights(scene, realisation, plan.grid, plan.short_cutoff), plan.body(threads),
+                        scene.screen.stack(), plan.voltages[voltage_index], tol=scene.preset.tolerance,
+                        coarse_graining=plan.closing_lengths, field=scene.screen.field)
+    return ridge_chain(plan, law, threads, spent=(len(law.separations), time.perf_counter() - start),
                        apparent=apparent)
 
 
-def ridge_chain(scene, law: InterfaceLaw, threads: int | None = None, grid=None, spent=(0, 0.0),
+def ridge_chain(plan, law: InterfaceLaw, threads: int | None = None, grid=None, spent=(0, 0.0),
                 apparent: tuple | None = None) -> tuple:
-    """The ridges of ``scene`` on ``grid`` (default :func:`ridge_grid`) pressed with ``law`` (its voltage)
-    under every load in order, each ring's solve (:func:`coupled_point`) warm-started from its result at the
-    previous load. Returns one :class:`~roughcontact.study.PatchRecord` per load, averaged over the rings as
-    the resolved chain does; ``spent`` (solves, seconds) taken before, counted in the first record."""
-    grid = ridge_grid(scene) if grid is None else grid
+    """The ridges of ``plan``'s scene (a StudyPlan or a Scene) on ``grid`` (default :func:`ridge_grid`) pressed
+    with ``law`` (its voltage) under every load in order, each ring's solve (:func:`coupled_point`) warm-started
+    from its result at the previous load. Returns one :class:`~roughcontact.study.PatchRecord` per load,
+    averaged over the rings as the resolved chain does; ``spent`` (solves, seconds) taken before, counted in the
+    first record."""
+    plan = as_plan(plan)
+    scene = plan.scene
+    grid = ridge_grid(plan) if grid is None else grid
     stack = law.stack
     ridges, body = ridge_heights(scene, grid), patch_body(scene, grid, threads=threads)
     previous = [None] * ring_count(scene)                       # each ring's result at the previous load

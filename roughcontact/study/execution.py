@@ -1,6 +1,7 @@
-"""Where the study's tasks run and where their records are kept: :class:`TaskStore` (finished tasks on disk, so
-an interrupted run resumes) and the executors — in this process, a local process pool, a dask.distributed
-cluster (``docs/guide/scaling.md``)."""
+"""Where the study's tasks run and where their records are kept: :class:`TaskStore` (finished tasks on disk by
+their content key, shareable between scenes), :class:`ResultsDirectory` (one study's results: its scene, its
+measured patch, its tasks; held by one run at a time, so that an interrupted run resumes) and the executors — in
+this process, a local process pool, a dask.distributed cluster (``docs/guide/scaling.md``)."""
 from __future__ import annotations
 
 import dataclasses
@@ -13,13 +14,14 @@ import threading
 import warnings
 from pathlib import Path
 
+from surfaces import HeightField
 from surfaces.validation import check_integer
 
 from ..fft import THREADS_VARIABLE, available_cores
-from ..io.provenance import write_atomic
-from .patch import closing_lengths
+from ..io.provenance import output_directory, write_atomic
+from .plan import StudyPlan, Task, task_key
 from .records import RECORD_FIELDS, PatchRecord
-from .scene import Scene, load_scene
+from .scene import load_scene
 
 
 class SceneMismatch(ValueError):
@@ -31,72 +33,40 @@ class DirectoryInUse(ValueError):
 
 
 class StaleTaskWarning(UserWarning):
-    """A stored task that cannot be reused (damaged, edited, another scene's or another version's): it is solved
-    again."""
-
-
-def scene_fingerprint(scene: Scene) -> str:
-    """The SHA-256 of the scene's TOML text (every value, exact floats): stored with every task's records."""
-    return hashlib.sha256(scene.to_toml().encode("utf-8")).hexdigest()
+    """A stored task that cannot be reused (damaged, edited, of other inputs or another version's), or a
+    results directory's measured patch that the scan no longer gives: the task is solved again."""
 
 
 def _digest(records: list) -> str:
     return hashlib.sha256(json.dumps(records).encode("utf-8")).hexdigest()
 
 
+#: The keys of a task file.
+TASK_FILE_KEYS = ("key", "inputs", "digest", "records")
+
+
 class TaskStore:
-    """The records of finished tasks in ``directory/tasks/`` (``R{r}_U{j}.json``, written atomically and synced
-    to disk) beside ``directory/scene.toml``; refuses another scene, and a directory that a running process
-    holds (an exclusive lock on ``run.lock``, which the system frees when that process ends, however it ends).
-    Every task file carries the scene's fingerprint and a digest of its records: a file that is unreadable,
-    edited, of another scene or of another version is named in a :class:`StaleTaskWarning` and its task solved
-    again. :meth:`release` frees the directory."""
+    """The records of finished tasks in the directory ``directory`` (an existing one to save into), one file ``{key}.json`` per task (its content key,
+    :attr:`~.plan.Task.key`; written atomically and synced to disk) holding the key, the task's inputs
+    (:meth:`~.plan.StudyPlan.inputs`), the records and their digest. Content-addressed: a task is found by what
+    it depends on, not by the scene it came from, so any set of scenes may share one store (tasks with equal
+    inputs are solved once), and a changed input is a new key, never a stored task reused. A file that is
+    unreadable, edited, of other inputs or of another version is named in a :class:`StaleTaskWarning` and its
+    task solved again. Files are written whole (a sibling ``.part`` renamed over), so runs that share the store
+    one after the other, or read it while another writes, see whole files; two runs that solve the same task at
+    the same moment may spoil its file, which the next run then names and solves again."""
 
-    def __init__(self, directory, scene: Scene):
+    def __init__(self, directory):
         self.directory = Path(directory)
-        self.tasks = self.directory / "tasks"
-        self.lock = self.directory / "run.lock"
-        self.scene, self.fingerprint = scene, scene_fingerprint(scene)
-        self.directory.mkdir(exist_ok=True)
-        self._descriptor = _lock(self.lock)
-        try:
-            self._check_scene()
-            self.tasks.mkdir(exist_ok=True)
-        except BaseException:
-            self.release()
-            raise
 
-    def _check_scene(self) -> None:
-        stored = self.directory / "scene.toml"
-        if stored.exists() and stored.stat().st_size > 0:           # (an empty one: a write cut short)
-            old = load_scene(stored)
-            if old != self.scene:
-                new, before = self.scene.flat(), old.flat()
-                changed = [f"{key} = {before[key]!r} -> {new[key]!r}" for key in new if new[key] != before.get(key)]
-                raise SceneMismatch(f"{self.directory} holds the results of another scene ({'; '.join(changed)}); "
-                                    "run into a new --out directory, or delete this one to start over")
-        else:
-            write_atomic(stored, self.scene.to_toml())
+    def path(self, task: Task) -> Path:
+        """The file of ``task``."""
+        return self.directory / f"{task.key}.json"
 
-    def release(self) -> None:
-        """Free the directory for other runs."""
-        if self._descriptor is not None:
-            try:
-                self.lock.unlink(missing_ok=True)      # before the lock is freed: a waiting run locks a new file
-            except PermissionError:                    # (Windows removes no open file: the next run takes it over)
-                pass
-            os.close(self._descriptor)
-            self._descriptor = None
-
-    def _path(self, realisation: int, voltage_index: int, frequency_index: int | None = None) -> Path:
-        drive = "" if frequency_index is None else f"_F{frequency_index:03d}"
-        return self.tasks / f"R{realisation:03d}_U{voltage_index:03d}{drive}.json"
-
-    def load(self, realisation: int, voltage_index: int, frequency_index: int | None = None) -> tuple | None:
-        """The records of task (r, j) (with the drive's frequency index k in a frequency sweep: file
-        ``R{r}_U{j}_F{k}.json``), or None if it has not finished, or if its file cannot be reused (a
-        :class:`StaleTaskWarning` names the file and the reason)."""
-        path = self._path(realisation, voltage_index, frequency_index)
+    def load(self, plan: StudyPlan, task: Task) -> tuple | None:
+        """The records of ``task`` of ``plan``, or None if it has not finished, or if its file cannot be reused
+        (a :class:`StaleTaskWarning` names the file and the reason)."""
+        path = self.path(task)
         try:
             text = path.read_text(encoding="utf-8")
         except FileNotFoundError:
@@ -108,12 +78,12 @@ class TaskStore:
         except json.JSONDecodeError as error:
             return _stale(path, "empty" if not text.strip() else f"not valid JSON ({error})")
         if isinstance(stored, list):
-            return _stale(path, "written by an older roughcontact, without the scene's fingerprint")
-        if not isinstance(stored, dict) or set(stored) != {"scene", "digest", "records"}:
-            return _stale(path, "not a task file (its keys are not scene, digest and records)")
-        if stored["scene"] != self.fingerprint:
-            return _stale(path, "written for another scene (its fingerprint is not this scene's)")
-        problem = _record_problem(stored["records"], self.scene)
+            return _stale(path, "written by an older roughcontact, without the task's inputs")
+        if not isinstance(stored, dict) or set(stored) != set(TASK_FILE_KEYS):
+            return _stale(path, f"not a task file (its keys are not {', '.join(TASK_FILE_KEYS)})")
+        if stored["key"] != task.key or _inputs_key(stored["inputs"]) != task.key:
+            return _stale(path, "written for other inputs (its inputs do not hash to this task's key)")
+        problem = _record_problem(stored["records"], plan)
         if problem is None and stored["digest"] != _digest(stored["records"]):
             problem = "its records do not match their digest (edited or damaged)"
         if problem is not None:
@@ -121,10 +91,19 @@ class TaskStore:
         return tuple(PatchRecord(**{key: tuple(value) if isinstance(value, list) else value
                                     for key, value in record.items()}) for record in stored["records"])
 
-    def save(self, realisation: int, voltage_index: int, records: tuple, frequency_index: int | None = None) -> None:
+    def save(self, plan: StudyPlan, task: Task, records: tuple) -> None:
+        """Store the ``records`` of ``task`` of ``plan``."""
         stored = [dataclasses.asdict(record) for record in records]
-        write_atomic(self._path(realisation, voltage_index, frequency_index),
-                     json.dumps({"scene": self.fingerprint, "digest": _digest(stored), "records": stored}))
+        write_atomic(self.path(task), json.dumps({"key": task.key, "inputs": plan.inputs(*task.index),
+                                                  "digest": _digest(stored), "records": stored}))
+
+
+def _inputs_key(inputs) -> str | None:
+    """:func:`~.plan.task_key` of stored ``inputs``, None where they are not JSON values it can hash."""
+    try:
+        return task_key(inputs)
+    except (TypeError, ValueError):
+        return None
 
 
 def _stale(path: Path, reason: str) -> None:
@@ -132,11 +111,11 @@ def _stale(path: Path, reason: str) -> None:
     return None
 
 
-def _record_problem(records, scene: Scene) -> str | None:
-    """What makes the stored ``records`` of a task unusable for ``scene`` (None if nothing): not one record of
+def _record_problem(records, plan: StudyPlan) -> str | None:
+    """What makes the stored ``records`` of a task unusable for ``plan`` (None if nothing): not one record of
     the fields of :class:`PatchRecord` per load, a value of the wrong type, a non-finite number in a converged
     solve."""
-    forces, lengths = scene.loads.normal_forces, closing_lengths(scene)
+    forces, lengths = plan.normal_forces, plan.closing_lengths
     if not isinstance(records, list) or len(records) != len(forces):
         return f"not one record per load ({len(forces)} loads)"
     for index, (record, force) in enumerate(zip(records, forces)):
@@ -160,6 +139,78 @@ def _record_problem(records, scene: Scene) -> str | None:
 #: The JSON type of each field of a stored :class:`PatchRecord` (of each item for a tuple).
 _RECORD_TYPES = {field.name: {"float": float, "tuple": float, "bool": bool, "int": int}.get(field.type)
                  for field in dataclasses.fields(PatchRecord)}
+
+
+class ResultsDirectory:
+    """The results directory of one study (``roughcontact run --out``): ``scene.toml``, the measured patch
+    ``patch.npz`` (a measured topography's patch as solved: levelled, filled, with its boundary, so that the
+    results stand without the scan's file) and the finished tasks, a :class:`TaskStore` in ``tasks/`` or in the
+    shared directory ``tasks``. One run at a time holds it (an exclusive lock on ``run.lock``, which the system
+    frees when that process ends, however it ends); :meth:`release` frees it.
+
+    Another scene is refused (:class:`SceneMismatch`): the directory's scene file and report describe one scene
+    (variant scenes share tasks through a common ``tasks`` directory instead, each with a results directory of
+    its own). The same scene whose measured scan was replaced under the same path is solved again: its patch
+    differs from ``patch.npz``, so its tasks have new keys; a :class:`StaleTaskWarning` names the scan, and the
+    new patch replaces the stored one."""
+
+    def __init__(self, directory, plan: StudyPlan, tasks=None):
+        self.directory = Path(directory)
+        self.lock = self.directory / "run.lock"
+        self.plan = plan
+        self.directory.mkdir(exist_ok=True)
+        self._descriptor = _lock(self.lock)
+        try:
+            self._check_scene()
+            self._keep_patch()
+            self.tasks = TaskStore(output_directory(self.directory / "tasks" if tasks is None else tasks))
+        except BaseException:
+            self.release()
+            raise
+
+    def _check_scene(self) -> None:
+        stored, scene = self.directory / "scene.toml", self.plan.scene
+        if stored.exists() and stored.stat().st_size > 0:           # (an empty one: a write cut short)
+            old = load_scene(stored, read_scan=False)
+            if old != scene:
+                new, before = scene.flat(), old.flat()
+                changed = [f"{key} = {before[key]!r} -> {new[key]!r}" for key in new if new[key] != before.get(key)]
+                raise SceneMismatch(f"{self.directory} holds the results of another scene ({'; '.join(changed)}); "
+                                    "run into a new --out directory, or delete this one to start over")
+        else:
+            write_atomic(stored, scene.to_toml())
+
+    def _keep_patch(self) -> None:
+        """Store the plan's measured patch as ``patch.npz`` (warning where it replaces another one)."""
+        topography, path = self.plan.topography, self.directory / PATCH_FILE
+        if topography is None:
+            return
+        if path.exists():
+            try:
+                if HeightField.load(path) == topography:
+                    return
+            except (ValueError, OSError):           # damaged: written again
+                pass
+            else:
+                warnings.warn(f"{self.plan.scene.roughness.topography}: the measured topography is not the patch "
+                              f"that the results in {self.directory} were solved on ({path}: the scan was replaced "
+                              "or read differently); its tasks are solved again", StaleTaskWarning, stacklevel=3)
+        part = topography.save(path.with_name("patch.part.npz"))
+        os.replace(part, path)
+
+    def release(self) -> None:
+        """Free the directory for other runs."""
+        if self._descriptor is not None:
+            try:
+                self.lock.unlink(missing_ok=True)      # before the lock is freed: a waiting run locks a new file
+            except PermissionError:                    # (Windows removes no open file: the next run takes it over)
+                pass
+            os.close(self._descriptor)
+            self._descriptor = None
+
+
+#: The measured patch in a results directory (:class:`ResultsDirectory`).
+PATCH_FILE = "patch.npz"
 
 
 def _lock(path: Path) -> int:

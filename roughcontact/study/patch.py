@@ -28,19 +28,18 @@ def closing_lengths(scene: Scene) -> tuple:
 def patch_grid(scene: Scene):
     """The periodic patch grid: ``grid`` × ``grid`` pixels over ``periods`` ridge periods per side; a measured
     topography's own grid (with its boundary) instead."""
-    measured = measured_topography(scene.roughness)
-    if measured is not None:
-        return measured.grid
+    if scene.roughness.topography:
+        return measured_topography(scene.roughness).grid
     side = scene.preset.periods * scene.ridges.period
     return Grid((scene.preset.grid,) * 2, (side, side), periodic=True)
 
 
-def resolved_short_cutoff(scene: Scene) -> float:
-    """The micro-roughness short cut-off in use [m]: the scene's, raised to ``pixels_per_cutoff`` pixels (NaN for
-    a measured topography, which keeps its own pixels)."""
+def resolved_short_cutoff(scene: Scene, grid=None) -> float:
+    """The micro-roughness short cut-off in use [m]: the scene's, raised to ``pixels_per_cutoff`` pixels of
+    ``grid`` (default: the patch grid); NaN for a measured topography, which keeps its own pixels."""
     if scene.roughness.topography:
         return float("nan")
-    spacing = patch_grid(scene).spacing[0]
+    spacing = (patch_grid(scene) if grid is None else grid).spacing[0]
     cutoff = max(scene.roughness.short_cutoff, scene.preset.pixels_per_cutoff * spacing)
     if scene.roughness.enabled and cutoff >= scene.roughness.long_cutoff:
         raise ValueError(f"roughness.long_cutoff = {scene.roughness.long_cutoff!r} m is not above the shortest "
@@ -63,10 +62,11 @@ def ridge_heights(scene: Scene, grid=None, realisation: int = 0) -> np.ndarray:
                            rng=np.random.default_rng((scene.study.seed + realisation, 1))).heights
 
 
-def roughness_heights(scene: Scene, realisation: int) -> np.ndarray:
-    """Heights [m] of the micro-roughness of ``realisation`` on the patch grid (rng seed + realisation); zero
-    when disabled."""
-    grid = patch_grid(scene)
+def roughness_heights(scene: Scene, realisation: int, grid=None, short_cutoff: float | None = None) -> np.ndarray:
+    """Heights [m] of the micro-roughness of ``realisation`` (rng seed + realisation) on ``grid`` (default: the
+    patch grid) with the ``short_cutoff`` in use [m] (default: :func:`resolved_short_cutoff`); zero when
+    disabled."""
+    grid = patch_grid(scene) if grid is None else grid
     if not scene.roughness.enabled:
         return np.zeros(grid.shape)
     if scene.roughness.long_cutoff > grid.lengths[0]:
@@ -74,16 +74,18 @@ def roughness_heights(scene: Scene, realisation: int) -> np.ndarray:
                          f"{grid.lengths[0]:g} m (presets.{scene.study.preset}.periods x ridges.period); "
                          "valid range (short_cutoff, patch side]")
     return self_affine(grid, scene.roughness.hurst, rms_height=scene.roughness.rms_height,
-                       long_cutoff=scene.roughness.long_cutoff, short_cutoff=resolved_short_cutoff(scene),
+                       long_cutoff=scene.roughness.long_cutoff,
+                       short_cutoff=resolved_short_cutoff(scene, grid) if short_cutoff is None else short_cutoff,
                        rng=scene.study.seed + realisation).heights
 
 
-def patch_surface(scene: Scene, realisation: int) -> np.ndarray:
-    """Heights [m] of the patch of ``realisation``: ridges plus micro-roughness, or the measured topography."""
-    measured = measured_topography(scene.roughness)
-    if measured is not None:
-        return measured.heights
-    heights = ridge_heights(scene, realisation=realisation) + roughness_heights(scene, realisation)
+def patch_surface(scene: Scene, realisation: int, grid=None, short_cutoff: float | None = None) -> np.ndarray:
+    """Heights [m] of the patch of ``realisation``: ridges plus micro-roughness on ``grid`` with ``short_cutoff``
+    (defaults as :func:`roughness_heights`), or the measured topography."""
+    if scene.roughness.topography:
+        return measured_topography(scene.roughness).heights
+    grid = patch_grid(scene) if grid is None else grid
+    heights = ridge_heights(scene, grid, realisation) + roughness_heights(scene, realisation, grid, short_cutoff)
     if not heights.any():
         raise ValueError("the patch is flat: enable ridges (ridges.enabled, ridges.height > 0) or roughness "
                          "(roughness.enabled)")

@@ -30,6 +30,27 @@ def confidence_interval(samples) -> tuple:
     return mean, half
 
 
+def positive_interval(samples, upper: float = np.inf) -> tuple:
+    """``(low, high)`` of the :data:`CONFIDENCE` interval of a positive quantity over its realisations (last
+    axis): the Student-t interval of ln x mapped back, exp(mean ln x ± t s/√N), which stays above zero; for a
+    quantity bounded by ``upper`` too (a fraction: 1), that of the log-odds ln(x/(upper − x)), which stays
+    inside (0, upper). Where a sample is on a bound, the Student-t interval of x clipped to [0, upper]. NaN
+    where fewer than two samples are finite."""
+    samples = np.asarray(samples, dtype=float)
+    inside = (samples > 0) & (samples < upper)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        odds = np.where(inside, samples / (upper - samples) if np.isfinite(upper) else samples, np.nan)
+        log_mean, log_half = confidence_interval(np.log(odds))
+    mean, half = confidence_interval(samples)
+    bound = np.any(~inside & np.isfinite(samples), axis=-1)
+
+    def back(log_odds):
+        return np.exp(log_odds) if not np.isfinite(upper) else upper / (1 + np.exp(-log_odds))
+
+    return (np.where(bound, np.maximum(mean - half, 0.0), back(log_mean - log_half)),
+            np.where(bound, np.minimum(mean + half, upper), back(log_mean + log_half)))
+
+
 def unit_attraction(stack, field: str, result, voltage: float, frequency: float | None = None) -> float:
     """⟨σ_el⟩/U² [Pa/V²] over the window of a solved patch ``result`` in the ``field`` model: from the solve's
     own attraction at ``voltage`` > 0 (F_el/(A0 U²), time-averaged under a drive of ``frequency`` [Hz]), at 0 V

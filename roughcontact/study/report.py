@@ -1,347 +1,30 @@
 """Results of a fingerpad study on disk: netCDF, CSV, PNG and report.md, with the seed's friction law fed
 bottom-up (:mod:`roughcontact.study.friction`).
 
-:func:`write_results` writes ``results.nc`` (xarray + h5netcdf, the ``io`` dependencies; skipped
-with a message when missing), the CSV tables, the PNG figures and ``report.md`` into a results directory; for
-a drive-frequency sweep (``[screen] frequency``) the tables gain a frequency column, ``results.nc`` a frequency
-dimension, and the figure and report show the sweep (:func:`sweep_report_text`).
+:func:`write_results` writes ``results.nc`` (:mod:`.dataset`: xarray + h5netcdf, the ``io`` dependencies;
+skipped with a message when missing), the CSV tables (:mod:`.tables`), the PNG figures (:mod:`.figures`) and
+``report.md`` (this module: :func:`report_text`) into a results directory; for a drive-frequency sweep
+(``[screen] frequency``) the tables gain a frequency column, ``results.nc`` a frequency dimension, and the
+figure and report show the sweep (:func:`sweep_report_text`).
 """
 from __future__ import annotations
 
-import importlib.util
 import time
 from pathlib import Path
 
 import numpy as np
 
 from .._version import __version__
-from ..electrostatics import crossover_frequency
-from ..fe.feed import fe_friction_columns
-from ..io.provenance import save_figure, write_csv
-from ..macro import LinearGap, PowerLawGap, SlidingFrictionModel
-from .friction import (FRICTION_MIN_LOADS, HOLDS_WITHIN, assumption_errors, bottom_up_friction, friction_computed,
-                       friction_realisations)
+from ..macro import LinearGap, PowerLawGap
+from .dataset import write_dataset
+from .figures import write_figures
+from .friction import FRICTION_MIN_LOADS, HOLDS_WITHIN, assumption_errors, friction_computed, friction_realisations
 from .presets import applicability, describe
-from .records import CONFIDENCE, confidence_interval
+from .records import confidence_interval, positive_interval
 from .run import StudyResult
-from .scene import LEAK_KEYS, measured_topography
+from .scene import LEAK_KEYS
+from .tables import MICRO, bars_note, friction_rows, realisation_samples, sweep_crossover, sweep_samples, write_tables
 
-MICRO = 1e6          # m -> µm in tables and figures
-MM2 = 1e6            # m² -> mm²
-#: Modules that writing results.nc needs (the ``io`` dependencies).
-NETCDF_MODULES = ("xarray", "h5netcdf", "h5py")
-
-
-def positive_interval(samples, upper: float = np.inf) -> tuple:
-    """``(low, high)`` of the :data:`CONFIDENCE` interval of a positive quantity over its realisations (last
-    axis): the Student-t interval of ln x mapped back, exp(mean ln x ± t s/√N), which stays above zero; for a
-    quantity bounded by ``upper`` too (a fraction: 1), that of the log-odds ln(x/(upper − x)), which stays
-    inside (0, upper). Where a sample is on a bound, the Student-t interval of x clipped to [0, upper]. NaN
-    where fewer than two samples are finite."""
-    samples = np.asarray(samples, dtype=float)
-    inside = (samples > 0) & (samples < upper)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        odds = np.where(inside, samples / (upper - samples) if np.isfinite(upper) else samples, np.nan)
-        log_mean, log_half = confidence_interval(np.log(odds))
-    mean, half = confidence_interval(samples)
-    bound = np.any(~inside & np.isfinite(samples), axis=-1)
-
-    def back(log_odds):
-        return np.exp(log_odds) if not np.isfinite(upper) else upper / (1 + np.exp(-log_odds))
-
-    return (np.where(bound, np.maximum(mean - half, 0.0), back(log_mean - log_half)),
-            np.where(bound, np.minimum(mean + half, upper), back(log_mean + log_half)))
-
-
-#: Fields bounded by 1 (fractions of A0): their intervals are taken on the log-odds scale.
-FRACTIONS = ("ridge_area_fractions", "contact_fraction")
-
-
-def _realisations(result: StudyResult, name: str) -> np.ndarray:
-    """Field ``name`` per realisation, shape (loads, voltages, realisations) (A_R/A0 at the scene's ℓ for
-    ``ridge_area_fractions``), NaN where the solve did not converge."""
-    values = result.ridge_area if name == "ridge_area_fractions" else result.array(name)
-    return np.where(result.array("converged").astype(bool), values, np.nan)
-
-
-def _friction_rows(result: StudyResult) -> list:
-    model, seed = bottom_up_friction(result), SlidingFrictionModel.paper_table1()
-    rigid = bottom_up_friction(result, c2=0.0)
-    spread = {name: confidence_interval(values)[1] for name, values in friction_realisations(result).items()}
-    rows = []
-    for i, force in enumerate(result.normal_forces):
-        for j, voltage in enumerate(result.voltages):
-            ours, theirs = model.state(force, voltage), seed.state(force, voltage)
-            unreduced = rigid.state(force, voltage)
-            rows.append({"normal_force_N": force, "voltage_V": voltage,
-                         "bottom_up_gap_um": float(ours.gap) * MICRO, "seed_gap_um": float(theirs.gap) * MICRO,
-                         "bottom_up_ridge_area_mm2": float(ours.initial_area) * MM2,
-                         "seed_ridge_area_mm2": float(theirs.initial_area) * MM2,
-                         "bottom_up_tangential_force_N": float(ours.tangential_force),
-                         "bottom_up_tangential_force_ci95_N": float(spread["tangential_force"][i, j]),
-                         "seed_tangential_force_N": float(theirs.tangential_force),
-                         "bottom_up_friction_coefficient": float(ours.friction_coefficient),
-                         "bottom_up_friction_coefficient_ci95": float(spread["friction_coefficient"][i, j]),
-                         "seed_friction_coefficient": float(theirs.friction_coefficient),
-                         "bottom_up_c2_0_friction_coefficient": float(unreduced.friction_coefficient),
-                         "bottom_up_area_saturated": bool(ours.area_saturated)})
-            # hook (roughcontact.fe, numpy only): the ridge-area reduction of the FE fingertip instead of c2
-            rows[-1].update(fe_friction_columns(model, force, voltage))
-    return rows
-
-
-# ---------------------------------------------------------------------------------------------------------
-# Tables
-# ---------------------------------------------------------------------------------------------------------
-#: Per-point fields: (StudyResult field, CSV/netCDF name, scale, unit, description).
-FIELDS = (
-    ("equivalent_gap", "equivalent_gap", MICRO, "um", "Eq. 25 equivalent air gap of the solved gap over the "
-     "apparent area"),
-    ("field_equivalent_gap", "field_equivalent_gap", MICRO, "um",
-     "uniform gap whose Eq. 21 attraction is the solve's mean attraction (0 V: small-voltage limit)"),
-    ("ridge_equivalent_gap", "ridge_equivalent_gap", MICRO, "um",
-     "gap with sigma_el(d) A_R = F_el of the solve (the friction law's gap)"),
-    ("mean_gap", "mean_gap", MICRO, "um", "arithmetic mean air gap over the apparent area"),
-    ("contact_fraction", "real_contact_fraction", 1.0, "1", "real (pixel) contact area / apparent area"),
-    ("electrostatic_attraction", "electrostatic_attraction", 1e-3, "kPa",
-     "mean sigma_el of the solve's field over the apparent area"),
-    ("pixel_law_attraction", "pixel_law_attraction", 1e-3, "kPa",
-     "mean sigma_el of Eq. 21 pixel by pixel on the same solved gap"),
-    ("field_ratio", "field_ratio", 1.0, "1",
-     "F_el of the solve's field / F_el of Eq. 21 per pixel on the same gap (0 V: small-voltage limit)"),
-    ("gap_slope", "gap_slope", 1.0, "1", "rms gap slope weighted by (c + g)^-2"),
-)
-
-
-def _point_rows(result: StudyResult) -> list:
-    rows = []
-    ridge_mean, ridge_half = result.summary("ridge_area_fractions")
-    means = {name: result.summary(name) for name, *_ in FIELDS}
-    for i, force in enumerate(result.normal_forces):
-        for j, voltage in enumerate(result.voltages):
-            point = result.points[i][j]
-            row = {"normal_force_N": force, "voltage_V": voltage,
-                   "apparent_area_mm2": point.apparent_area * MM2,
-                   "nominal_pressure_kPa": force / point.apparent_area * 1e-3}
-            for name, column, scale, unit, _ in FIELDS:
-                row[f"{column}_{unit}"] = means[name][0][i, j] * scale
-                row[f"{column}_ci95_{unit}"] = means[name][1][i, j] * scale
-            row["ridge_area_fraction"] = ridge_mean[i, j, 0]
-            row["ridge_area_fraction_ci95"] = ridge_half[i, j, 0]
-            for name, column in (("electrostatic_attraction", "electrostatic_force"),
-                                 ("pixel_law_attraction", "pixel_law_force")):
-                row[f"{column}_N"] = means[name][0][i, j] * point.apparent_area
-                row[f"{column}_ci95_N"] = means[name][1][i, j] * point.apparent_area
-            row["converged"] = all(point.converged)
-            row["solve_seconds"] = point.seconds
-            rows.append(row)
-    return rows
-
-
-def _rows(result: StudyResult, rows_of) -> list:
-    """The CSV rows ``rows_of(result)`` of a loads × voltages study; of a frequency sweep those of each frequency
-    with a ``frequency_Hz`` column after ``voltage_V``, in the order load, voltage, frequency (as the netCDF's
-    dimensions)."""
-    if not result.frequencies:
-        return rows_of(result)
-    rows = [{"normal_force_N": row["normal_force_N"], "voltage_V": row["voltage_V"], "frequency_Hz": frequency,
-             **row} for k, frequency in enumerate(result.frequencies) for row in rows_of(result.at_frequency(k))]
-    return sorted(rows, key=lambda row: (row["normal_force_N"], row["voltage_V"]))     # stable: frequencies in order
-
-
-def _sensitivity_rows(result: StudyResult) -> list:
-    mean, half = result.summary("ridge_area_fractions")
-    return [{"normal_force_N": force, "voltage_V": voltage, "coarse_graining_um": length * MICRO,
-             "ridge_area_fraction": mean[i, j, k], "ridge_area_fraction_ci95": half[i, j, k]}
-            for i, force in enumerate(result.normal_forces) for j, voltage in enumerate(result.voltages)
-            for k, length in enumerate(result.coarse_graining)]
-
-
-def _realisation_rows(result: StudyResult) -> list:
-    rows = []
-    for i, force in enumerate(result.normal_forces):
-        for j, voltage in enumerate(result.voltages):
-            point = result.points[i][j]
-            for r in range(len(point.equivalent_gap)):
-                rows.append({"normal_force_N": force, "voltage_V": voltage, "realisation": r,
-                             **{f"{column}_{unit}": getattr(point, name)[r] * scale
-                                for name, column, scale, unit, _ in FIELDS},
-                             "ridge_area_fraction": point.ridge_area_fractions[0][r],
-                             "converged": point.converged[r], "iterations": point.iterations[r],
-                             "unstable_steps": point.unstable_steps[r]})
-    return rows
-
-
-# ---------------------------------------------------------------------------------------------------------
-# netCDF
-# ---------------------------------------------------------------------------------------------------------
-def dataset(result: StudyResult, friction: bool = True):
-    """The study as an ``xarray.Dataset`` (SI units in every variable's ``units``; scene, preset, seed and
-    version in the attributes); a frequency sweep with a ``frequency`` dimension [Hz] after ``voltage`` (and no
-    friction variables); ``friction`` False leaves the friction variables out."""
-    import xarray as xr
-    if result.frequencies:
-        frequency = xr.DataArray(np.array(result.frequencies), dims="frequency", name="frequency",
-                                 attrs={"units": "Hz"})
-        parts = [dataset(result.at_frequency(k), friction=False) for k in range(len(result.frequencies))]
-        data = xr.concat(parts, dim=frequency)
-        data["apparent_area"] = parts[0]["apparent_area"]                 # one per load
-        return data.transpose("normal_force", "voltage", "frequency", ...)
-    scene = result.scene
-    coords = {"normal_force": ("normal_force", result.normal_forces, {"units": "N"}),
-              "voltage": ("voltage", result.voltages, {"units": "V"}),
-              "realisation": ("realisation", np.arange(result.array("equivalent_gap").shape[-1])),
-              "coarse_graining": ("coarse_graining", np.array(result.coarse_graining), {"units": "m"})}
-    dims = ("normal_force", "voltage", "realisation")
-    units = {"equivalent_gap": "m", "field_equivalent_gap": "m", "ridge_equivalent_gap": "m", "mean_gap": "m",
-             "contact_fraction": "1", "electrostatic_attraction": "Pa", "pixel_law_attraction": "Pa",
-             "field_ratio": "1", "gap_slope": "1", "iterations": "1", "unstable_steps": "1"}
-    descriptions = {name: text for name, _, _, _, text in FIELDS}
-    variables = {name: (dims, result.array(name), {"units": unit, "long_name": descriptions.get(name, name)})
-                 for name, unit in units.items()}
-    variables["converged"] = (dims, result.array("converged").astype(np.int8), {"units": "1"})
-    variables["ridge_area_fraction"] = (("normal_force", "voltage", "coarse_graining", "realisation"),
-                                        result.array("ridge_area_fractions"),
-                                        {"units": "1", "long_name": "A_R / A0 after closing at coarse_graining"})
-    variables["apparent_area"] = (("normal_force",), result.array("apparent_area")[:, 0], {"units": "m2"})
-    variables["solve_seconds"] = (("normal_force", "voltage"), result.array("seconds"), {"units": "s"})
-    friction = _friction_rows(result) if friction and friction_computed(result) else []
-    for key, unit in (("bottom_up_tangential_force_N", "N"), ("bottom_up_tangential_force_ci95_N", "N"),
-                      ("seed_tangential_force_N", "N"), ("bottom_up_friction_coefficient", "1"),
-                      ("bottom_up_friction_coefficient_ci95", "1"), ("seed_friction_coefficient", "1")):
-        if friction:
-            values = np.array([row[key] for row in friction]).reshape(len(result.normal_forces), -1)
-            variables[key.removesuffix("_N")] = (("normal_force", "voltage"), values, {"units": unit})
-    attrs = {"title": "roughcontact multiscale fingerpad study", "roughcontact_version": __version__,
-             "preset": scene.study.preset, "field": scene.screen.field, "seed": scene.study.seed,
-             "scene_toml": scene.to_toml(), "short_cutoff_in_use": result.short_cutoff, "confidence": CONFIDENCE}
-    for key, value in scene.flat().items():
-        attrs[f"scene.{key}"] = int(value) if isinstance(value, bool) else value
-    return xr.Dataset(variables, coords=coords, attrs=attrs)
-
-
-# ---------------------------------------------------------------------------------------------------------
-# Figures
-# ---------------------------------------------------------------------------------------------------------
-def _bars(result: StudyResult, name: str, scale: float = 1.0) -> tuple:
-    """``(mean, [below, above])`` of field ``name`` for ``errorbar``: the realisation mean and the distances to
-    the bounds of :func:`positive_interval` (each ≥ 0), both × ``scale``."""
-    samples = _realisations(result, name)
-    mean = confidence_interval(samples)[0]
-    low, high = positive_interval(samples, 1.0 if name in FRACTIONS else np.inf)
-    below, above = (np.nan_to_num(np.maximum(d, 0.0)) for d in (mean - low, high - mean))
-    return mean * scale, np.stack([below, above]) * scale
-
-
-def bars_note(result: StudyResult) -> str:
-    """What every error bar and band of the figures and interval of the report is."""
-    count = result.array("converged").shape[-1]
-    failed = not result.array("converged").all()
-    if count < 2:
-        return "one realisation: no interval"
-    return (f"bars: {CONFIDENCE:.0%} confidence interval over N = {count} realisations"
-            + (" (fewer where a solve failed)" if failed else "")
-            + ", Student-t on the log scale (log-odds for fractions of A0: they stay inside 0-100 %)")
-
-
-def _figures(result: StudyResult, out, provenance) -> list:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    forces, voltages = result.normal_forces, result.voltages
-    d_mean, d_bars = _bars(result, "equivalent_gap", MICRO)
-    a_mean, a_bars = _bars(result, "ridge_area_fractions", 100.0)
-    c_mean, c_bars = _bars(result, "contact_fraction", 100.0)
-    gap_mean = result.summary("mean_gap")[0]
-    note = bars_note(result)
-    written = []
-    line = np.linspace(forces[0], forces[-1], 50)
-
-    def finish(figure, name):
-        figure.text(0.5, 0.005, note, ha="center", va="bottom", fontsize=7, style="italic")
-        figure.tight_layout(rect=(0, 0.04, 1, 1))
-        written.append(save_figure(figure, out / name, provenance))
-        plt.close(figure)
-
-    figure, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
-    for j, voltage in enumerate(voltages):
-        left.errorbar(forces, d_mean[:, j], yerr=d_bars[:, :, j], marker="o", capsize=3,
-                      label=f"Eq. 25, {voltage:g} V")
-    left.plot(line, LinearGap.paper_table1()(line, 0.0) * MICRO, "k--", label="seed Eq. 46 (fit, any voltage)")
-    guo = PowerLawGap.guo2019()
-    span = np.linspace(max(forces[0], 0.5), min(forces[-1], 4.5), 50)     # its measured 0.5-4.5 N, our loads
-    if span[0] < span[-1]:
-        left.plot(span, guo(span, 0.0) * MICRO, "k:", label="Guo et al. 2019, measured at 150 V")
-    left.set(xlabel="normal force F_N [N]", ylabel="equivalent air gap [µm]", title="d_eq vs load")
-    left.legend(fontsize=7)
-    right.plot(forces, gap_mean[:, 0] * MICRO, "s-", label=f"arithmetic mean gap, {voltages[0]:g} V")
-    right.plot(forces, d_mean[:, 0], "o-", label=f"Eq. 25, {voltages[0]:g} V")
-    right.set(xlabel="normal force F_N [N]", ylabel="gap [µm]", title="mean gap vs Eq. 25 (realisation means)")
-    right.legend(fontsize=7)
-    finish(figure, "equivalent_gap.png")
-
-    figure, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
-    for i, force in enumerate(forces):
-        left.errorbar(voltages, d_mean[i], yerr=d_bars[:, i], marker="o", capsize=3, label=f"{force:g} N")
-        right.errorbar(voltages, a_mean[i], yerr=a_bars[:, i], marker="o", capsize=3, color=f"C{i}",
-                       label=f"A_R/A0, {force:g} N")
-        right.errorbar(voltages, c_mean[i], yerr=c_bars[:, i], marker="s", ls="--", capsize=3, color=f"C{i}",
-                       label=f"real contact, {force:g} N")
-    left.set(xlabel="voltage U [V]", ylabel="d_eq (Eq. 25) [µm]", title="voltage dependence of d_eq")
-    right.set(xlabel="voltage U [V]", ylabel="fraction of A0 [%]",
-              title="ridge (solid) and real (dashed) contact vs voltage")
-    left.legend(fontsize=7)
-    right.legend(fontsize=6)
-    finish(figure, "voltage_dependence.png")
-
-    figure, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
-    field_mean, field_bars = _bars(result, "field_equivalent_gap", MICRO)
-    ratio_mean, ratio_bars = _bars(result, "field_ratio")
-    for j, voltage in enumerate(voltages):
-        colour = f"C{j}"
-        left.errorbar(forces, d_mean[:, j], yerr=d_bars[:, :, j], marker="o", capsize=3, color=colour,
-                      label=f"Eq. 25, {voltage:g} V")
-        left.errorbar(forces, field_mean[:, j], yerr=field_bars[:, :, j], marker="s", capsize=3,
-                      ls="--", color=colour, label=f"field-equivalent, {voltage:g} V")
-    for i, force in enumerate(forces):
-        right.errorbar(voltages, ratio_mean[i], yerr=ratio_bars[:, i], marker="o", capsize=3, label=f"{force:g} N")
-    right.axhline(1.0, color="k", lw=0.8)
-    left.set(xlabel="normal force F_N [N]", ylabel="gap [µm]", title="Eq. 25 (solid) vs field-equivalent (dashed)")
-    right.set(xlabel="voltage U [V]", ylabel="F_el(field) / F_el(Eq. 21 per pixel)",
-              title=f"{result.scene.screen.field} field against the per-pixel law")
-    left.legend(fontsize=6)
-    right.legend(fontsize=7)
-    finish(figure, "field_ratio.png")
-
-    if friction_computed(result):
-        model, seed = bottom_up_friction(result), SlidingFrictionModel.paper_table1()
-        ours = model.state(forces[:, None], voltages[None, :])
-        samples = friction_realisations(result)
-        figure, axes = plt.subplots(1, 3, figsize=(14, 4))
-        for j, voltage in enumerate(voltages):
-            theirs = seed.state(line, voltage)
-            colour = f"C{j}"
-            axes[0].plot(forces, ours.initial_area[:, j] * MM2, "o-", color=colour, label=f"bottom-up {voltage:g} V")
-            axes[0].plot(line, theirs.initial_area * MM2, "--", color=colour)
-            for axis, name in ((axes[1], "tangential_force"), (axes[2], "friction_coefficient")):
-                value = getattr(ours, name)[:, j]
-                low, high = positive_interval(samples[name][:, j])
-                bars = np.nan_to_num(np.maximum(np.stack([value - low, high - value]), 0.0))
-                axis.errorbar(forces, value, yerr=bars, marker="o", capsize=3, color=colour, label=f"{voltage:g} V")
-                axis.plot(line, getattr(theirs, name), "--", color=colour)
-        axes[0].set(xlabel="F_N [N]", ylabel="ridge area A_R0 [mm²]", title="A_R (solid) vs seed Eq. 9 (dashed)")
-        axes[1].set(xlabel="F_N [N]", ylabel="F_T [N]", title="friction force (dashed: seed Table 1)")
-        axes[2].set(xlabel="F_N [N]", ylabel="μ = F_T/F_N", title="friction coefficient (dashed: seed)")
-        for axis in axes:
-            axis.legend(fontsize=7)
-        finish(figure, "friction.png")
-    return written
-
-
-# ---------------------------------------------------------------------------------------------------------
-# report.md
-# ---------------------------------------------------------------------------------------------------------
 def _number(value, digits) -> str:
     return f"{np.round(value, digits) + 0.0:.{digits}f}"                  # + 0.0: no "-0.00" for a rounded zero
 
@@ -384,7 +67,7 @@ def _patch_sentence(result: StudyResult, realisations: int) -> str:
     scene, preset = result.scene, result.scene.preset
     roughness = scene.roughness
     if roughness.topography:
-        grid = measured_topography(roughness).grid
+        grid = result.plan.grid
         return (f"patch the measured topography `{Path(roughness.topography).name}` ({roughness.boundary} "
                 f"boundary, {roughness.detrend} removed), {grid.shape[0]} × {grid.shape[1]} pixels over "
                 f"{grid.lengths[0] * 1e3:g} × {grid.lengths[1] * 1e3:g} mm, one realisation (a measured surface: no "
@@ -440,16 +123,16 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
             "acting on A_R) is fed d_eq,R, so its electrostatic force is the solved one. "
             "Assumptions and their checks: `docs/findings/equivalent_gap.md` of the roughcontact repository.", "",
             "## Equivalent air gap d_eq [µm] (Eq. 25)", "",
-            *_table(result, _realisations(result, "equivalent_gap"), MICRO, 2, "µm"), "",
+            *_table(result, realisation_samples(result, "equivalent_gap"), MICRO, 2, "µm"), "",
             "## Field-equivalent gap d_field [µm]", "",
-            *_table(result, _realisations(result, "field_equivalent_gap"), MICRO, 2, "µm"), "",
+            *_table(result, realisation_samples(result, "field_equivalent_gap"), MICRO, 2, "µm"), "",
             *_per_pixel_section(result), "",
             "## Ridge contact fraction A_R/A0 [%]", "",
-            *_table(result, _realisations(result, "ridge_area_fractions"), 100.0, 1, "%", 1.0), "",
+            *_table(result, realisation_samples(result, "ridge_area_fractions"), 100.0, 1, "%", 1.0), "",
             "## Real contact fraction [%]", "",
-            *_table(result, _realisations(result, "contact_fraction"), 100.0, 2, "%", 1.0),
+            *_table(result, realisation_samples(result, "contact_fraction"), 100.0, 2, "%", 1.0),
             "", "## Ridge-area gap d_eq,R [µm] (fed to the friction law)", "",
-            *_table(result, _realisations(result, "ridge_equivalent_gap"), MICRO, 3, "µm"),
+            *_table(result, realisation_samples(result, "ridge_equivalent_gap"), MICRO, 3, "µm"),
             *_clipped_ridge_gap(result), ""]
 
     text += ["## Where the equivalent-gap assumption holds and where it fails", ""]
@@ -478,7 +161,7 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
         text += [f"* One voltage ({low}) in the scene: its dependence on the voltage is not tested.", ""]
     seed_gap = LinearGap.paper_table1()(forces, 0.0)
     guo = PowerLawGap.guo2019()(forces, 0.0)
-    d_low, d_high = positive_interval(_realisations(result, "equivalent_gap")[:, 0])
+    d_low, d_high = positive_interval(realisation_samples(result, "equivalent_gap")[:, 0])
     inside = [f"{f:g} N" for f, low_bound, high_bound, fit in zip(forces, d_low, d_high, seed_gap)
               if low_bound <= fit <= high_bound]
     text += [f"* **Against the seed's fit (Eq. 46)**: at {low} d_eq = "
@@ -513,7 +196,7 @@ def _friction_section(result: StudyResult) -> list:
         return ["## Friction", "", f"Not computed: the bottom-up friction law interpolates d_eq,R and A_R in F_N "
                 f"and needs at least {FRICTION_MIN_LOADS} loads; the scene has one (`loads.normal_forces`), so "
                 "`friction.csv` and `friction.png` are not written.", ""]
-    rows = _friction_rows(result)
+    rows = friction_rows(result)
     saturated = sum(row["bottom_up_area_saturated"] for row in rows)
     bounds = {name: positive_interval(values) for name, values in friction_realisations(result).items()}
 
@@ -547,7 +230,7 @@ def _friction_section(result: StudyResult) -> list:
 
 
 def _friction_table(result: StudyResult, rows: list, cell) -> list:
-    """A loads × voltages table of the friction ``rows`` (:func:`_friction_rows`, in their order), each entry
+    """A loads × voltages table of the friction ``rows`` (:func:`friction_rows`, in their order), each entry
     ``cell(i, j, row)``."""
     count = len(result.voltages)
     return (["| F_N [N] | " + " | ".join(f"{v:g} V" for v in result.voltages) + " |", "|---" * (count + 1) + "|"]
@@ -559,9 +242,9 @@ def _per_pixel_section(result: StudyResult) -> list:
     """The table "how wrong is the per-pixel assumption": F_el of the solve's field and of Eq. 21 pixel by pixel
     on the same solved gap [N], and their ratio with its interval over the realisations."""
     area = result.array("apparent_area")[:, :, None]      # one per point
-    field = area * _realisations(result, "electrostatic_attraction")
-    pixel = area * _realisations(result, "pixel_law_attraction")
-    ratio = _realisations(result, "field_ratio")
+    field = area * realisation_samples(result, "electrostatic_attraction")
+    pixel = area * realisation_samples(result, "pixel_law_attraction")
+    ratio = realisation_samples(result, "field_ratio")
     voltages = result.voltages
     lines = ["## How wrong is the per-pixel field assumption", "",
              f"F_el [N] of the solve's `{result.scene.screen.field}` field / F_el [N] of Eq. 21 pixel by pixel on "
@@ -609,19 +292,6 @@ def _error_table(forces, voltages, values) -> list:
     return lines
 
 
-# ---------------------------------------------------------------------------------------------------------
-# A drive-frequency sweep
-# ---------------------------------------------------------------------------------------------------------
-def sweep_crossover(result: StudyResult) -> tuple:
-    """``(f_c [Hz], h_rest [m])`` per load and voltage of a frequency sweep: the series circuit's crossover
-    (``crossover_frequency``) with h_rest = d_field/ε_a + d_i/ε_i, d_field the field-equivalent gap at the sweep's
-    highest frequency (realisation mean), the air and insulator's share of the nearly dielectric stack."""
-    stack = result.scene.screen.stack()
-    field_equivalent_gap = result.summary("field_equivalent_gap")[0][:, :, -1]
-    rest = np.maximum(field_equivalent_gap, 0.0) / stack.eps_a + stack.d_i / stack.eps_i
-    return np.vectorize(lambda thickness: crossover_frequency(stack, thickness))(rest), rest
-
-
 def _leak_phrase(screen) -> str:
     """", the interface leaks (…)" naming the leak keys a scene sets (``docs/guide/ac_drive.md``), else ""."""
     if not screen.leaks:
@@ -631,68 +301,14 @@ def _leak_phrase(screen) -> str:
     return f", the skin–screen interface leaks ({keys}; \"A leak across the interface\")"
 
 
-def _sweep_samples(result: StudyResult) -> dict:
-    """Per-realisation F_el [N], F_el over that of the same realisation at the highest frequency (the paired
-    ratio: the realisations' spread cancels), d_eq [µm] and A_R/A0 [%] of a sweep, shape (loads, voltages,
-    frequencies, realisations), NaN where a solve did not converge."""
-    area = result.array("apparent_area")[..., None]
-    force = area * _realisations(result, "electrostatic_attraction")
-    with np.errstate(invalid="ignore", divide="ignore"):
-        ratio = force / force[:, :, -1:, :]
-    return {"F_el [N]": force, f"F_el / F_el({result.frequencies[-1]:g} Hz)": ratio,
-            "d_eq (Eq. 25) [µm]": MICRO * _realisations(result, "equivalent_gap"),
-            "A_R/A0 [%]": 100.0 * _realisations(result, "ridge_area_fractions")}
-
-
-def _sweep_figure(result: StudyResult, out, provenance) -> list:
-    """``frequency_sweep.png``: F_el, its paired ratio to the highest frequency's, d_eq and A_R/A0 against
-    frequency (log axis) per load, a row per voltage
-    above 0 V, DC as a dotted line, the circuit's crossover (:func:`sweep_crossover`) as a dashed line."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    voltages = [j for j, voltage in enumerate(result.voltages) if voltage > 0]
-    frequencies = np.array(result.frequencies)
-    ac = frequencies > 0
-    if not voltages or not ac.any():
-        return []
-    crossover = sweep_crossover(result)[0]
-    samples = _sweep_samples(result)
-    figure, axes = plt.subplots(len(voltages), 4, figsize=(18, 3.6 * len(voltages)), squeeze=False)
-    for row, j in zip(axes, voltages):
-        for (label, values), axis in zip(samples.items(), row):
-            upper = 100.0 if label.startswith("A_R") else np.inf
-            for i, force in enumerate(result.normal_forces):
-                mean = confidence_interval(values[i, j])[0]
-                low, high = positive_interval(values[i, j], upper)
-                bars = np.nan_to_num(np.maximum(np.stack([mean - low, high - mean]), 0.0))
-                colour = f"C{i}"
-                axis.errorbar(frequencies[ac], mean[ac], yerr=bars[:, ac], marker="o", capsize=3,
-                              color=colour, label=f"{force:g} N")
-                if not ac.all():
-                    axis.axhline(mean[0], color=colour, ls=":", lw=1, label=f"{force:g} N, DC")
-                axis.axvline(crossover[i, j], color=colour, ls="--", lw=0.8)
-            axis.set(xscale="log", xlabel="drive frequency f [Hz]", ylabel=label,
-                     title=f"{label.split(' [')[0]} at {result.voltages[j]:g} V RMS")
-            axis.legend(fontsize=6)
-    figure.text(0.5, 0.005, "dashed: crossover f_c of the series circuit, h_rest = field-equivalent gap at the "
-                "highest frequency + d_i/ε_i; dotted: DC; " + bars_note(result), ha="center", va="bottom",
-                fontsize=7, style="italic")
-    figure.tight_layout(rect=(0, 0.03, 1, 1))
-    written = [save_figure(figure, out / "frequency_sweep.png", provenance)]
-    plt.close(figure)
-    return written
-
-
 def sweep_report_text(result: StudyResult, nc_written: bool, seconds: float | None = None) -> str:
     """The Markdown report of a drive-frequency sweep: what was solved, and F_el, d_eq, d_field and A_R/A0
     against frequency per load and voltage with the circuit's crossover."""
     scene, preset = result.scene, result.scene.preset
     crossover, rest = sweep_crossover(result)
-    samples = _sweep_samples(result)
-    field_equivalent_gap = _realisations(result, "field_equivalent_gap")
-    contact = _realisations(result, "contact_fraction")
+    samples = sweep_samples(result)
+    field_equivalent_gap = realisation_samples(result, "field_equivalent_gap")
+    contact = realisation_samples(result, "contact_fraction")
     text = ["# Multiscale fingerpad study: drive-frequency sweep", "",
             _run_sentence(result, seconds), "",
             describe(preset, scene.study.preset) + applicability(scene), "",
@@ -744,23 +360,13 @@ def write_results(result: StudyResult, out, provenance, seconds: float | None = 
     ``{"netcdf": written?, "files": [paths], "seconds": the run time the report states}``, the writing
     included, so that a command can print the report's number."""
     start = time.perf_counter()
-    files = [write_csv(out / "points.csv", _rows(result, _point_rows), provenance),
-             write_csv(out / "realisations.csv", _rows(result, _realisation_rows), provenance),
-             write_csv(out / "ridge_area_sensitivity.csv", _rows(result, _sensitivity_rows), provenance)]
-    if result.frequencies:
-        files += _sweep_figure(result, out, provenance)
-    else:
-        if friction_computed(result):
-            files.append(write_csv(out / "friction.csv", _friction_rows(result), provenance))
-        files += _figures(result, out, provenance)
-    netcdf = all(importlib.util.find_spec(name) is not None for name in NETCDF_MODULES)
-    if netcdf:
-        data = dataset(result)
-        data.attrs["provenance"] = provenance.line
-        data.to_netcdf(out / "results.nc", engine="h5netcdf")
-        files.append(out / "results.nc")
+    files = write_tables(result, out, provenance) + write_figures(result, out, provenance)
+    netcdf = write_dataset(result, out, provenance)
+    if netcdf is not None:
+        files.append(netcdf)
     report = out / "report.md"
     if seconds is not None:
         seconds += time.perf_counter() - start
-    report.write_text((sweep_report_text if result.frequencies else report_text)(result, netcdf, seconds))
-    return {"netcdf": netcdf, "files": files + [report], "seconds": seconds}
+    report.write_text((sweep_report_text if result.frequencies else report_text)(result, netcdf is not None,
+                                                                                    seconds))
+    return {"netcdf": netcdf is not None, "files": files + [report], "seconds": seconds}

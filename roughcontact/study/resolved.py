@@ -7,26 +7,28 @@ import time
 
 from ..solvers import solve_contact
 from .apparent import apparent_scale, ring_count
-from .patch import closing_lengths, patch_body, patch_grid, patch_surface
+from .plan import as_plan
 from .records import patch_record
-from .scene import Scene
 
 
-def solve_chain(scene: Scene, realisation: int, voltage_index: int, threads: int | None = None,
+def solve_chain(plan, realisation: int, voltage_index: int, threads: int | None = None,
                 apparent: tuple | None = None, frequency_index: int | None = None) -> tuple:
     """One task of the study: the patch of ``realisation`` at voltage ``loads.voltages[voltage_index]`` (under
     the drive at ``screen.frequency[frequency_index]`` where the scene sets a frequency) under every load of the
     scene in order, each ring's solve warm-started from its result at the previous load (cold with the preset's
-    ``warm_start`` false; a warm start that fails is repeated cold). ``threads`` FFT threads
-    (default: ``roughcontact.fft.default_threads``); ``apparent``, the scene's :func:`apparent_scale` (computed
-    when not given). Returns one :class:`PatchRecord` per load; deterministic, so the records do not depend on
-    where the task runs."""
+    ``warm_start`` false; a warm start that fails is repeated cold). ``plan``: the study's
+    :class:`~.plan.StudyPlan`, or a Scene (planned here). ``threads`` FFT threads (default:
+    ``roughcontact.fft.default_threads``); ``apparent``, the scene's :func:`apparent_scale` (computed when not
+    given). Returns one :class:`PatchRecord` per load; deterministic, so the records do not depend on where the
+    task runs."""
+    plan = as_plan(plan)
+    scene = plan.scene
     stack = scene.screen.stack()
-    voltage = scene.loads.voltages[voltage_index]
-    frequency = None if frequency_index is None else scene.screen.frequency[frequency_index]
+    voltage = plan.voltages[voltage_index]
+    frequency = None if frequency_index is None else plan.frequencies[frequency_index]
     law = scene.screen.interaction(voltage, frequency)       # the scene's field model; None at 0 V: the hard wall
-    heights, body = patch_surface(scene, realisation), patch_body(scene, threads=threads)
-    lengths, spacing = closing_lengths(scene), patch_grid(scene).spacing
+    heights, body = plan.surface(realisation), plan.body(threads)
+    lengths, spacing = plan.closing_lengths, plan.grid.spacing
     warm_start = scene.preset.warm_start
     latest = [None] * ring_count(scene)                         # each ring's last result: the next load's x0
     records = []

@@ -34,9 +34,16 @@ first since their solves take longest, so that the workers end together; consume
 assembles the :class:`~.records.PointResult` of each (F_N, U) from the records of its
 realisations.
 
-Finished tasks are stored as they arrive in a :class:`~.execution.TaskStore` directory, so an interrupted run
-resumes without recomputing finished tasks; a different scene in the same directory is refused
-(:class:`~.execution.SceneMismatch`).
+**The plan.** :func:`~.plan.plan_study` works out once what the tasks share — the patch grid, the closing
+lengths, the cut-off in use, a measured scan's patch — and keys every task by the SHA-256 of exactly the inputs
+its records depend on (:class:`~.plan.StudyPlan`); the tasks run from the plan.
+
+Finished tasks are stored as they arrive in a :class:`~.execution.TaskStore` by their keys (in the results
+directory, :class:`~.execution.ResultsDirectory`, or a task directory that several scenes share), so an
+interrupted run resumes without recomputing finished tasks, and a task whose inputs changed (a replaced scan
+included) is solved again; a different scene in the same results directory is refused
+(:class:`~.execution.SceneMismatch`). The results directory keeps a measured patch beside the scene, so
+:func:`open_results` reads it back after the scan has moved.
 """
 from __future__ import annotations
 
@@ -46,13 +53,15 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+
+from surfaces import HeightField
 from surfaces.validation import check_integer
 
 from ..io.provenance import output_directory
 from .apparent import apparent_scale
 from .coupled import coupled_chain
-from .execution import InProcess, TaskStore, check_executor, make_executor
-from .patch import closing_lengths, realisation_count, resolved_short_cutoff
+from .execution import PATCH_FILE, InProcess, ResultsDirectory, TaskStore, check_executor, make_executor
+from .plan import StudyPlan, plan_study
 from .records import _PER_REALISATION, PointResult, confidence_interval, point_result
 from .resolved import solve_chain
 from .scene import Scene, load_scene
@@ -64,27 +73,38 @@ SUMMARISED = (*_PER_REALISATION, "ridge_area_fractions")
 
 @dataclass(frozen=True)
 class StudyResult:
-    """All points of a study; ``points[i][j]`` at ``normal_forces[i]``, ``voltages[j]`` (``points[i][j][k]`` at
-    ``frequencies[k]`` [Hz] too where the scene sets a drive frequency; ``frequencies`` is empty otherwise);
-    ``coarse_graining`` the A_R closing diameters [m] (the scene's first); ``computed`` points with a task solved
-    in this run and ``solves`` the contact solves of this run; ``short_cutoff`` the micro-roughness cut-off in
-    use [m]."""
+    """All points of a study and the :class:`~.plan.StudyPlan` they were solved from; ``points[i][j]`` at
+    ``normal_forces[i]``, ``voltages[j]`` (``points[i][j][k]`` at ``frequencies[k]`` [Hz] too where the scene sets
+    a drive frequency; ``frequencies`` is empty otherwise); ``computed`` points with a task solved in this run and
+    ``solves`` the contact solves of this run."""
 
-    scene: Scene
+    plan: StudyPlan
     points: tuple
-    coarse_graining: tuple
-    short_cutoff: float
     computed: int
     solves: int
     frequencies: tuple = ()
 
     @property
+    def scene(self) -> Scene:
+        return self.plan.scene
+
+    @property
+    def coarse_graining(self) -> tuple:
+        """The A_R closing diameters [m] (the scene's coarse-graining length first)."""
+        return self.plan.closing_lengths
+
+    @property
+    def short_cutoff(self) -> float:
+        """The micro-roughness short cut-off in use [m] (NaN without synthetic roughness)."""
+        return self.plan.short_cutoff
+
+    @property
     def normal_forces(self) -> np.ndarray:
-        return np.array(self.scene.loads.normal_forces)
+        return np.array(self.plan.normal_forces)
 
     @property
     def voltages(self) -> np.ndarray:
-        return np.array(self.scene.loads.voltages)
+        return np.array(self.plan.voltages)
 
     def array(self, name: str) -> np.ndarray:
         """Field ``name`` of every point (a field of :class:`~.records.PointResult`): shape (loads, voltages,
@@ -124,58 +144,56 @@ class StudyResult:
 
 
 def run_study(scene: Scene, directory=None, progress: bool = False, workers: int | None = None,
-              dask: str | None = None) -> StudyResult:
+              dask: str | None = None, tasks=None) -> StudyResult:
     """Run (or resume, with a ``directory``) the study of ``scene``; ``progress`` shows a tqdm bar of points.
 
     The tasks (:func:`solve_chain`, or :func:`roughcontact.study.coupled.coupled_chain` where the preset's ``scales``
-    is "coupled"; one per realisation and voltage) run in a local pool of ``workers``
-    processes (default: the cores this process may run on, at most one per task), each task with cores //
-    workers FFT threads; ``workers=1`` runs them in this process. ``dask``, the address of a dask.distributed
-    scheduler (``"tcp://host:8786"``), runs them on that cluster instead (one FFT thread per task; needs
-    ``roughcontact[parallel]``). Every executor gives the same records for the same FFT plans. A script that
-    uses the pool needs Python's ``if __name__ == "__main__":`` guard around its work (the workers import it).
-    Interrupted (Ctrl-C), the waiting tasks are cancelled and the pool's workers stopped (a cluster's running
-    tasks finish and are dropped); the finished ones stay in ``directory``.
+    is "coupled"; one per realisation and voltage) run from the scene's :class:`~.plan.StudyPlan` in a local pool
+    of ``workers`` processes (default: the cores this process may run on, at most one per task), each task with
+    cores // workers FFT threads; ``workers=1`` runs them in this process. ``dask``, the address of a
+    dask.distributed scheduler (``"tcp://host:8786"``), runs them on that cluster instead (one FFT thread per
+    task; needs ``roughcontact[parallel]``). Every executor gives the same records for the same FFT plans. A
+    script that uses the pool needs Python's ``if __name__ == "__main__":`` guard around its work (the workers
+    import it). Interrupted (Ctrl-C), the waiting tasks are cancelled and the pool's workers stopped (a cluster's
+    running tasks finish and are dropped); the finished ones stay in the task store. ``tasks``: a task directory
+    that several studies share (tasks with equal inputs are solved once; default: ``directory/tasks``, none
+    without a ``directory``); with ``tasks`` and no ``directory`` the study keeps its tasks there and writes
+    nothing else.
     """
-    if not isinstance(scene, Scene):
-        raise TypeError(f"scene must be a Scene (roughcontact.study.load_scene reads one from a TOML file), got "
-                        f"{type(scene).__name__}")
     if not isinstance(progress, bool):
         raise TypeError(f"progress must be True or False, got {progress!r}")
+    plan = plan_study(scene)
     check_executor(workers, dask)
-    if scene.screen.frequency is not None and scene.preset.scales == "coupled":
-        raise ValueError(f"screen.frequency = {list(scene.screen.frequency)!r} Hz with presets."
+    if plan.frequencies and scene.preset.scales == "coupled":
+        raise ValueError(f"screen.frequency = {list(plan.frequencies)!r} Hz with presets."
                          f"{scene.study.preset}.scales = 'coupled': the interface law of the micro-roughness is the "
                          "dielectric one; a drive frequency needs scales = \"resolved\"")
-    store = None if directory is None else TaskStore(output_directory(directory), scene)
-    forces, count = scene.loads.normal_forces, realisation_count(scene)
-    order = task_keys(scene)
+    results = None if directory is None else ResultsDirectory(output_directory(directory), plan, tasks)
+    store = results.tasks if results is not None else None if tasks is None else TaskStore(output_directory(tasks))
     records = {}
     if store is not None:
-        records = {key: done for key in order if (done := store.load(*key)) is not None}
-    todo = [key for key in order if key not in records]
+        records = {task.index: done for task in plan.tasks if (done := store.load(plan, task)) is not None}
+    todo = [task for task in plan.tasks if task.index not in records]
     executor = make_executor(workers, dask, len(todo)) if todo else InProcess()
-    bar = None
-    task = solve_chain
-    if scene.preset.scales == "coupled":            # the micro-roughness as an interface law (.coupled)
-        task = coupled_chain
+    bar, points_per_task = None, len(plan.normal_forces) / plan.realisations
+    chain = coupled_chain if scene.preset.scales == "coupled" else solve_chain   # the roughness as a law: .coupled
     apparent = apparent_scale(scene)                # once, for every task
     try:
         with executor:
             if progress and todo:                   # (once the executor runs: a refused one shows no bar)
                 from tqdm import tqdm
-                bar = tqdm(total=len(todo) * len(forces) / count, desc="roughcontact run", unit="point",
+                bar = tqdm(total=len(todo) * points_per_task, desc="roughcontact run", unit="point",
                            bar_format="{l_bar}{bar}| {n:.4g}/{total:.4g} [{elapsed}<{remaining}]")
             # the highest voltages first: their solves take the longest, so the workers finish together
-            futures = {executor.submit(task, scene, *key[:2], executor.threads, apparent, *key[2:]): key
-                       for key in sorted(todo, key=lambda key: -abs(scene.loads.voltages[key[1]]))}
+            futures = {executor.submit(chain, plan, *task.index[:2], executor.threads, apparent, *task.index[2:]):
+                       task for task in sorted(todo, key=lambda task: -abs(plan.voltages[task.voltage_index]))}
             for future in executor.as_completed(list(futures)):
-                key = futures[future]
-                records[key] = future.result()
+                task = futures[future]
+                records[task.index] = future.result()
                 if store is not None:
-                    store.save(*key[:2], records[key], *key[2:])
+                    store.save(plan, task, records[task.index])
                 if bar is not None:
-                    bar.update(len(forces) / count)
+                    bar.update(points_per_task)
     except BrokenProcessPool as error:
         raise RuntimeError("a worker of the study's process pool ended abruptly: killed (e.g. out of memory), or, "
                            "in a script, the pool was started without the 'if __name__ == \"__main__\":' guard "
@@ -185,64 +203,52 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
     finally:
         if bar is not None:
             bar.close()
-        if store is not None:
-            store.release()
-    return _study_result(scene, records, apparent, todo)
+        if results is not None:
+            results.release()
+    return _study_result(plan, records, apparent, todo)
 
 
-def task_keys(scene: Scene) -> list:
-    """The study's tasks in order: (r, j) per realisation and voltage index, (r, j, k) with the frequency index
-    k where the scene sets a drive frequency."""
-    realisations, voltages = range(realisation_count(scene)), range(len(scene.loads.voltages))
-    if scene.screen.frequency is None:
-        return [(r, j) for j in voltages for r in realisations]
-    return [(r, j, k) for j in voltages for k in range(len(scene.screen.frequency)) for r in realisations]
-
-
-def _study_result(scene: Scene, records: dict, apparent, todo) -> StudyResult:
+def _study_result(plan: StudyPlan, records: dict, apparent, todo) -> StudyResult:
     """The :class:`StudyResult` of every task's ``records`` ({(r, j) or (r, j, k): records per load}); ``todo``
     the tasks solved in this run."""
-    forces, voltages = scene.loads.normal_forces, scene.loads.voltages
-    count = realisation_count(scene)
-    cutoff = resolved_short_cutoff(scene) if scene.roughness.enabled else float("nan")
+    forces, voltages, frequencies = plan.normal_forces, plan.voltages, plan.frequencies
 
     def point(i, *drive):
         return point_result(forces[i], voltages[drive[0]], *apparent[i],
-                            [records[(r, *drive)][i] for r in range(count)])
+                            [records[(r, *drive)][i] for r in range(plan.realisations)])
 
-    frequencies = scene.screen.frequency or ()
     if frequencies:
         table = tuple(tuple(tuple(point(i, j, k) for k in range(len(frequencies))) for j in range(len(voltages)))
                       for i in range(len(forces)))
     else:
         table = tuple(tuple(point(i, j) for j in range(len(voltages))) for i in range(len(forces)))
-    return StudyResult(scene=scene, points=table, coarse_graining=closing_lengths(scene), short_cutoff=cutoff,
-                       computed=len({key[1:] for key in todo}) * len(forces),
-                       solves=sum(record.solves for key in todo for record in records[key]),
+    return StudyResult(plan=plan, points=table, computed=len({task.index[1:] for task in todo}) * len(forces),
+                       solves=sum(record.solves for task in todo for record in records[task.index]),
                        frequencies=frequencies)
 
 
-def open_results(directory) -> StudyResult:
+def open_results(directory, tasks=None) -> StudyResult:
     """The :class:`StudyResult` of a finished results directory (``roughcontact run --out DIR`` or
-    ``run_study(scene, DIR)``), read from its ``scene.toml`` and ``tasks/`` without solving anything
-    (``computed`` and ``solves`` are 0). ``roughcontact.study.bottom_up_friction(open_results(DIR))`` is the
-    friction model of that run. ``ValueError`` naming the directory when it holds no scene or misses tasks (the
-    same ``roughcontact run`` command resumes it)."""
+    ``run_study(scene, DIR)``), read from its ``scene.toml``, its measured patch (``patch.npz``, so the scan's
+    file is not needed) and its tasks (or the shared task directory ``tasks`` it was run with) without solving
+    anything (``computed`` and ``solves`` are 0). ``roughcontact.study.bottom_up_friction(open_results(DIR))``
+    is the friction model of that run. ``ValueError`` naming the directory when it holds no scene or misses tasks
+    (the same ``roughcontact run`` command resumes it)."""
     path = Path(directory)
     stored = path / "scene.toml"
     if not stored.is_file():
         raise ValueError(f"directory = {str(path)!r} holds no scene.toml: not a results directory of "
                          "'roughcontact run --out' or run_study(scene, directory)")
-    scene = load_scene(stored)
-    store = TaskStore(path, scene)
-    try:
-        order = task_keys(scene)
-        records = {key: done for key in order if (done := store.load(*key)) is not None}
-    finally:
-        store.release()
-    missing = [store._path(*key).name for key in order if key not in records]
+    scene = load_scene(stored, read_scan=False)
+    patch = path / PATCH_FILE
+    topography = HeightField.load(patch) if scene.roughness.topography and patch.exists() else None
+    plan = plan_study(scene, topography)             # (a directory without patch.npz: the scan is read)
+    store = TaskStore(path / "tasks" if tasks is None else tasks)
+    records = {task.index: done for task in plan.tasks if (done := store.load(plan, task)) is not None}
+    missing = [task for task in plan.tasks if task.index not in records]
     if missing:
-        raise ValueError(f"directory = {str(path)!r} is not finished: {len(missing)} of {len(order)} task files "
-                         f"missing or unusable in {store.tasks} ({', '.join(missing[:3])}"
-                         f"{', ...' if len(missing) > 3 else ''}); the same 'roughcontact run' command resumes it")
-    return _study_result(scene, records, apparent_scale(scene), [])
+        named = ", ".join(f"{plan.describe(task)}: {store.path(task).name}" for task in missing[:3])
+        raise ValueError(f"directory = {str(path)!r} is not finished: {len(missing)} of {len(plan.tasks)} task files "
+                         f"missing or unusable in {store.directory} ({named}{', ...' if len(missing) > 3 else ''}); "
+                         "the same 'roughcontact run' command resumes it")
+    return _study_result(plan, records, apparent_scale(scene), [])

@@ -18,10 +18,12 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import hashlib
 import json
 import re
 import sys
 from dataclasses import dataclass, field
+from importlib import resources
 from pathlib import Path
 
 from surfaces import Grid, HeightField, read_topography
@@ -47,146 +49,9 @@ SCALES = ("resolved", "coupled")
 #: Boundaries of a measured topography (``roughness.boundary``): mirrored periodic, declared periodic, free.
 BOUNDARIES = ("mirrored", "periodic", "free")
 
-#: The default scene: every value with its source (docs/references.md sections) or marked as an estimate.
-DEFAULT_SCENE_TOML = """\
-# roughcontact scene: the default fingerpad on a capacitive touchscreen (SI units: m, Pa, N, V).
-# Sources: docs/references.md (section numbers given per value); [estimate] marks a modelling choice.
-
-[fingerpad]
-# Apparent contact area A0(F_N): "power_law" A0 = area_prefactor * F_N^area_exponent (seed Eq. 27, Dzidek et
-# al. 2017, references.md §0.5) with uniform nominal pressure F_N/A0, or "fingertip": a Hertzian cap of
-# radius and E_star (seed R* = 1 cm, E* = 47.4 kPa, references.md §1.1), Hertz pressure over the disc.
-# layer = true (fingertip only): the cap is pressed onto the [skin] layer bonded on tissue of E_star, solved on
-# a free grid of layer_grid x layer_grid pixels (roughcontact.study.fingertip; docs/findings/equivalent_gap.md, "The apparent
-# scale on the layered skin": A0 2.5-4.2 % smaller, the outer ring's pressure 10-18 % higher at 0.5-2 N).
-model = "power_law"
-area_prefactor = 9.19e-05      # m^2 N^-area_exponent (91.9 mm^2)
-area_exponent = 0.37
-radius = 0.01                  # m
-E_star = 47400.0               # Pa
-layer = false
-layer_grid = 128
-
-[ridges]
-# Parallel fingerprint ridges (surfaces.parallel_ridges), references.md §1.1.
-enabled = true
-period = 0.00045               # m, adult mean ridge breadth 0.43-0.48 mm (Kralik & Novotny 2003)
-height = 5e-05                 # m, crest to furrow, 50-100 um (OCT, Adams et al. 2013)
-width_ratio = 1.5              # ridge/furrow width at mid-height: 0.27 mm ridges, 0.18 mm furrows
-# Sweat pores on the crests, placed at random per realisation: 300-1000 cm^-2 (seed), openings 88-220 um
-# (Ashbaugh 1999), references.md §1.1. Off by default: a one-period patch (0.2 mm^2) holds one pore at 500 cm^-2,
-# so pores are a scene choice (pore_density = 5e6), not averaged into the default numbers.
-pore_density = 0.0             # 1/m^2
-pore_diameter = 0.00012        # m, opening
-pore_depth = 2e-05             # m, dimple depth seen by a flat counter-face [estimate]
-
-[roughness]
-# Self-affine micro-roughness on the ridges (surfaces.self_affine, spectrum of references.md §3.1).
-# [estimate]: skin spectra (Persson, Kovalev & Gorb 2013, references.md §2) give micrometre rms heights at
-# wavelengths below the ridge width; the values below are chosen in that range.
-enabled = true
-hurst = 0.8
-rms_height = 3e-06             # m
-long_cutoff = 6e-05            # m, below the ridge width (0.27 mm) [estimate]
-short_cutoff = 1e-05           # m, raised to preset pixels_per_cutoff pixels where the grid is coarser
-# A measured surface instead (docs/surfaces.md, "Measured topographies"): topography = "scan.x3p" (any format
-# surfaces.read_topography reads, or a HeightField saved as .npz; a relative path starts at the scene file's
-# folder) is the whole patch, ridges included (set ridges.enabled = false), solved as one realisation on the
-# scan's own pixels. boundary: "mirrored" (the scan and its mirror images, periodic: the unbiased choice for a
-# window of a larger contact), "periodic" (the scan declared periodic as it is) or "free" (a free surface
-# around it: the scan is the whole footprint); detrend: "plane" (the instrument's tilt) or "mean"; missing:
-# "refuse" undefined points, or fill them by harmonic interpolation ("harmonic").
-topography = ""
-boundary = "mirrored"
-detrend = "plane"
-missing = "refuse"
-
-[skin]
-# Stiff stratum corneum layer on soft tissue (references.md §2): hydrated stratum corneum 5-30 MPa (the
-# roughness-scale E* of 10 MPa), viable epidermis/dermis 0.05-2 MPa, Poisson ratio 0.48-0.5.
-# layer_thickness = 0 gives a half-space of E_star. The 30 um layer is an [estimate]: the outer, stiffer
-# part of the 250-300 um stratum corneum that the micro-roughness sees.
-E_star = 100000.0              # Pa, tissue under the layer (or the half-space)
-poisson = 0.5
-layer_E_star = 10000000.0      # Pa
-layer_thickness = 3e-05        # m
-
-[screen]
-# Dielectric stack, seed Table 1 (references.md §0.1).
-d_sc = 0.00025                 # m, stratum corneum thickness
-eps_sc = 3000.0
-d_i = 1e-06                    # m, insulator thickness
-eps_i = 3.9
-eps_a = 1.0
-# The field of the stack over the gap field (docs/guide/electrostatics.md): "layered" (the stratum corneum and the
-# insulator couple the columns; validated against a finite-element solve) or "parallel_plate" (seed Eq. 21 pixel
-# by pixel, the seed's assumption). The report compares the two on every solved gap either way.
-field = "layered"
-# The drive (docs/guide/ac_drive.md): without a frequency key the stratum corneum is a perfect dielectric (the
-# seed's model, its high-frequency limit). frequency = 1000.0 (Hz, RMS voltages) drives the layered field through
-# the leaky stratum corneum, 0.0 is DC; a strictly increasing list (frequency = [10.0, 100.0, 1000.0]) sweeps it.
-# sigma_sc (S/m, default 2e-4, references.md §11): the stratum corneum's conductivity, used only with a frequency.
-# A leak across the skin-screen interface (docs/guide/ac_drive.md, "A leak across the interface"; references.md
-# §11), only with a frequency, every key 0 (false) by default: gap_conductance (S/m^2) and gap_conductivity (S/m)
-# in parallel with the air gap, gap_cpe (S s^a/m^2) with gap_cpe_exponent a, surface_conductance (S, 1/rho_s) of
-# the screen's surface film, contact_transfer (the conducted charge passes to the screen at contacts).
-
-[loads]
-# The seed's range: 0.5-2 N and 0-200 V (seed Table 1, Fig. 9).
-normal_forces = [0.5, 1.0, 1.5, 2.0]            # N
-voltages = [0.0, 50.0, 100.0, 150.0, 200.0]     # V
-
-[ridge_area]
-# A_R: contact at the ridge scale = the real contact closed morphologically with a disc of this diameter
-# (micro-contacts closer than it merge); the sensitivity to it is reported at the factors given.
-# [estimate]: twice the roughness long cutoff and below the furrow width (0.18 mm), so that micro-contacts
-# on one ridge merge and neighbouring ridges never do.
-coarse_graining = 0.00012      # m
-sensitivity = [0.5, 0.75, 1.25]
-
-[study]
-preset = "standard"
-seed = 0                       # realisation r uses rng seed + r
-
-# Accuracy presets, chosen from the measured speed-accuracy front (errors and costs: docs/guide/presets.md): patch
-# side = periods ridge periods on grid x grid pixels; realisations of the roughness; solver tolerance; rings of
-# equal area over the apparent contact (fingertip model only); pixels_per_cutoff: the shortest roughness
-# wavelength in pixels; dtype of the solves ("float64" or "float32"); warm_start: each solve starts from its
-# neighbour along load (true) or cold; scales: "resolved" (ridges and roughness in one grid) or "coupled"
-# (the roughness reduced to an interface law).
-[presets.draft]
-grid = 128
-periods = 1
-realisations = 2
-tolerance = 1e-06
-rings = 2
-pixels_per_cutoff = 2.0
-dtype = "float64"
-warm_start = true
-scales = "resolved"
-
-[presets.standard]
-grid = 256
-periods = 1
-realisations = 5
-tolerance = 1e-05
-rings = 3
-pixels_per_cutoff = 4.0
-dtype = "float64"
-warm_start = true
-scales = "resolved"
-
-[presets.reference]
-grid = 512
-periods = 1
-realisations = 8
-tolerance = 1e-08
-rings = 4
-pixels_per_cutoff = 4.0
-dtype = "float64"
-warm_start = true
-scales = "resolved"
-"""
+#: The default scene, the package file ``default_scene.toml`` beside this module: every value with its source
+#: (docs/references.md sections) or marked as an estimate.
+DEFAULT_SCENE_TOML = resources.files(__package__).joinpath("default_scene.toml").read_text(encoding="utf-8")
 
 
 # ---------------------------------------------------------------------------------------------------------
@@ -562,14 +427,34 @@ def _items(section) -> dict:
 def measured_topography(roughness: Roughness):
     """The scene's measured patch: ``roughness.topography`` read as a HeightField (a saved ``.npz`` field, or
     any format of ``surfaces.read_topography``, which needs the optional SurfaceTopography), its tilt or mean
-    removed (``detrend``), then mirrored, declared periodic or left free (``boundary``); None without one."""
+    removed (``detrend``), then mirrored, declared periodic or left free (``boundary``); None without one.
+
+    A file is read once per content: the fields read are cached by the SHA-256 of the file's bytes and the read
+    options, so a scan replaced under the same path is read again. The field's metadata names the file
+    (``source``), the SHA-256 of its bytes (``sha256``) and the read options."""
     if not roughness.topography:
         return None
-    return _measured(roughness.topography, roughness.boundary, roughness.detrend, roughness.missing)
+    return _measured(roughness.topography, file_digest(roughness.topography), roughness.boundary, roughness.detrend,
+                     roughness.missing)
+
+
+def file_digest(path) -> str:
+    """The SHA-256 of the bytes of the file ``path`` (hex); a ValueError naming the file if it cannot be read."""
+    digest = hashlib.sha256()
+    try:
+        with open(path, "rb") as stream:
+            for block in iter(lambda: stream.read(1 << 20), b""):
+                digest.update(block)
+    except FileNotFoundError:
+        raise ValueError(f"cannot read the topography {path}: no such file") from None
+    except OSError as error:
+        raise ValueError(f"cannot read the topography {path}: {error.strerror or error}") from None
+    return digest.hexdigest()
 
 
 @functools.lru_cache(maxsize=4)
-def _measured(path: str, boundary: str, detrend: str, missing: str):
+def _measured(path: str, digest: str, boundary: str, detrend: str, missing: str):
+    """The patch of the scan ``path`` whose bytes have the SHA-256 ``digest`` (the cache's key with the options)."""
     if path.endswith(".npz"):
         field = HeightField.load(path).detrended(detrend)
     else:
@@ -577,9 +462,13 @@ def _measured(path: str, boundary: str, detrend: str, missing: str):
     if field.grid.is_profile:
         raise ValueError(f"{path} is a line scan ({field.grid.shape[0]} points); the patch needs a 2-D map")
     if boundary == "mirrored":
-        return field.mirrored()
-    grid = Grid(field.grid.shape, field.grid.lengths, periodic=boundary == "periodic")
-    return HeightField(grid, field.heights, {"generator": f"declared {boundary}", "parts": [field.metadata]})
+        field = field.mirrored()
+    else:
+        field = HeightField(Grid(field.grid.shape, field.grid.lengths, periodic=boundary == "periodic"), field.heights,
+                            {"generator": f"declared {boundary}", "parts": [field.metadata]})
+    return HeightField(field.grid, field.heights, {"generator": "measured patch", "source": path, "sha256": digest,
+                                                   "boundary": boundary, "detrend": detrend, "missing": missing,
+                                                   "parts": [field.metadata]})
 
 
 def _toml_value(value) -> str:
@@ -667,9 +556,11 @@ def _read_scene_file(path) -> str:
                          f"column {column} (TOML files are UTF-8; save it as UTF-8 in the editor)") from None
 
 
-def load_scene(path=None, *, text: str | None = None, preset: str | None = None) -> Scene:
+def load_scene(path=None, *, text: str | None = None, preset: str | None = None, read_scan: bool = True) -> Scene:
     """The scene of the TOML file ``path`` (or of the TOML ``text``; neither: the default scene), every value
-    not given taken from :data:`DEFAULT_SCENE_TOML`; ``preset`` overrides ``study.preset``."""
+    not given taken from :data:`DEFAULT_SCENE_TOML`; ``preset`` overrides ``study.preset``. A measured
+    topography is read once to validate it, unless ``read_scan`` is False (a results directory's scene, whose
+    patch is stored beside it: the scan may have moved since)."""
     if path is not None and text is not None:
         raise ValueError("give a scene path or its text, not both")
     origin = "the default scene" if path is None and text is None else str(path) if path is not None else "scene"
@@ -705,12 +596,13 @@ def load_scene(path=None, *, text: str | None = None, preset: str | None = None)
                      "a named preset, or [presets.auto] (roughcontact run --preset auto --target-error chooses it)")
     scene = Scene(**sections, presets=presets)
     scene = scene if preset is None else scene.with_preset(preset)
-    return _with_measured_topography(scene, path, origin, text)
+    return _with_measured_topography(scene, path, origin, text, read_scan)
 
 
-def _with_measured_topography(scene: Scene, path, origin, text) -> Scene:
-    """``scene`` with ``roughness.topography`` made absolute (from the scene file's folder) and read once, so
-    that a missing or unreadable scan, ridges on top of it or a coupled preset stop at validation."""
+def _with_measured_topography(scene: Scene, path, origin, text, read_scan: bool = True) -> Scene:
+    """``scene`` with ``roughness.topography`` made absolute (from the scene file's folder) and read once (with
+    ``read_scan``), so that a missing or unreadable scan, ridges on top of it or a coupled preset stop at
+    validation."""
     roughness = scene.roughness
     if not roughness.topography:
         return scene
@@ -725,8 +617,9 @@ def _with_measured_topography(scene: Scene, path, origin, text) -> Scene:
         raise _error(origin, text, ("roughness",), "topography", f"presets.{scene.study.preset}.scales = "
                      "'coupled' reduces synthetic roughness to an interface law; a measured topography is solved "
                      "resolved", 'scales = "resolved"')
-    try:
-        measured_topography(roughness)
-    except (ValueError, TypeError, ImportError, OSError) as error:
-        raise _error(origin, text, ("roughness",), "topography", str(error), None) from None
+    if read_scan:
+        try:
+            measured_topography(roughness)
+        except (ValueError, TypeError, ImportError, OSError) as error:
+            raise _error(origin, text, ("roughness",), "topography", str(error), None) from None
     return dataclasses.replace(scene, roughness=roughness)

@@ -1,6 +1,7 @@
 """The AC drive in scenes and in the study: the `[screen] frequency` and `sigma_sc` keys, a tiny frequency sweep
 against direct `solve_contact` calls under the same interaction, resume with the new keys, the sweep's report,
 and a scene without a frequency unchanged."""
+import hashlib
 import math
 from pathlib import Path
 
@@ -13,9 +14,10 @@ from roughcontact.interactions import ElectrostaticInteraction
 from roughcontact.io import read_csv
 from roughcontact.solvers import solve_contact
 from roughcontact.study.apparent import apparent_scale
-from roughcontact.study.execution import SceneMismatch, scene_fingerprint
+from roughcontact.study.execution import SceneMismatch
 from roughcontact.study.friction import bottom_up_friction
 from roughcontact.study.patch import patch_body, patch_surface
+from roughcontact.study.plan import plan_study
 from roughcontact.study.run import open_results, run_study
 from roughcontact.study.scene import load_scene
 from study_scenes import TINY
@@ -114,12 +116,16 @@ def test_a_coupled_preset_with_a_frequency_is_refused(sweep):
 
 
 def test_a_scene_without_a_frequency_is_unchanged():
-    # The SHA-256 of the scene's TOML text (the resume fingerprint, and scene.toml) as the version before the
-    # drive keys wrote it: neither key appears, so old results directories resume and nothing written changes.
-    assert scene_fingerprint(load_scene()) == "d293e15deed16b8814fafa09ca0a5ff22014183d291c1553ce7b04b192cb72b8"
+    # The SHA-256 of the scene's TOML text (scene.toml of a results directory) as the version before the drive
+    # keys wrote it: neither key appears, so nothing written changes; its tasks' inputs have no drive either.
+    def fingerprint(scene):
+        return hashlib.sha256(scene.to_toml().encode("utf-8")).hexdigest()
+    assert fingerprint(load_scene()) == "d293e15deed16b8814fafa09ca0a5ff22014183d291c1553ce7b04b192cb72b8"
     tiny = load_scene(text=TINY, preset="draft")
-    assert scene_fingerprint(tiny) == "c23cae789cac0a6603eaade562847e50968b054f5ada2b6a778cdcb311457afa"
+    assert fingerprint(tiny) == "c23cae789cac0a6603eaade562847e50968b054f5ada2b6a778cdcb311457afa"
     assert tiny.screen.frequency is None and tiny.screen.interaction(150.0).frequency is None
+    inputs = plan_study(tiny).inputs(0, 1)
+    assert inputs["frequency"] is None and "sigma_sc" not in inputs["screen"]
 
 
 # ---------------------------------------------------------------------------------------------------------
@@ -187,10 +193,15 @@ def test_at_frequency_is_the_loads_by_voltages_study(sweep_result):
 
 def test_resume_with_the_drive_keys(sweep, sweep_result, tmp_path):
     first = run_study(sweep, tmp_path, workers=1)
+    plan = first.plan
     names = sorted(path.name for path in (tmp_path / "tasks").glob("*.json"))
-    assert len(names) == 12 and names[:3] == ["R000_U000_F000.json", "R000_U000_F001.json", "R000_U000_F002.json"]
+    assert len(names) == 12 and names == sorted(f"{task.key}.json" for task in plan.tasks)
+    # one task per (realisation, voltage, frequency), each keyed by its own frequency and sigma_sc
+    assert [task.index for task in plan.tasks[:3]] == [(0, 0, 0), (1, 0, 0), (0, 0, 1)]
+    inputs = plan.inputs(1, 1, 2)
+    assert inputs["frequency"] == 3000.0 and inputs["screen"]["sigma_sc"] == 3e-4 and inputs["voltage"] == 150.0
     assert first.points == _untimed(sweep_result.points, first.points)
-    (tmp_path / "tasks" / "R001_U001_F002.json").unlink()
+    (tmp_path / "tasks" / f"{plan.task(1, 1, 2).key}.json").unlink()
     resumed = run_study(sweep, tmp_path, workers=1)
     assert resumed.computed == 2 and resumed.solves == 2             # one task: two loads, one solve each
     assert [p.equivalent_gap for row in resumed.points for cell in row for p in cell] == \

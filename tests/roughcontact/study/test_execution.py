@@ -13,14 +13,16 @@ import sys
 import textwrap
 import threading
 import time
+import warnings
 from pathlib import Path
 
 import pytest
 
 from roughcontact.cli import main
 from roughcontact.study.execution import StaleTaskWarning, TaskStore
+from roughcontact.study.plan import plan_study
 from roughcontact.study.resolved import solve_chain
-from roughcontact.study.run import run_study
+from roughcontact.study.run import open_results, run_study
 from roughcontact.study.scene import load_scene
 from study_scenes import TINY
 
@@ -45,11 +47,10 @@ def test_local_pool_stores_the_in_process_records(tiny, tiny_result, tmp_path):
     pooled = run_study(tiny, tmp_path, workers=2)
     assert numbers(pooled) == numbers(tiny_result)
     assert pooled.solves == tiny_result.solves == 8 and pooled.computed == 4
-    store = TaskStore(tmp_path, tiny)
-    for r in range(2):
-        for j in range(2):                                  # the JSON round trip is exact
-            assert untimed(store.load(r, j)) == untimed(solve_chain(tiny, r, j))
-    store.release()
+    store, plan = TaskStore(tmp_path / "tasks"), pooled.plan
+    assert [task.index for task in plan.tasks] == [(0, 0), (1, 0), (0, 1), (1, 1)]
+    for task in plan.tasks:                                 # the JSON round trip is exact
+        assert untimed(store.load(plan, task)) == untimed(solve_chain(tiny, *task.index))
 
 
 def test_interrupted_pool_keeps_finished_tasks_and_resume_solves_the_rest(tiny, tiny_result, tmp_path, monkeypatch):
@@ -67,9 +68,8 @@ def test_interrupted_pool_keeps_finished_tasks_and_resume_solves_the_rest(tiny, 
     assert not (tmp_path / "run.lock").exists()
     (done,) = [path.stem for path in (tmp_path / "tasks").glob("*.json")]
     monkeypatch.undo()
-    store = TaskStore(tmp_path, tiny)
-    first = store.load(int(done[1:4]), int(done[6:9]))
-    store.release()
+    plan = plan_study(tiny)
+    first = TaskStore(tmp_path / "tasks").load(plan, next(task for task in plan.tasks if task.key == done))
     resumed = run_study(tiny, tmp_path, workers=2)
     assert resumed.solves == 8 - sum(record.solves for record in first)      # 3 tasks of 2 solves
     assert resumed.computed == 4                            # the other realisation of each point was missing
@@ -110,7 +110,7 @@ def _edited_gap(text):
 ], ids=["empty", "truncated", "not UTF-8", "old list", "wrong keys", "record count", "wrong type", "NaN", "edited"])
 def test_a_damaged_task_file_is_named_and_solved_again(tiny, tiny_result, finished, tmp_path, damage, reason):
     directory = shutil.copytree(finished, tmp_path / "run")
-    path = directory / "tasks" / "R001_U001.json"
+    path = directory / "tasks" / f"{plan_study(tiny).task(1, 1).key}.json"
     damaged = damage(path.read_text())
     path.write_bytes(damaged if isinstance(damaged, bytes) else damaged.encode("utf-8"))
     with pytest.warns(StaleTaskWarning, match=f"task file {re.escape(str(path))}: {reason}.*; its task is solved "
@@ -123,19 +123,65 @@ def test_a_damaged_task_file_is_named_and_solved_again(tiny, tiny_result, finish
 
 
 def test_another_scene_in_a_directory_without_its_scene_file_solves_everything_again(tiny, finished, tmp_path):
-    # scene.toml deleted: the tasks still carry their scene's fingerprint, so another scene does not reuse them
+    # scene.toml deleted: the tasks are keyed by their inputs, so another scene's tasks (other loads) are other
+    # files; none is reused, none is taken for damaged, and the old ones stay beside the new
     directory = shutil.copytree(finished, tmp_path / "run")
     (directory / "scene.toml").unlink()
     other = load_scene(text=TINY.replace("normal_forces = [0.5, 2.0]", "normal_forces = [1.0, 3.0]"),
                        preset="draft")
-    with pytest.warns(StaleTaskWarning) as caught:
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", StaleTaskWarning)
         result = run_study(other, directory, workers=1)
-    assert sorted(str(warning.message).split(" ")[2] for warning in caught) == [
-        f"{directory / 'tasks' / name}.json:" for name in ("R000_U000", "R000_U001", "R001_U000", "R001_U001")]
-    assert all("written for another scene" in str(warning.message) for warning in caught)
     assert result.computed == 4
     assert numbers(result) == numbers(run_study(other, workers=1))
     assert load_scene(directory / "scene.toml") == other
+    assert len(list((directory / "tasks").glob("*.json"))) == 8
+
+
+def test_a_task_file_of_other_inputs_is_named_and_solved_again(tiny, tiny_result, finished, tmp_path):
+    # a task file copied over another's (its key and inputs are those of realisation 0): not reused
+    directory = shutil.copytree(finished, tmp_path / "run")
+    plan = plan_study(tiny)
+    target = directory / "tasks" / f"{plan.task(1, 1).key}.json"
+    shutil.copyfile(directory / "tasks" / f"{plan.task(0, 1).key}.json", target)
+    with pytest.warns(StaleTaskWarning, match=f"task file {re.escape(str(target))}: written for other inputs"):
+        resumed = run_study(tiny, directory, workers=1)
+    assert resumed.computed == 2 and numbers(resumed) == numbers(tiny_result)
+    stored = json.loads(target.read_text())                     # the inputs of an edited file do not hash to it
+    stored["key"], stored["inputs"]["voltage"] = plan.task(1, 1).key, 100.0
+    target.write_text(json.dumps(stored))
+    with pytest.warns(StaleTaskWarning, match="written for other inputs"):
+        assert run_study(tiny, directory, workers=1).computed == 2
+
+
+def test_variant_scenes_share_one_task_directory(tiny, tiny_result, tmp_path):
+    # two scenes differing in their second voltage: run into results directories of their own with one task
+    # directory, the second solves only its 100 V tasks (the 0 V tasks have equal inputs, so equal keys)
+    shared = tmp_path / "tasks"
+    first = run_study(tiny, tmp_path / "a", workers=1, tasks=shared)
+    variant = load_scene(text=TINY.replace("voltages = [0.0, 150.0]", "voltages = [0.0, 100.0]"), preset="draft")
+    second = run_study(variant, tmp_path / "b", workers=1, tasks=shared)
+    assert (first.computed, second.computed) == (4, 2) and second.solves == 4      # 2 realisations x 2 loads
+    assert numbers(second) == numbers(run_study(variant, workers=1))
+    assert [point.equivalent_gap for row in second.points for point in row[:1]] == \
+        [point.equivalent_gap for row in tiny_result.points for point in row[:1]]
+    assert len(list(shared.glob("*.json"))) == 6 and not (tmp_path / "a" / "tasks").exists()
+    assert numbers(open_results(tmp_path / "b", tasks=shared)) == numbers(second)
+    # a task directory alone (no results directory): the tasks are kept there and nothing else is written
+    alone = run_study(load_scene(text=TINY.replace("150.0]", "150.0, 200.0]"), preset="draft"), workers=1,
+                      tasks=shared)
+    assert alone.computed == 2 and sorted(path.name for path in tmp_path.iterdir()) == ["a", "b", "tasks"]
+    assert len(list(shared.glob("*.json"))) == 8
+
+
+def test_the_command_shares_a_task_directory(tiny, tmp_path, capsys):
+    run_study(tiny, tmp_path / "a", workers=1, tasks=tmp_path / "tasks")
+    variant = tmp_path / "variant.toml"
+    variant.write_text(TINY.replace("voltages = [0.0, 150.0]", "voltages = [0.0, 100.0]"))
+    assert main(["run", str(variant), "--preset", "draft", "--out", str(tmp_path / "b"), "--tasks",
+                 str(tmp_path / "tasks"), "--workers", "1"]) == 0
+    assert "2 points computed (4 contact solves), 2 resumed" in capsys.readouterr().out
+    assert not (tmp_path / "b" / "tasks").exists() and len(list((tmp_path / "tasks").glob("*.json"))) == 6
 
 
 def test_an_empty_scene_file_is_written_again(tiny, tiny_result, finished, tmp_path):
@@ -155,7 +201,7 @@ def test_the_pool_ends_with_a_killed_client(tmp_path):
         import sys
         sys.path[:0] = [{str(Path(__file__).parents[3])!r}, {str(Path(__file__).parent)!r}]
         from study_scenes import TINY
-        from roughcontact.study.run import run_study
+        from roughcontact.study.run import open_results, run_study
         from roughcontact.study.scene import load_scene
         if __name__ == "__main__":
             scene = load_scene(text=TINY.replace("realisations = 2", "realisations = 500"), preset="draft")
@@ -315,7 +361,7 @@ def test_a_script_without_the_main_guard_gets_a_clear_error(tmp_path):
         import sys
         sys.path.insert(0, {str(Path(__file__).parent)!r})
         from study_scenes import TINY
-        from roughcontact.study.run import run_study
+        from roughcontact.study.run import open_results, run_study
         from roughcontact.study.scene import load_scene
         run_study(load_scene(text=TINY, preset="draft"), workers=2)
     """))

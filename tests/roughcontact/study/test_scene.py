@@ -1,6 +1,7 @@
 """Scenes: the default round-trips through TOML; every scene error names the key, its line and the valid values."""
 import dataclasses
 import re
+from importlib import resources
 
 import pytest
 
@@ -92,6 +93,13 @@ def test_sections_validate_when_built_in_python():
     with pytest.raises(ValueError, match="ridges.width_ratio"):
         Ridges(enabled=True, period=4.5e-4, height=5e-5, width_ratio=5.0, pore_density=0.0, pore_diameter=1.2e-4,
                pore_depth=2e-5)
+
+
+def test_the_default_scene_is_a_package_file():
+    # read with importlib.resources, so it is found in an installed wheel (hatch packages roughcontact/ whole)
+    text = resources.files("roughcontact.study").joinpath("default_scene.toml").read_text(encoding="utf-8")
+    assert text == DEFAULT_SCENE_TOML and text.startswith("# roughcontact scene: the default fingerpad")
+    assert load_scene(text=text) == load_scene()
 
 
 def test_scene_command_shows_and_validates(tmp_path, capsys):

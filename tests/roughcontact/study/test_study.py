@@ -16,10 +16,11 @@ from roughcontact.io import read_csv
 from roughcontact.macro import TabulatedArea
 from roughcontact.solvers import solve_contact
 from roughcontact.study.apparent import apparent_contact, apparent_scale
-from roughcontact.study.execution import DirectoryInUse, SceneMismatch, StaleTaskWarning, TaskStore
+from roughcontact.study.execution import DirectoryInUse, ResultsDirectory, SceneMismatch, StaleTaskWarning
 from roughcontact.study.friction import bottom_up_friction, friction_realisations
 from roughcontact.study.patch import (patch_body, patch_surface, realisation_count, ridge_area_fraction,
                                       ridge_equivalent_gap, ridge_heights)
+from roughcontact.study.plan import plan_study
 from roughcontact.study.records import confidence_interval
 from roughcontact.study.report import _range, positive_interval, report_text
 from roughcontact.study.resolved import solve_chain
@@ -300,19 +301,20 @@ def test_resume_after_interruption_recomputes_nothing_done(tiny, tmp_path, monke
         run_study(tiny, tmp_path / "run", workers=1)
     done = sorted(path.name for path in (tmp_path / "run" / "tasks").glob("*.json"))
     # 2 tasks of 2 loads = 4 solves, the highest voltage's first (the longest, so that a pool's workers end together)
-    assert done == ["R000_U001.json", "R001_U001.json"]
+    plan = plan_study(tiny)
+    assert done == sorted(f"{plan.task(r, 1).key}.json" for r in range(2))
     monkeypatch.setattr(resolved, "solve_contact", solve)
     resumed = run_study(tiny, tmp_path / "run", workers=1)
     assert resumed.computed == 2 and resumed.solves == 4
     again = run_study(tiny, tmp_path / "run", workers=1)
     assert again.computed == 0 and again.solves == 0 and again.points == resumed.points
     # a task file written with other record fields (another version's) is named and solved again, not misread
-    stale = tmp_path / "run" / "tasks" / "R000_U001.json"
+    stale = tmp_path / "run" / "tasks" / f"{plan.task(0, 1).key}.json"
     stored = json.loads(stale.read_text())
     stored["records"] = [{key: value for key, value in record.items() if key != "unstable_steps"}
                          for record in stored["records"]]
     stale.write_text(json.dumps(stored))
-    with pytest.warns(StaleTaskWarning, match=r"R000_U001.json: record 1 \(F_N = 0.5 N\) lacks the fields of a "
+    with pytest.warns(StaleTaskWarning, match=rf"{stale.name}: record 1 \(F_N = 0.5 N\) lacks the fields of a "
                                               "PatchRecord"):
         refreshed = run_study(tiny, tmp_path / "run", workers=1)
     assert refreshed.computed == 2 and refreshed.solves == 2            # its two loads' points, one solve each
@@ -322,10 +324,11 @@ def test_resume_after_interruption_recomputes_nothing_done(tiny, tmp_path, monke
 
 
 def test_another_scene_and_a_running_study_are_refused(tiny, tmp_path):
-    TaskStore(tmp_path, tiny).release()
+    plan = plan_study(tiny)
+    ResultsDirectory(tmp_path, plan).release()
     other = load_scene(text=TINY.replace("grid = 32", "grid = 64"), preset="draft")
     with pytest.raises(SceneMismatch, match=r"presets.draft.grid = 32 -> 64"):
-        TaskStore(tmp_path, other)
+        ResultsDirectory(tmp_path, plan_study(other))
     fcntl = pytest.importorskip("fcntl", reason="the lock test holds the lock with flock (POSIX)")
     with open(tmp_path / "run.lock", "w") as held:                     # a running process holds the directory
         fcntl.flock(held, fcntl.LOCK_EX)
@@ -333,15 +336,15 @@ def test_another_scene_and_a_running_study_are_refused(tiny, tmp_path):
         held.flush()
         with pytest.raises(DirectoryInUse, match=f"another roughcontact run \\(process 4242 holds "
                                                  f"{re.escape(str(tmp_path / 'run.lock'))}\\)"):
-            TaskStore(tmp_path, tiny)
+            ResultsDirectory(tmp_path, plan)
     (tmp_path / "run.lock").write_text("1")          # a killed run's lock, its process id reused: taken over
-    store = TaskStore(tmp_path, tiny)                                # the same scene resumes
+    held = ResultsDirectory(tmp_path, plan)                          # the same scene resumes
     assert (tmp_path / "run.lock").read_text() == str(os.getpid())
     with pytest.raises(DirectoryInUse, match=f"process {os.getpid()} holds"):
-        TaskStore(tmp_path, tiny)                                    # held by this process: refused as well
-    store.release()
+        ResultsDirectory(tmp_path, plan)                             # held by this process: refused as well
+    held.release()
     assert not (tmp_path / "run.lock").exists()
-    TaskStore(tmp_path, tiny).release()                              # free again
+    ResultsDirectory(tmp_path, plan).release()                       # free again
 
 
 @pytest.mark.parametrize("call, error, message", [
@@ -411,8 +414,10 @@ def test_run_command_end_to_end(tmp_path, capsys):
     assert half[1] > 0                                     # 0.5 N, 150 V: the realisations differ
     assert main(["run", str(scene), "--preset", "draft", "--out", str(out)]) == 0
     assert "0 points computed" in capsys.readouterr().out
-    (out / "tasks" / "R001_U001.json").unlink()
-    with pytest.raises(ValueError, match=r"is not finished: 1 of 4 task files missing .*R001_U001.json"):
+    key = plan_study(load_scene(scene, preset="draft")).task(1, 1).key
+    (out / "tasks" / f"{key}.json").unlink()
+    with pytest.raises(ValueError, match=rf"is not finished: 1 of 4 task files missing .*\(realisation 1 at 150 V: "
+                                         rf"{key}.json\)"):
         open_results(out)
     with pytest.raises(ValueError, match="holds no scene.toml"):
         open_results(tmp_path)

@@ -1,0 +1,73 @@
+"""A fingerpad study as an ``xarray.Dataset``, written as ``results.nc`` (xarray + h5netcdf, the ``io``
+dependencies; skipped when missing): every field per load, voltage (frequency) and realisation in SI units, the
+friction variables, and the scene, preset, seed and version in the attributes."""
+from __future__ import annotations
+
+import importlib.util
+
+import numpy as np
+
+from .._version import __version__
+from .friction import friction_computed
+from .records import CONFIDENCE
+from .run import StudyResult
+from .tables import FIELDS, friction_rows
+
+#: Modules that writing results.nc needs (the ``io`` dependencies).
+NETCDF_MODULES = ("xarray", "h5netcdf", "h5py")
+
+
+def dataset(result: StudyResult, friction: bool = True):
+    """The study as an ``xarray.Dataset`` (SI units in every variable's ``units``; scene, preset, seed and
+    version in the attributes); a frequency sweep with a ``frequency`` dimension [Hz] after ``voltage`` (and no
+    friction variables); ``friction`` False leaves the friction variables out."""
+    import xarray as xr
+    if result.frequencies:
+        frequency = xr.DataArray(np.array(result.frequencies), dims="frequency", name="frequency",
+                                 attrs={"units": "Hz"})
+        parts = [dataset(result.at_frequency(k), friction=False) for k in range(len(result.frequencies))]
+        data = xr.concat(parts, dim=frequency)
+        data["apparent_area"] = parts[0]["apparent_area"]                 # one per load
+        return data.transpose("normal_force", "voltage", "frequency", ...)
+    scene = result.scene
+    coords = {"normal_force": ("normal_force", result.normal_forces, {"units": "N"}),
+              "voltage": ("voltage", result.voltages, {"units": "V"}),
+              "realisation": ("realisation", np.arange(result.array("equivalent_gap").shape[-1])),
+              "coarse_graining": ("coarse_graining", np.array(result.coarse_graining), {"units": "m"})}
+    dims = ("normal_force", "voltage", "realisation")
+    units = {"equivalent_gap": "m", "field_equivalent_gap": "m", "ridge_equivalent_gap": "m", "mean_gap": "m",
+             "contact_fraction": "1", "electrostatic_attraction": "Pa", "pixel_law_attraction": "Pa",
+             "field_ratio": "1", "gap_slope": "1", "iterations": "1", "unstable_steps": "1"}
+    descriptions = {name: text for name, _, _, _, text in FIELDS}
+    variables = {name: (dims, result.array(name), {"units": unit, "long_name": descriptions.get(name, name)})
+                 for name, unit in units.items()}
+    variables["converged"] = (dims, result.array("converged").astype(np.int8), {"units": "1"})
+    variables["ridge_area_fraction"] = (("normal_force", "voltage", "coarse_graining", "realisation"),
+                                        result.array("ridge_area_fractions"),
+                                        {"units": "1", "long_name": "A_R / A0 after closing at coarse_graining"})
+    variables["apparent_area"] = (("normal_force",), result.array("apparent_area")[:, 0], {"units": "m2"})
+    variables["solve_seconds"] = (("normal_force", "voltage"), result.array("seconds"), {"units": "s"})
+    friction = friction_rows(result) if friction and friction_computed(result) else []
+    for key, unit in (("bottom_up_tangential_force_N", "N"), ("bottom_up_tangential_force_ci95_N", "N"),
+                      ("seed_tangential_force_N", "N"), ("bottom_up_friction_coefficient", "1"),
+                      ("bottom_up_friction_coefficient_ci95", "1"), ("seed_friction_coefficient", "1")):
+        if friction:
+            values = np.array([row[key] for row in friction]).reshape(len(result.normal_forces), -1)
+            variables[key.removesuffix("_N")] = (("normal_force", "voltage"), values, {"units": unit})
+    attrs = {"title": "roughcontact multiscale fingerpad study", "roughcontact_version": __version__,
+             "preset": scene.study.preset, "field": scene.screen.field, "seed": scene.study.seed,
+             "scene_toml": scene.to_toml(), "short_cutoff_in_use": result.short_cutoff, "confidence": CONFIDENCE}
+    for key, value in scene.flat().items():
+        attrs[f"scene.{key}"] = int(value) if isinstance(value, bool) else value
+    return xr.Dataset(variables, coords=coords, attrs=attrs)
+
+
+def write_dataset(result: StudyResult, out, provenance):
+    """Write ``results.nc`` of ``result`` into the directory ``out`` with its provenance; its path, or None when
+    xarray or h5netcdf is not installed."""
+    if not all(importlib.util.find_spec(name) is not None for name in NETCDF_MODULES):
+        return None
+    data = dataset(result)
+    data.attrs["provenance"] = provenance.line
+    data.to_netcdf(out / "results.nc", engine="h5netcdf")
+    return out / "results.nc"
