@@ -7,7 +7,7 @@ Grid, HeightField and the statistics are numpy-only and imported eagerly; the ge
 """
 from .lazy import lazy_attributes
 from .grid import Grid
-from .heightfield import HeightField
+from .heightfield import HeightField, MissingDataWarning
 from .statistics import psd, rms_curvature, rms_height, rms_slope
 
 __version__ = "0.1.0"
@@ -27,4 +27,5 @@ _LAZY = {
 }
 
 __getattr__, __dir__, __all__ = lazy_attributes(
-    __name__, _LAZY, ["Grid", "HeightField", "psd", "rms_curvature", "rms_height", "rms_slope", "__version__"])
+    __name__, _LAZY, ["Grid", "HeightField", "MissingDataWarning", "psd", "rms_curvature", "rms_height", "rms_slope",
+                      "__version__"])

@@ -186,10 +186,23 @@ def _lattice_indices(name: str, values: np.ndarray) -> tuple:
     return index, step, levels.size
 
 
-def grid_from_columns(columns: np.ndarray) -> tuple:
+def _in_raster_order(x_index: np.ndarray, y_index: np.ndarray) -> bool:
+    """Whether lattice points come line by line: one axis outer (monotone), the other inner (strictly monotone
+    within each line, in the same direction on every line), ascending or descending; points may be left out."""
+    for outer, inner in ((x_index, y_index), (y_index, x_index)):
+        step = np.diff(outer)
+        if (step >= 0).all() or (step <= 0).all():
+            inner_step = np.diff(inner)[step == 0]
+            if (inner_step > 0).all() or (inner_step < 0).all():
+                return True
+    return False
+
+
+def grid_from_columns(columns: np.ndarray, raster_order: bool = False) -> tuple:
     """``(heights, spacing)`` of an x-z or x-y-z column export on a regular lattice: ``heights[i, j]`` at
     ``(x0 + i dx, y0 + j dy)``, NaN where the export has no point; ``spacing`` (dx, dy) in the file's unit
-    (dy None for a profile). ``ValueError`` if the points are off a lattice or a point is given twice."""
+    (dy None for a profile). ``ValueError`` if the points are off a lattice, a point is given twice or, with
+    ``raster_order``, the points do not come line by line (x or y outer, each ascending or descending)."""
     if columns.ndim != 2 or columns.shape[1] not in (2, 3):
         raise ValueError(f"a column export has 2 (x z) or 3 (x y z) columns, got shape {columns.shape}")
     coordinates = columns[:, :-1]
@@ -210,5 +223,8 @@ def grid_from_columns(columns: np.ndarray) -> tuple:
         i, j = np.argwhere(counts > 1)[0]
         raise ValueError(f"the point (x index {i}, y index {j}) is given {counts[i, j]} times; a column export "
                          "holds each lattice point once")
+    if raster_order and not _in_raster_order(x_index, y_index):
+        raise ValueError("its points are not in raster order (line by line, x or y outer, each ascending or "
+                         "descending)")
     heights[x_index, y_index] = columns[:, -1]
     return heights, (dx, dy)

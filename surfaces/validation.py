@@ -94,9 +94,15 @@ def check_broadcast(**arrays) -> tuple:
 
 
 def check_choice(name: str, value, choices):
-    """Return ``value`` after checking it is one of ``choices``."""
-    if value not in choices:
-        raise ValueError(f"{name} = {plain(value)} is not valid; choose one of {sorted(choices)}")
+    """Return ``value`` after checking it is one of ``choices`` (which may mix kinds, e.g. ``None`` and strings;
+    a value that cannot be compared with them, such as a list or an array, is not one)."""
+    try:
+        valid = bool(value in choices)
+    except (TypeError, ValueError):             # unhashable in a set; an array's ambiguous truth value
+        valid = False
+    if not valid:
+        listed = sorted(choices, key=lambda choice: (choice is None, type(choice).__name__, choice))
+        raise ValueError(f"{name} = {plain(value)} is not valid; choose one of {listed}")
     return value
 
 

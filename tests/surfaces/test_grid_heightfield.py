@@ -1,6 +1,7 @@
 """Grid and HeightField: geometry, immutability, arithmetic, persistence, import, pickling, plotting."""
 import dataclasses
 import pickle
+import warnings
 
 import numpy as np
 import pytest
@@ -329,10 +330,11 @@ def test_missing_points_are_refused_or_filled(tmp_path):
     path.write_text(xyz_lines(harmonic_um, 0.25, 0.4, skip={(3, 2), (4, 2)}))
     with pytest.raises(ValueError, match=r"2 missing heights .* of 35, the first at index \[3, 2\].*harmonic"):
         surfaces.HeightField.read(path, unit="um")
-    filled = surfaces.HeightField.read(path, unit="um", missing="harmonic")
+    with pytest.warns(surfaces.MissingDataWarning, match=r"invented 2 of its 35 heights \(5.7%, above 5%\)"):
+        filled = surfaces.HeightField.read(path, unit="um", missing="harmonic")
     # the five-point Laplacian of the surface is zero, so the fill is exact to round-off (heights ~1e-6 m)
     np.testing.assert_allclose(filled.heights, harmonic_um * 1e-6, rtol=0, atol=1e-20)
-    assert filled.metadata["missing_points"] == 2
+    assert filled.metadata["missing_points"] == 2 and filled.metadata["filled_fraction"] == 2 / 35
     holed = harmonic_um.copy()
     holed[2, 1] = np.nan
     np.savetxt(tmp_path / "holed.txt", holed)
@@ -404,3 +406,206 @@ def test_saving_onto_a_directory_is_refused(tmp_path):
     with pytest.raises(IsADirectoryError, match="is a directory"):
         surfaces.io.save_npz(tmp_path, {"x": np.zeros(2)}, {"kind": "Something"})
     assert not tmp_path.with_suffix(".npz").exists()
+
+
+# -- missing data: the measured window, the fill's warning and its memory bound (issue 36) ------------------------
+def largest_rectangle_by_search(measured):
+    """The area of the largest all-True rectangle, by trying every rectangle (the independent reference)."""
+    n, m = measured.shape
+    filled = np.pad(np.cumsum(np.cumsum(measured, 0), 1), ((1, 0), (1, 0)))      # summed-area table
+    return max((i1 - i0) * (j1 - j0) for i0 in range(n) for i1 in range(i0 + 1, n + 1) for j0 in range(m)
+               for j1 in range(j0 + 1, m + 1)
+               if filled[i1, j1] - filled[i0, j1] - filled[i1, j0] + filled[i0, j0] == (i1 - i0) * (j1 - j0))
+
+
+@pytest.mark.parametrize("density", [0.5, 0.8, 0.95])
+def test_measured_window_is_the_largest_fully_measured_rectangle(density):
+    rng = np.random.default_rng(int(100 * density))
+    for shape in [(7, 9), (1, 6), (6, 1), (8, 8)]:
+        for _ in range(20):
+            measured = rng.random(shape) < density
+            if not measured.any():
+                continue
+            (i0, i1), (j0, j1) = surfaces.heightfield.measured_window(measured)
+            assert measured[i0:i1, j0:j1].all()
+            assert (i1 - i0) * (j1 - j0) == largest_rectangle_by_search(measured)
+    with pytest.raises(ValueError, match="no pixel of the 3 x 4 map is measured"):
+        surfaces.heightfield.measured_window(np.zeros((3, 4), bool))
+
+
+def bordered_scan(tmp_path, band=2, spikes=True):
+    """A 12 x 10 matrix [µm] measured only inside rows 3..9, columns 2..8 (a border band missing, as an
+    instrument leaves it around a sample), with two lone spike pixels of 300 µm measured in the band."""
+    heights = np.add.outer(np.arange(12.0), 0.1 * np.arange(10.0))
+    heights[:3], heights[10:], heights[:, :2], heights[:, 9:] = np.nan, np.nan, np.nan, np.nan
+    if spikes:
+        heights[0, 5] = heights[11, 0] = 300.0
+    np.savetxt(tmp_path / "bordered.txt", heights)
+    return tmp_path / "bordered.txt", heights
+
+
+def test_missing_crop_keeps_the_measured_window_and_says_so(tmp_path):
+    path, heights = bordered_scan(tmp_path)
+    pixel = (1e-6, 2.5e-6)                                              # non-square pixels survive the crop
+    with pytest.raises(ValueError, match=r"bordered.txt has 69 missing heights .* of 120.*missing='crop'.*pixels "
+                                         r"3:10 x 2:9, 41% of the map.*missing='harmonic'"):
+        surfaces.HeightField.read(path, pixel_size=pixel, unit="um")
+    cropped = surfaces.HeightField.read(path, pixel_size=pixel, unit="um", missing="crop", periodic=True)
+    np.testing.assert_array_equal(cropped.heights, heights[3:10, 2:9] * 1e-6)
+    assert cropped.grid.shape == (7, 7) and cropped.grid.spacing == pytest.approx(pixel, rel=1e-15)
+    assert cropped.grid.periodic == (False, False)                      # a cut window does not repeat
+    assert cropped.metadata["crop"] == [[3, 10], [2, 9]] and cropped.metadata["filled_fraction"] == 0.0
+    assert cropped.metadata["missing_points"] == 69 and cropped.metadata["kept_fraction"] == 49 / 120
+
+
+def test_harmonic_fill_warns_above_five_percent_and_records_what_it_invented(tmp_path):
+    """The fill of the border band spreads the two lone spikes into mounds a hundred times the measured relief:
+    a MissingDataWarning with the fraction and the crop; below 5 % it is recorded, not warned."""
+    path, heights = bordered_scan(tmp_path)
+    with pytest.warns(surfaces.MissingDataWarning, match=r"invented 69 of its 120 heights \(57.5%.*pixels 3:10 x "
+                                                         r"2:9, 41% of the map"):
+        filled = surfaces.HeightField.read(path, pixel_size=1e-6, unit="um", missing="harmonic")
+    assert filled.metadata["filled_fraction"] == 69 / 120
+    measured = heights[3:10, 2:9]
+    relief = measured.max() - measured.min()                            # 6.6 µm
+    band = np.isnan(heights)
+    assert (filled.heights[band] * 1e6 - measured.max()).max() > 10 * relief      # the spikes' mounds
+    holed = np.add.outer(np.arange(8.0), np.arange(8.0))
+    holed[3, 4] = holed[5, 1] = holed[6, 6] = np.nan                    # 3 of 64 = 4.7 %
+    np.savetxt(tmp_path / "holed.txt", holed)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        few = surfaces.HeightField.read(tmp_path / "holed.txt", pixel_size=1e-6, missing="harmonic")
+    assert few.metadata["filled_fraction"] == 3 / 64
+    np.testing.assert_allclose(few.heights, np.add.outer(np.arange(8.0), np.arange(8.0)), rtol=1e-14)   # planar
+
+
+def test_harmonic_fill_refuses_more_points_than_it_can_hold():
+    """A 2048² map with 90 % missing (a compact hole) needed about 8 GB in scipy's sparse LU, and crashed the
+    interpreter under a memory cap; it is refused before anything is allocated, naming the count and the limit."""
+    missing = np.zeros((2048, 2048), bool)
+    missing[100:2043, 100:2043] = True
+    with pytest.raises(ValueError, match=r"3775249 missing heights of a 2048 x 2048 map exceed max_points = 524288"):
+        surfaces.heightfield.harmonic_fill(np.zeros(missing.shape), missing, (1.0, 1.0))
+    small = np.zeros((6, 6), bool)
+    small[2:4, 2:4] = True
+    with pytest.raises(ValueError, match="4 missing heights of a 6 x 6 map exceed max_points = 3"):
+        surfaces.heightfield.harmonic_fill(np.zeros((6, 6)), small, (1.0, 1.0), max_points=3)
+    assert surfaces.heightfield.harmonic_fill(np.ones((6, 6)), small, (1.0, 1.0), max_points=4) == \
+        pytest.approx(np.ones((6, 6)), rel=1e-14)
+
+
+# -- crop and resample ------------------------------------------------------------------------------------------
+def test_cropped_by_pixels_and_by_metres():
+    field = surfaces.self_affine(surfaces.Grid((12, 10), (1.2e-3, 2.5e-3), periodic=True), hurst=0.8,
+                                 rms_height=1e-6, rng=4)                 # dx = 0.1 mm, dy = 0.25 mm
+    part = field.cropped((2, 9), None)
+    np.testing.assert_array_equal(part.heights, field.heights[2:9])
+    assert part.grid.shape == (7, 10) and part.grid.periodic == (False, True)
+    assert part.grid.lengths == pytest.approx((7e-4, 2.5e-3), rel=1e-15)
+    assert part.metadata["x"] == [2, 9] and part.metadata["y"] == [0, 10]
+    by_length = field.cropped((0.2e-3, 0.9e-3), (0.5e-3, 2.0e-3), by="metres")   # x = 2..8, y = 2..7 pixels
+    np.testing.assert_array_equal(by_length.heights, field.heights[2:9, 2:8])
+    assert by_length.grid.spacing == pytest.approx(field.grid.spacing, rel=1e-15)
+    assert by_length.grid.periodic == (False, False)
+    assert field.cropped((0.21e-3, 0.31e-3), None, by="metres").shape == (1, 10)   # pixel 3 only, at 0.3 mm
+    with pytest.raises(ValueError, match=r"x = \(0.00021, 0.0003\) keeps no pixel"):     # [0.21, 0.3) mm: none
+        field.cropped((0.21e-3, 0.3e-3), None, by="metres")
+    profile = surfaces.HeightField.from_array(np.arange(8.0) * 1e-6, 8e-6)
+    assert profile.cropped((3, 8)).heights[:, 0].tolist() == pytest.approx([3e-6, 4e-6, 5e-6, 6e-6, 7e-6])
+    for bad, message in [(dict(x=(5, 5)), r"x = \(5, 5\) keeps no pixel"),
+                         (dict(x=(0, 13)), r"x\[1\] must be .*\[0, 12\]"),
+                         (dict(y=(1.5, 4)), r"y\[0\] must be an integer"), (dict(x=(0, 2, 4)), "pair"),
+                         (dict(x=(0, 3e-3), by="metres"), r"x\[1\] = 0.003 is out of range"),
+                         (dict(x=(0, 2), by="inches"), "by = 'inches' is not valid")]:
+        with pytest.raises(ValueError, match=message):
+            field.cropped(**bad)
+    with pytest.raises(ValueError, match="crop a profile along x only"):
+        profile.cropped(None, (0, 1))
+
+
+def cell_average_by_repetition(heights, shape):
+    """The area-weighted resampling by another route: split every old pixel into n_new sub-cells per axis and
+    every new pixel into n_old, then average blocks (independent of the sparse overlap weights)."""
+    (nx, ny), (mx, my) = heights.shape, shape
+    fine = np.repeat(np.repeat(heights, mx, axis=0), my, axis=1)           # (nx mx, ny my)
+    return fine.reshape(mx, nx, my, ny).mean(axis=(1, 3))
+
+
+def test_resampled_takes_any_shape_and_keeps_the_mean():
+    field = surfaces.self_affine(surfaces.Grid((30, 20), (3e-4, 5e-4), periodic=False), hurst=0.8,
+                                 rms_height=1e-6, rng=2)
+    for shape in [(7, 9), (30, 20), (45, 31), (1 + 30, 3)]:
+        resampled = field.resampled(shape)
+        assert resampled.grid == surfaces.Grid(shape, field.grid.lengths, periodic=False)
+        # fractions of exact integer overlaps: round-off of a few ulp of the 1e-6 m heights
+        np.testing.assert_allclose(resampled.heights, cell_average_by_repetition(field.heights, shape),
+                                   rtol=0, atol=1e-20)
+        assert resampled.heights.mean() == pytest.approx(field.heights.mean(), abs=1e-21)
+    np.testing.assert_allclose(field.resampled((10, 5)).heights, field.coarsened(1).heights.reshape(10, 3, 5, 4)
+                               .mean(axis=(1, 3)), rtol=0, atol=1e-21)
+    np.testing.assert_allclose(field.resampled((15, 10)).heights, field.coarsened(2).heights, rtol=0, atol=1e-21)
+    np.testing.assert_array_equal(field.resampled((60, 40)).heights[::2, ::2], field.heights)   # repeated pixels
+    profile = surfaces.HeightField.from_array(np.arange(6.0) * 1e-6, 6e-6)
+    four = profile.resampled((4, 1)).heights[:, 0]                     # each new pixel covers 1.5 old ones
+    assert four == pytest.approx(np.array([1, 5, 10, 14]) / 3 * 1e-6, rel=1e-14)
+    with pytest.raises(ValueError, match=r"turn a 2-D map of shape \(30, 20\) into a profile"):
+        field.resampled((30, 1))
+    with pytest.raises(ValueError, match=r"shape\[0\] must be an integer in \[1, inf\], got 0"):
+        field.resampled((0, 3))
+    with pytest.raises(ValueError, match=r"factor = 7.*resampled\(shape\) takes any shape"):
+        field.coarsened(7)
+
+
+def test_non_square_pixels_survive_reading_and_resample_to_square(tmp_path):
+    """dy/dx = 2.5, as in real x3p files: the matrix and the column export keep the true spacings; resampling y
+    to the x pixel gives square pixels on the same window."""
+    heights = np.random.default_rng(9).standard_normal((10, 4))
+    np.savetxt(tmp_path / "map.txt", heights)
+    matrix = surfaces.HeightField.read(tmp_path / "map.txt", pixel_size=(0.4e-6, 1e-6), unit="um")
+    (tmp_path / "map.xyz").write_text(xyz_lines(heights, 0.4, 1.0))
+    export = surfaces.HeightField.read(tmp_path / "map.xyz", unit="um")
+    for field in (matrix, export):
+        assert field.grid.spacing == pytest.approx((0.4e-6, 1e-6), rel=1e-14)
+        np.testing.assert_allclose(field.heights, heights * 1e-6, rtol=1e-15)
+    square = matrix.resampled((10, 10))
+    assert square.grid.spacing == pytest.approx((0.4e-6, 0.4e-6), rel=1e-14)
+    assert square.grid.lengths == matrix.grid.lengths
+
+
+# -- reading: the audit's rows of issue 36 ------------------------------------------------------------------------
+def test_narrow_integer_matrices_are_not_taken_for_exports(tmp_path):
+    """A matrix 2 or 3 pixels wide of integer heights has columns that can lie on a lattice: out of raster order
+    it was read as a profile from its second column, sorted by its first; with a size given it was refused
+    without a word of layout='matrix'. Now both name layout='matrix', which reads it."""
+    (tmp_path / "two.txt").write_text("5 2\n1 4\n3 6\n")
+    for size in ({}, {"pixel_size": 1e-6}):
+        with pytest.raises(ValueError, match=r"two.txt has 2 columns .* not in raster order.*layout='matrix'"):
+            surfaces.HeightField.read(tmp_path / "two.txt", **size)
+    matrix = surfaces.HeightField.read(tmp_path / "two.txt", pixel_size=1e-6, layout="matrix")
+    assert matrix.heights.tolist() == [[5, 2], [1, 4], [3, 6]]
+    (tmp_path / "sorted.txt").write_text("1 2\n3 4\n5 6\n")             # in raster order: an x-z export ...
+    with pytest.raises(ValueError, match=r"sorted.txt reads as a column export.*layout='matrix'"):
+        surfaces.HeightField.read(tmp_path / "sorted.txt", pixel_size=1e-6)  # ... unless a size says otherwise
+    (tmp_path / "three.txt").write_text("1 2 7\n3 4 8\n5 6 9\n")
+    with pytest.raises(ValueError, match=r"most of its lattice absent; a height matrix 3 pixels wide needs "
+                                         r"layout='matrix'\) has 6 missing heights"):
+        surfaces.HeightField.read(tmp_path / "three.txt")
+    (tmp_path / "shuffled.xyz").write_text("".join(np.random.default_rng(0).permutation(
+        xyz_lines(MAP_UM, 0.25, 0.4).splitlines(keepends=True))))
+    shuffled = surfaces.HeightField.read(tmp_path / "shuffled.xyz", unit="um", layout="columns")   # any order
+    np.testing.assert_allclose(shuffled.heights, MAP_UM * 1e-6, rtol=1e-15)
+
+
+def test_non_numbers_channels_and_saved_fields(tmp_path):
+    np.save(tmp_path / "words.npy", np.array([["a", "b"], ["c", "d"]]))
+    with pytest.raises(ValueError, match=r"words.npy holds values of dtype <U1, not numbers"):
+        surfaces.HeightField.read(tmp_path / "words.npy", pixel_size=1e-6)
+    np.save(tmp_path / "map.npy", MAP_UM)
+    assert surfaces.HeightField.read(tmp_path / "map.npy", pixel_size=1e-6, channel=0).shape == (7, 5)
+    with pytest.raises(ValueError, match=r"channel = 1 is out of range; map.npy holds one height map, channel 0"):
+        surfaces.HeightField.read(tmp_path / "map.npy", pixel_size=1e-6, channel=1)
+    saved = surfaces.HeightField.from_array(MAP_UM * 1e-6, pixel_size=1e-6).save(tmp_path / "map.npz")
+    assert surfaces.HeightField.read(saved, unit="m").shape == (7, 5)
+    with pytest.raises(ValueError, match=r"map.npz is a saved HeightField.*unit = 'um'"):
+        surfaces.HeightField.read(saved, unit="um")

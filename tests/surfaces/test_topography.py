@@ -137,10 +137,11 @@ def test_undefined_points_are_refused_or_filled_harmonically(tmp_path):
     holed = harmonic.copy()
     holed[5:9, 4:7] = np.nan                                                    # an interior hole, 12 points
     path = write_x3p(tmp_path / "holed.x3p", holed, DX_UM * 1e-6, DY_UM * 1e-6)
-    with pytest.raises(ValueError, match=r"12 undefined points of 384, the first at index \[5, 4\]"):
+    with pytest.raises(ValueError, match=r"holed.x3p has 12 missing heights .* of 384, the first at index \[5, 4\]"
+                                         r".*missing='crop'.*pixels 9:24 x 0:16, 62% of the map"):
         read_topography(path)
-    filled = read_topography(path, missing="harmonic")
-    assert filled.metadata["missing_points"] == 12
+    filled = read_topography(path, missing="harmonic")                  # 12 of 384 points: 3 %, not warned
+    assert filled.metadata["missing_points"] == 12 and filled.metadata["filled_fraction"] == 12 / 384
     # the fill solves the five-point Laplace equation: exact to round-off (1e-22 m against 1e-9 m curvature terms)
     np.testing.assert_allclose(filled.heights, harmonic, rtol=0, atol=1e-20)
     assert np.abs(np.nanmean(holed) - harmonic[5:9, 4:7]).max() > 1e-10        # a mean fill would be far off
@@ -200,3 +201,83 @@ def test_measured_topographies_section_of_the_docs_runs(capsys):
     # the plane fit is linear: the scan's slopes minus the window's own are the added tilt, to round-off
     assert namespace["tilt"] == pytest.approx([0.02, 0.0], abs=1e-12)
     assert capsys.readouterr().out.startswith("(64, 48) [")
+
+
+# -- issue 36: missing data visible and bounded, every reader's arguments, non-square pixels -------------------
+def bordered_x3p(tmp_path):
+    """A 40 x 30 scan [m] measured inside pixels 6:34 x 5:25 only, with three lone spike pixels of 300 µm
+    measured in the missing border band (what an .frt file of SurfaceTopography's examples holds: 31 % of its
+    points undefined, spikes at its border)."""
+    heights = REFERENCE.resampled((40, 30)).heights.copy()
+    band = np.ones(heights.shape, bool)
+    band[6:34, 5:25] = False
+    heights[band] = np.nan
+    heights[0, 3] = heights[39, 29] = heights[2, 28] = 300e-6
+    return write_x3p(tmp_path / "bordered.x3p", heights, 0.5e-6, 0.8e-6), heights
+
+
+def test_a_filled_border_band_is_warned_and_crop_keeps_the_measured_window(tmp_path):
+    path, heights = bordered_x3p(tmp_path)
+    missing = int(np.isnan(heights).sum())                               # 1200 - 560 - 3 = 637: 53 %
+    with pytest.warns(surfaces.MissingDataWarning, match=rf"bordered.x3p: missing='harmonic' invented {missing} of "
+                                                         r"its 1200 heights \(53.1%.*pixels 6:34 x 5:25, 47%"):
+        filled = read_topography(path, missing="harmonic", detrend="plane")
+    # the record stays on top of the detrended field's metadata, where a report reads it
+    assert filled.metadata["filled_fraction"] == missing / 1200 and filled.metadata["missing_points"] == missing
+    assert filled.metadata["generator"] == "detrended"
+    # the fill spreads each lone 300 µm pixel into a mound: invented heights far above anything measured inside
+    inside = heights[6:34, 5:25]
+    with pytest.warns(surfaces.MissingDataWarning):
+        mounds = read_topography(path, missing="harmonic").heights[np.isnan(heights)]
+    assert mounds.max() > 50 * np.ptp(inside)                          # 257 µm against a relief of 3.5 µm
+    cropped = read_topography(path, missing="crop")
+    np.testing.assert_array_equal(cropped.heights, inside)
+    assert cropped.grid.shape == (28, 20) and cropped.grid.spacing == pytest.approx((0.5e-6, 0.8e-6), rel=1e-12)
+    assert cropped.metadata["crop"] == [[6, 34], [5, 25]] and cropped.metadata["filled_fraction"] == 0.0
+
+
+def test_non_square_pixels_of_an_x3p_file_are_kept(tmp_path):
+    """dy/dx = 2.5 (a real x3p file of SurfaceTopography's examples has 2.46): the grid has its true spacings."""
+    heights = REFERENCE.heights[:, :10]
+    field = read_topography(write_x3p(tmp_path / "ratio.x3p", heights, 0.4e-6, 1e-6))
+    assert field.grid.spacing == pytest.approx((0.4e-6, 1e-6), rel=1e-14)
+    assert field.grid.spacing[1] / field.grid.spacing[0] == pytest.approx(2.5, rel=1e-14)
+    np.testing.assert_array_equal(field.heights, heights)
+
+
+def test_every_reader_takes_unit_size_and_channel(tmp_path):
+    """A matrix without unit or size read through SurfaceTopography: unit as a name or a factor, size as lengths
+    or pixel_size, channel 0; the same numbers through HeightField.read (rows='y': SurfaceTopography's text
+    reader takes a row as a line along x)."""
+    np.savetxt(tmp_path / "plain.txt", HEIGHTS_UM.T)                     # image layout: row j along x at y_j
+    pixel = (DX_UM * 1e-6, DY_UM * 1e-6)
+    ours = HeightField.read(tmp_path / "plain.txt", rows="y", unit="um", pixel_size=pixel, channel=0)
+    for options in (dict(unit="um", pixel_size=pixel), dict(unit=1e-6, pixel_size=pixel),
+                    dict(unit="um", lengths=(NX * pixel[0], NY * pixel[1])),
+                    dict(unit=1e-6, lengths=REFERENCE.grid.lengths)):
+        theirs = read_topography(tmp_path / "plain.txt", channel=0, **options)
+        np.testing.assert_allclose(theirs.grid.spacing, pixel, rtol=1e-12)
+        np.testing.assert_allclose(theirs.heights, ours.heights, rtol=1e-14, atol=1e-20)
+    with pytest.raises(ValueError, match="stores no physical size; pass lengths=.* or pixel_size"):
+        read_topography(tmp_path / "plain.txt", unit="um")
+    with pytest.raises(ValueError, match="unit = -1.0 is out of range"):
+        read_topography(tmp_path / "plain.txt", unit=-1.0, pixel_size=pixel)
+    with pytest.raises(ValueError, match=r"pixel_size\[1\] = -1.0 is out of range"):
+        read_topography(tmp_path / "plain.txt", unit="um", pixel_size=(1e-6, -1.0))
+    x3p = write_x3p(tmp_path / "scan.x3p", HEIGHTS_UM * 1e-6, DX_UM * 1e-6, DY_UM * 1e-6)
+    with pytest.raises(ValueError, match=r"pixel_size = 1e-06 given, but scan.x3p stores its physical size"):
+        read_topography(x3p, pixel_size=1e-6)
+
+
+def test_empty_files_and_bad_detrend_are_named(tmp_path):
+    for name in ("empty.x3p", "empty.txt"):
+        (tmp_path / name).write_bytes(b"")
+        with pytest.raises(ValueError, match=rf"{name} is empty \(0 bytes\), not a topography file"):
+            read_topography(tmp_path / name, unit="um", lengths=(1e-3, 1e-3))
+    x3p = write_x3p(tmp_path / "scan.x3p", HEIGHTS_UM * 1e-6, DX_UM * 1e-6, DY_UM * 1e-6)
+    for bad in ("bogus", 3):
+        with pytest.raises(ValueError, match=rf"detrend = {bad!r} is not valid; choose one of "
+                                             r"\['mean', 'plane', None\]"):
+            read_topography(x3p, detrend=bad)
+        with pytest.raises(ValueError, match=rf"detrend = {bad!r} is not valid"):
+            from_topography(st.Topography(HEIGHTS_UM, (1.0, 1.0), unit="um"), detrend=bad)
