@@ -70,6 +70,33 @@ class SolverReport(SavableResult):
 
     __setstate__ = _read_only_state
 
+    def __eq__(self, other):
+        """Field by field: arrays (``residuals``, those in ``details``) by value, NaN equal to NaN (a report
+        and its saved-and-loaded copy are equal; the default comparison would take the arrays' truth value)."""
+        if not isinstance(other, SolverReport):
+            return NotImplemented
+        return all(_same(getattr(self, name), getattr(other, name)) for name in self.__dataclass_fields__)
+
+    def __hash__(self):
+        # the fields that compare by plain equality (a float may be NaN, whose hash is its object's)
+        return hash((self.method, self.converged, self.message, self.iterations, self.maxiter, self.start,
+                     self.unstable_steps, self.detached, self.version))
+
+
+def _same(a, b) -> bool:
+    """Whether two field values are equal: arrays by shape and value, floats with NaN equal to NaN, dicts,
+    lists and tuples item by item."""
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        a, b = np.asarray(a), np.asarray(b)
+        return a.shape == b.shape and np.array_equal(a, b, equal_nan=a.dtype.kind in "fc" and b.dtype.kind in "fc")
+    if isinstance(a, dict) and isinstance(b, dict):
+        return a.keys() == b.keys() and all(_same(a[key], b[key]) for key in a)
+    if isinstance(a, (list, tuple)) and isinstance(b, (list, tuple)):
+        return type(a) is type(b) and len(a) == len(b) and all(map(_same, a, b))
+    if isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b):
+        return True
+    return bool(a == b)
+
 
 def _from_report(name: str, doc: str) -> property:
     """A read-only attribute of the result that is the entry ``name`` of its SolverReport."""
