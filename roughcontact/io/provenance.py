@@ -6,6 +6,9 @@ Every CSV written here starts with one comment line, and every PNG carries the s
 
     # roughcontact 0.1.0, 2026-01-31T12:00:00+00:00, command: roughcontact figures --output out, parameters: {...}
 
+Absolute paths in the command and the parameters are recorded relative to the working directory, or by their
+name where they lie outside it (:func:`portable`): a file made on one machine does not carry its directories.
+
 Readers skip it: ``pandas.read_csv(path, comment="#")``, ``numpy.loadtxt(path, delimiter=",", skiprows=2)``
 (numpy counts the comment among the skipped lines; comment lines after it are skipped anyway), or
 :func:`read_csv` here. ``PIL.Image.open(path).text["Comment"]`` returns a PNG's line.
@@ -48,11 +51,15 @@ class Provenance:
     version: str = __version__
     date: str = field(default_factory=_now)
 
+    def __post_init__(self):
+        object.__setattr__(self, "parameters", portable(dict(self.parameters)))
+
     @classmethod
     def of_command(cls, program: str, argv, parameters: dict) -> Provenance:
         """The provenance of ``program`` (a command line, e.g. ``python studies/x.py``) run with the
-        arguments ``argv`` (a list, shell-quoted here)."""
-        return cls(command=" ".join([program, shlex.join(map(str, argv))]).strip(), parameters=dict(parameters))
+        arguments ``argv`` (a list, shell-quoted here); absolute paths in them are recorded by :func:`portable`."""
+        return cls(command=" ".join([program, shlex.join(map(str, portable(list(argv))))]).strip(),
+                   parameters=dict(parameters))
 
     @property
     def line(self) -> str:
@@ -64,6 +71,31 @@ class Provenance:
     def png_metadata(self) -> dict:
         """PNG text chunks for matplotlib's ``savefig(..., metadata=...)``."""
         return {"Software": f"roughcontact {self.version}", "Comment": self.line}
+
+
+def portable(value):
+    """``value`` with its absolute paths made independent of the machine: one under the working directory
+    relative to it, any other by its last component alone (where a machine keeps its outputs is no part of their
+    provenance, and a shipped file should not carry it). Applies to strings and ``os.PathLike`` (an option's
+    ``--name=path`` form included), and item by item to lists, tuples and dicts; anything else is returned as
+    it is."""
+    if isinstance(value, dict):
+        return {key: portable(item) for key, item in value.items()}
+    if isinstance(value, (list, tuple)):
+        return type(value)(portable(item) for item in value)
+    if isinstance(value, os.PathLike):
+        value = os.fspath(value)
+    if not isinstance(value, str):
+        return value
+    option, equals, path = value.partition("=") if value.startswith("-") else ("", "", value)
+    if not os.path.isabs(path):
+        return value
+    path = Path(os.path.normpath(path))
+    try:
+        relative = str(path.relative_to(Path.cwd()))
+    except ValueError:
+        relative = path.name or str(path)
+    return option + equals + relative
 
 
 def parse_arguments(parser, argv, program: str) -> tuple:

@@ -77,3 +77,29 @@ def test_write_atomic_replaces_the_file_whole(tmp_path):
     assert write_atomic(path, '{"new": 1}') == path
     assert json.loads(path.read_text()) == {"new": 1}
     assert sorted(p.name for p in tmp_path.iterdir()) == ["record.json"]      # no .part left behind
+
+
+def test_absolute_paths_are_recorded_relative_to_the_working_directory_or_by_name(tmp_path, monkeypatch):
+    """A file made on one machine carries none of its directories: a path under the working directory is
+    recorded relative to it, any other absolute path by its name alone; relative paths and other values stay."""
+    monkeypatch.chdir(tmp_path)
+    elsewhere = os.path.join(os.path.abspath(os.sep), "tmp", "res2", "resolution-out")
+    provenance = Provenance.of_command(
+        "python studies/x.py", ["--output", elsewhere, f"--scene={tmp_path / 'scenes' / 'a.toml'}", "rel/b.toml", "-3"],
+        {"output": elsewhere, "scene": tmp_path / "scenes" / "a.toml", "files": [str(tmp_path)], "n": 3})
+    scene = os.path.join("scenes", "a.toml")
+    assert provenance.command == f"python studies/x.py --output resolution-out --scene={scene} rel/b.toml -3"
+    assert provenance.parameters == {"output": "resolution-out", "scene": scene, "files": ["."], "n": 3}
+    assert "res2" not in provenance.line and str(tmp_path) not in provenance.line
+
+
+def test_the_shipped_tables_carry_no_machine_path():
+    """The provenance lines of the CSV shipped with the library (as the writer now records them)."""
+    import shlex
+    from roughcontact.study.presets import TABLE_PATH
+    lines = [line for line in TABLE_PATH.read_text(encoding="utf-8").splitlines() if line.startswith("#")]
+    assert lines
+    for line in lines:
+        command, parameters = line.split(", command: ", 1)[1].split(", parameters: ", 1)
+        values = shlex.split(command) + [str(value) for value in json.loads(parameters).values()]
+        assert not [value for value in values if os.path.isabs(value.partition("=")[2] or value)], line
