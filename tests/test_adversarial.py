@@ -26,10 +26,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from surfaces import Grid, HeightField, self_affine
+from surfaces import Grid, HeightField, MissingDataWarning, self_affine
+from surfaces.heightfield import harmonic_fill
+from surfaces.topography import from_topography, read_topography
 from roughcontact import (ContactProblem, DielectricStack, ElasticHalfSpace, ElectrostaticInteraction,
                           ExponentialAdhesion, HardWall, MaugisDugdale, solve_contact)
 from roughcontact.interactions import Interaction
+from roughcontact.io.provenance import Provenance
 from roughcontact.io.results import ConvergenceWarning
 from roughcontact.solvers import ContactResult, load_cycle, pull_off
 from roughcontact import macro, paper
@@ -282,9 +285,9 @@ ROWS = [
      refused(ValueError, "skiprows", "-1")),
     ("read-nan-refused", in_tmp(lambda tmp: HeightField.read(write(tmp / "n.txt", "1 nan 3 4\n5 6 7 8\n"), (1, 1))),
      refused(ValueError, "n.txt", "missing")),
-    ("read-nan-filled-right", in_tmp(lambda tmp: HeightField.read(write(tmp / "n.txt", "1 2 3 4\n4 nan 6 7\n7 8 9 10\n"),
-                                                                  (1, 1), missing="harmonic")),
-     right(lambda f: np.isclose(f.heights[1, 1], 5.0))),
+    ("read-nan-filled-right", in_tmp(lambda tmp: HeightField.read(write(tmp / "n.txt", "".join(   # 1 of 25: not warned
+        " ".join("nan" if (i, j) == (2, 2) else str(i + j) for j in range(5)) + "\n" for i in range(5))),
+        (1, 1), missing="harmonic")), right(lambda f: np.isclose(f.heights[2, 2], 4.0))),
     ("read-directory", in_tmp(lambda tmp: HeightField.read(tmp, (1, 1))), refused(OSError, str(Path("/")))),
     ("read-npy-3d", in_tmp(lambda tmp: HeightField.read(_npy(tmp / "a.npy", np.zeros((2, 2, 2))), (1, 1))),
      refused(ValueError, "a.npy", "(2, 2, 2)")),
@@ -641,6 +644,130 @@ ROWS = [
      refused(ValueError, "normal_force", "-1")),
     ("paper-reproduce-into-file", in_tmp(lambda tmp: paper.reproduce(write(tmp / "f.txt", "x"))),
      refused((ValueError, OSError), "f.txt")),
+]
+
+# ---------------------------------------------------------------------------------------------- issue 36 (scans)
+# Measured scans that cannot go silently wrong (surfaces: missing data, readers' arguments, crop and resample),
+# SolverReport's equality and machine paths in provenance lines.
+
+def _st(function):
+    """A row that needs the optional SurfaceTopography: skipped without it."""
+    def call(*arguments):
+        pytest.importorskip("SurfaceTopography")
+        return function(*arguments)
+    call.needs_tmp = getattr(function, "needs_tmp", False)
+    return call
+
+
+def _st_map():
+    import SurfaceTopography
+    return SurfaceTopography.Topography(np.arange(16.0).reshape(4, 4), (4.0, 4.0), unit="um")
+
+
+def _compact_hole(n, margin):
+    """A square hole in an n x n map, ``margin`` pixels from two edges and 5 from the others."""
+    hole = np.zeros((n, n), bool)
+    hole[margin:n - 5, margin:n - 5] = True
+    return hole
+
+
+def _report_copy(**changes):
+    """hard16's SolverReport rebuilt field by field (its arrays copied), with ``changes``."""
+    import dataclasses
+    report = hard16().solver
+    fields = {f.name: getattr(report, f.name) for f in dataclasses.fields(report)}
+    fields["residuals"] = np.array(report.residuals)
+    return type(report)(**{**fields, **changes})
+
+
+ROWS += [
+    # --- HeightField.read: narrow integer matrices, non-numbers, channels, saved fields
+    ("read-matrix-2wide-unsorted", in_tmp(lambda tmp: HeightField.read(write(tmp / "m.txt", "5 2\n1 4\n3 6\n"))),
+     refused(ValueError, "m.txt", "layout='matrix'")),
+    ("read-matrix-2wide-pixel-size", in_tmp(lambda tmp: HeightField.read(write(tmp / "m.txt", "5 2\n1 4\n3 6\n"),
+                                                                           pixel_size=1e-6)),
+     refused(ValueError, "m.txt", "layout='matrix'")),
+    ("read-matrix-2wide-sorted-pixel-size", in_tmp(lambda tmp: HeightField.read(
+        write(tmp / "m.txt", "1 2\n3 4\n5 6\n"), pixel_size=1e-6)), refused(ValueError, "m.txt", "column export",
+                                                                           "pixel_size", "layout='matrix'")),
+    ("read-matrix-2wide-right", in_tmp(lambda tmp: HeightField.read(write(tmp / "m.txt", "5 2\n1 4\n3 6\n"),
+                                                                      pixel_size=1e-6, layout="matrix").heights),
+     right(lambda h: h.tolist() == [[5, 2], [1, 4], [3, 6]])),
+    ("read-matrix-3wide-integers", in_tmp(lambda tmp: HeightField.read(write(tmp / "m.txt", "1 2 7\n3 4 8\n5 6 9\n"))),
+     refused(ValueError, "m.txt", "layout='matrix'")),
+    ("read-npy-strings", in_tmp(lambda tmp: HeightField.read(_npy(tmp / "s.npy", np.array([["a", "b"]])), pixel_size=1e-6)),
+     refused(ValueError, "s.npy", "<U1", "not numbers")),
+    ("read-channel-one", in_tmp(lambda tmp: HeightField.read(write(tmp / "u.txt", MATRIX), (1, 1), channel=1)),
+     refused(ValueError, "channel", "1", "u.txt", "channel 0")),
+    ("read-npz-with-unit", in_tmp(lambda tmp: HeightField.read(surface16().save(tmp / "s.npz"), unit="um")),
+     refused(ValueError, "s.npz", "unit", "'um'")),
+
+    # --- missing data: refused, cropped, filled (warned above 5 %), bounded
+    ("read-missing-crop-right", in_tmp(lambda tmp: HeightField.read(write(tmp / "n.txt", "nan" + MATRIX[1:] + "0 0 0 0\n"),
+                                                                      pixel_size=1e-6, missing="crop")),
+     right(lambda f: f.heights.tolist() == [[5, 6, 7, 8], [9, 10, 11, 12], [13, 14, 15, 16], [0, 0, 0, 0]]
+           and f.metadata["crop"] == [[1, 5], [0, 4]])),
+    ("read-missing-refused-names-crop", in_tmp(lambda tmp: HeightField.read(write(tmp / "n.txt", "nan" + MATRIX[1:]),
+                                                                              pixel_size=1e-6)),
+     refused(ValueError, "n.txt", "1 missing heights", "missing='crop'", "missing='harmonic'")),
+    ("read-missing-harmonic-warned", in_tmp(lambda tmp: HeightField.read(write(tmp / "n.txt", "1 2 3 4\n4 nan 6 7\n7 8 9 10\n"),
+                                                                           (1, 1), missing="harmonic")),
+     right(lambda f: np.isclose(f.heights[1, 1], 5.0) and f.metadata["filled_fraction"] == 1 / 12,
+           warns=MissingDataWarning)),
+    ("fill-beyond-memory-bound", lambda: harmonic_fill(np.zeros((2048, 2048)), _compact_hole(2048, 100), (1.0, 1.0)),
+     refused(ValueError, "3775249", "2048 x 2048", "max_points", "524288")),
+    ("fill-max-points-negative", lambda: harmonic_fill(np.zeros((4, 4)), np.eye(4, dtype=bool), (1.0, 1.0), max_points=-1),
+     refused(ValueError, "max_points", "-1")),
+
+    # --- HeightField.cropped and resampled
+    ("crop-empty", lambda: surface16().cropped((4, 4)), refused(ValueError, "x = (4, 4)", "keeps no pixel")),
+    ("crop-beyond", lambda: surface16().cropped((0, 17)), refused(ValueError, "x[1]", "17", "[0, 16]")),
+    ("crop-metres-beyond", lambda: surface16().cropped((0.0, 2e-4), by="metres"),
+     refused(ValueError, "x[1]", "0.0002", "[0, 0.0001]")),
+    ("crop-by-bogus", lambda: surface16().cropped((0, 4), by="px"), refused(ValueError, "by", "'px'")),
+    ("crop-right", lambda: surface16().cropped((2, 10), (3, 16)),
+     right(lambda f: np.array_equal(f.heights, surface16().heights[2:10, 3:16]) and f.grid.periodic == (False, False)
+           and np.allclose(f.grid.lengths, (8 / 16 * 1e-4, 13 / 16 * 1e-4), rtol=1e-14))),
+    ("resample-zero", lambda: surface16().resampled((0, 4)), refused(ValueError, "shape[0]", "0")),
+    ("resample-to-profile", lambda: surface16().resampled((16, 1)), refused(ValueError, "shape", "(16, 1)", "profile")),
+    ("resample-mean-right", lambda: surface16().resampled((5, 7)),
+     right(lambda f: abs(f.heights.mean() - surface16().heights.mean()) < 1e-21 and f.grid.lengths == G().lengths)),
+
+    # --- read_topography / from_topography (the optional SurfaceTopography)
+    ("topo-detrend-bogus", _st(lambda: from_topography(_st_map(), detrend="bogus")),
+     refused(ValueError, "detrend", "'bogus'", "'plane'")),
+    ("topo-read-detrend-number", _st(in_tmp(lambda tmp: read_topography(write(tmp / "p.txt", MATRIX), unit="um",
+                                                                         lengths=(1e-3, 1e-3), detrend=3))),
+     refused(ValueError, "detrend", "3", "'plane'")),
+    ("topo-empty-file", _st(in_tmp(lambda tmp: read_topography(write(tmp / "e.x3p", b"")))),
+     refused(ValueError, "e.x3p", "0 bytes")),
+    ("topo-missing-bogus", _st(lambda: from_topography(_st_map(), missing="zero")), refused(ValueError, "missing", "'zero'")),
+    ("topo-pixel-size-right", _st(in_tmp(lambda tmp: read_topography(write(tmp / "p.txt", MATRIX), unit="um",
+                                                                      pixel_size=(1e-6, 2.5e-6)).grid.spacing)),
+     right(lambda spacing: np.allclose(spacing, (1e-6, 2.5e-6), rtol=1e-14))),
+    ("topo-unit-factor-right", _st(in_tmp(lambda tmp: read_topography(write(tmp / "p.txt", MATRIX), unit=1e-6,
+                                                                       lengths=(4e-6, 4e-6)).heights)),
+     right(lambda h: np.isclose(h.max(), 16e-6, rtol=1e-14) and np.isclose(h.min(), 1e-6, rtol=1e-14))),
+    ("topo-pixel-size-stored", _st(lambda: from_topography(_st_map(), unit="um")),
+     refused(ValueError, "unit", "'um'", "carries its unit")),
+
+    # --- SolverReport: field-wise equality, consistent hash; a saved-and-loaded result's report equals the original
+    ("report-copy-equal", lambda: _report_copy() == hard16().solver, right(lambda equal: equal is True)),
+    ("report-copy-hash", lambda: hash(_report_copy()) == hash(hard16().solver), right(lambda equal: equal is True)),
+    ("report-nan-equal", lambda: _report_copy(fft_pairs=np.nan, residuals=np.array([np.nan, 1.0]))
+     == _report_copy(fft_pairs=np.nan, residuals=np.array([np.nan, 1.0])), right(lambda equal: equal is True)),
+    ("report-residuals-differ", lambda: _report_copy(residuals=2 * hard16().solver.residuals) == hard16().solver,
+     right(lambda equal: equal is False)),
+    ("report-other-type", lambda: hard16().solver == "report", right(lambda equal: equal is False)),
+    ("result-load-report-equal", in_tmp(lambda tmp: ContactResult.load(hard16().save(tmp / "r.npz")).solver == hard16().solver),
+     right(lambda equal: equal is True)),
+    ("result-load-smooth-report-equal", in_tmp(lambda tmp: ContactResult.load(exponential16().save(tmp / "r.npz")).solver
+                                                == exponential16().solver), right(lambda equal: equal is True)),
+
+    # --- provenance: no machine path in a written line
+    ("provenance-absolute-output", lambda: Provenance.of_command("python studies/x.py", ["--output", "/tmp/res2/out"],
+                                                                 {"output": "/tmp/res2/out"}).line,
+     right(lambda line: "/tmp" not in line and "--output out" in line and '"output": "out"' in line)),
 ]
 
 
