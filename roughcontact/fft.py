@@ -203,8 +203,10 @@ class PyFFTW:
         return self._scratch
 
     def _usable(self, array) -> bool:
+        # the strides too: numpy calls a one-element view contiguous whatever its strides (the real part of a
+        # complex 1 × 1 array has strides (16, 16)), and a plan refuses arrays with other strides than its own
         return (array.dtype == self.dtype and array.shape == self.shape and array.flags.c_contiguous
-                and array.ctypes.data % self._pyfftw.simd_alignment == 0)
+                and array.strides == self._scratch.strides and array.ctypes.data % self._pyfftw.simd_alignment == 0)
 
     def forward(self, real):
         if not self._usable(real):

@@ -30,10 +30,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from surfaces.validation import check_choice, check_finite_array, check_positive, check_real
+from surfaces.validation import check_choice, check_finite_array, check_positive
 
 from .electrostatics import DielectricStack, LeakyStack
-from .electrostatics.stack import check_frequency
+from .electrostatics.stack import check_frequency, check_voltage
 from .io.results import savable_field
 
 #: Relative step of a stiffness taken by differences of the traction (ε^(1/3) of float64; :meth:`Interaction.stiffness`).
@@ -142,7 +142,7 @@ class ElectrostaticInteraction(Interaction):
     def __post_init__(self):
         if not isinstance(self.stack, DielectricStack):
             raise TypeError(f"stack must be a DielectricStack, got {type(self.stack).__name__}")
-        object.__setattr__(self, "voltage", check_real("voltage", self.voltage))
+        object.__setattr__(self, "voltage", check_voltage(self.voltage))
         check_choice("field", self.field, FIELDS)
         if self.frequency is not None:
             object.__setattr__(self, "frequency", check_frequency(self.frequency))

@@ -14,6 +14,7 @@ NaN, or raise anything else. docs/dev/investigations.md ("The adversarial audit"
 from __future__ import annotations
 
 import contextlib
+import math
 import functools
 import io
 import os
@@ -769,6 +770,45 @@ ROWS += [
                                                                  {"output": "/tmp/res2/out"}).line,
      right(lambda line: "/tmp" not in line and "--output out" in line and '"output": "out"' in line)),
 ]
+
+
+# ---------------------------------------------------------------------------------------------- issue 36 (fields)
+
+def _ac_field_1x1():
+    """The AC field of a 1 × 1 periodic grid, many times: the plan's strides must not depend on a buffer's address
+    (it failed in about half of the calls); the one column is a uniform gap, so the series circuit answers."""
+    from roughcontact.electrostatics.ac import solve_ac_field
+    stack = DielectricStack()
+    return [solve_ac_field(stack, np.full((1, 1), 1e-6), (1e-5, 1e-5), 100.0, frequency=100.0).mean_attraction
+            for _ in range(20)]
+
+
+def _series_circuit(values):
+    """Every value the RMS-phasor series circuit of seed's stack at 1 µm, 100 V, 100 Hz (σ_sc of the stack)."""
+    from roughcontact.electrostatics.ac import inverse_permittivity
+    stack = DielectricStack()
+    thickness = stack.d_sc * inverse_permittivity(stack, 100.0) + 1e-6 + stack.d_i / stack.eps_i   # complex [m]
+    expected = 8.8541878128e-12 * 100.0 ** 2 / (2 * abs(thickness) ** 2)                           # ε0|V_a/g|²/2
+    return all(abs(value / expected - 1) < 1e-9 for value in values)
+
+
+ROWS += [
+    ("ac-field-1x1-periodic", _ac_field_1x1, right(_series_circuit)),
+    ("field-voltage-1e200", lambda: solve_field(DielectricStack(), np.full(16, 1e-6), 1e-4, 1e200),
+     refused(ValueError, "voltage", "1e+200", "1e+100")),
+    ("interaction-voltage-1e200", lambda: ElectrostaticInteraction(DielectricStack(), voltage=1e200),
+     refused(ValueError, "voltage", "1e+200", "1e+100")),
+    ("elastance-nan", lambda: DielectricStack().elastance(np.array([1e4, np.nan])), refused(ValueError, "q", "nan")),
+    ("elastance-negative", lambda: DielectricStack().elastance(-1.0), refused(ValueError, "q", "-1")),
+    ("elastance-string", lambda: DielectricStack().elastance("abc"), refused(TypeError, "q")),
+    ("crossover-nan", lambda: _crossover(math.nan), refused(ValueError, "rest_thickness", "nan")),
+    ("crossover-not-a-stack", lambda: _crossover(1e-6, stack="stack"), refused(TypeError, "stack", "str")),
+]
+
+
+def _crossover(rest_thickness, stack=None):
+    from roughcontact.electrostatics.ac import crossover_frequency
+    return crossover_frequency(DielectricStack() if stack is None else stack, rest_thickness)
 
 
 # ---------------------------------------------------------------------------------------------- helpers of rows

@@ -72,7 +72,7 @@ from surfaces.validation import check_real
 from ..io.results import ConvergenceWarning
 from .field import (DEFAULT_TOL, FieldSolution, StackField, _cg_curvature, _cg_direction, _cg_start, _cg_update,
                     _grid_and_gap)
-from .stack import EPSILON_0, DielectricStack, LeakyStack, check_frequency, slab_elastance
+from .stack import EPSILON_0, DielectricStack, LeakyStack, check_frequency, check_voltage, slab_elastance
 
 
 def inverse_permittivity(stack: DielectricStack, frequency) -> complex:
@@ -93,6 +93,8 @@ def crossover_frequency(stack: DielectricStack, rest_thickness: float) -> float:
 
     Its time constant is R_sc (C_sc + C_rest) per unit area; the time-averaged attraction of a uniform gap is
     σ̄(ω) = σ̄_∞ + (σ̄_0 − σ̄_∞) / (1 + (f/f_c)²), halfway between its DC and dielectric limits at f_c."""
+    if not isinstance(stack, DielectricStack):
+        raise TypeError(f"stack must be a DielectricStack, got {type(stack).__name__}")
     rest_thickness = check_real("rest_thickness", rest_thickness, low=0.0, low_open=True)
     return stack.sigma_sc / (2 * math.pi * EPSILON_0 * (stack.eps_sc + stack.d_sc / rest_thickness))
 
@@ -377,7 +379,7 @@ def solve_ac_field(stack: DielectricStack, gap, lengths=None, voltage: float = 1
     """
     shape = np.shape(gap.heights if isinstance(gap, HeightField) else gap)
     grid, gap = _grid_and_gap(gap, lengths, periodic)
-    voltage = check_real("voltage", voltage)
+    voltage = check_voltage(voltage)
     field = ACStackField(stack, grid, frequency, model=model, backend=backend, threads=1)
     unit_flux, iterations, residual = field.solve_flux(gap, tol=tol, maxiter=maxiter)
     if residual > tol:

@@ -47,7 +47,7 @@ from surfaces.validation import check_choice, check_finite_array, check_integer,
 from ..fft import make_backend
 from ..io.results import ConvergenceWarning
 from .air import LateralAirField
-from .stack import EPSILON_0, DielectricStack
+from .stack import EPSILON_0, DielectricStack, check_voltage
 
 MODELS = ("layered", "parallel_plate")
 #: the models of :func:`solve_field`: also the air's lateral field on fixed gaps (:mod:`.air`)
@@ -420,7 +420,7 @@ def solve_field(stack: DielectricStack, gap, lengths=None, voltage: float = 1.0,
     """
     shape = np.shape(gap.heights if isinstance(gap, HeightField) else gap)
     grid, gap = _grid_and_gap(gap, lengths, periodic)
-    voltage = check_real("voltage", voltage)
+    voltage = check_voltage(voltage)
     model = check_choice("model", model, FIELD_MODELS)
     tol = check_real("tol", tol, low=0.0, low_open=True)
     maxiter = None if maxiter is None else check_integer("maxiter", maxiter, low=1)

@@ -54,6 +54,16 @@ def check_frequency(frequency) -> float:
     return check_real("frequency", frequency, low=0.0)
 
 
+#: The largest |voltage| [V] a field solve takes: U² = 1e200 keeps every attraction ε0U²/(2h²) finite in float64
+#: down to air-equivalent thicknesses of 1e-60 m (far beyond any physical voltage; a larger one would overflow).
+MAX_VOLTAGE = 1e100
+
+
+def check_voltage(voltage) -> float:
+    """A ``voltage`` [V] as a float with |U| ≤ :data:`MAX_VOLTAGE`, or ``ValueError``/``TypeError`` naming it."""
+    return check_real("voltage", voltage, low=-MAX_VOLTAGE, high=MAX_VOLTAGE)
+
+
 #: Conductivity of the stratum corneum [S/m]: the static conduction term of dry skin's dielectric spectrum
 #: (Gabriel et al. 1996, ``docs/references.md`` §11); hydration raises it by orders of magnitude.
 SIGMA_SC = 2e-4
@@ -91,6 +101,7 @@ class DielectricStack:
         """M̂(q) ε0 = tanh(q d_sc)/(eps_sc q) + tanh(q d_i)/(eps_i q) [m]: the solid layers' air-equivalent thickness
         seen by a flux mode of wavenumber ``q`` [1/m] (each a flat slab, :func:`slab_elastance`); c at q = 0, the
         layers' (1/eps_sc + 1/eps_i)/q where q ≫ 1/d_i (``docs/guide/electrostatics.md``)."""
+        q = check_finite_array("q", q, nonnegative=True)
         return slab_elastance(q, self.d_sc, self.eps_sc) + slab_elastance(q, self.d_i, self.eps_i)
 
     def electrical_thickness(self, gap) -> np.ndarray:

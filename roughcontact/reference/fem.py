@@ -32,7 +32,7 @@ from surfaces.validation import (check_choice, check_finite_array, check_integer
                                  check_real)
 
 from ..io.results import ConvergenceWarning
-from ..electrostatics.stack import EPSILON_0, DielectricStack
+from ..electrostatics.stack import EPSILON_0, DielectricStack, check_voltage
 
 
 #: Gaps up to this fraction of the air-equivalent offset eps_a c are contact (merged air rows).
@@ -356,7 +356,7 @@ def field_solve_profile(stack: DielectricStack, gap, length: float, voltage: flo
     if gap.ndim != 1 or gap.size < 2:
         raise ValueError(f"gap must be a 1-D profile of at least 2 values; got shape {gap.shape}")
     length = check_positive("length", length)
-    voltage = check_real("voltage", voltage)
+    voltage = check_voltage(voltage)
     spacing = length / (gap.size if periodic else gap.size - 1)
     rows = dict(insulator_rows=insulator_rows, air_rows=air_rows, sc_rows=sc_rows)
     sc_first = _check_options(rows, solver, sc_first, (spacing,))
@@ -390,7 +390,7 @@ def field_solve_patch(stack: DielectricStack, gap, lengths, voltage: float, peri
     if np.ndim(lengths) != 1 or len(lengths) != 2:
         raise ValueError(f"lengths must be (Lx, Ly) in m; got {lengths!r}")
     lengths = tuple(check_positive("lengths", value) for value in lengths)
-    voltage = check_real("voltage", voltage)
+    voltage = check_voltage(voltage)
     spacing = tuple(length / (n if periodic else n - 1) for length, n in zip(lengths, gap.shape))
     rows = dict(insulator_rows=insulator_rows, air_rows=air_rows, sc_rows=sc_rows)
     sc_first = _check_options(rows, solver, sc_first, spacing)
