@@ -296,6 +296,15 @@ class ElasticHalfSpace:
                          f"on a padded grid up to {shape}: smallest Fourier multiplier {spectrum.min():.3g} of "
                          f"largest {spectrum.max():.3g}; refine the grid (pixel {dx:g} m x {dy:g} m)")
 
+    def padded_operator(self) -> PaddedOperator:
+        """The free surface's operator on its zero-padded transform grid as a periodic body: a
+        :class:`PaddedOperator` sharing this body's FFT buffers. ``ValueError`` on a periodic body (its own
+        operator is periodic already)."""
+        if self.periodic:
+            raise ValueError(f"padded_operator() is the free surface's operator on its padded grid; this body on "
+                             f"{self.grid} is periodic, its own operator is that periodic operator")
+        return PaddedOperator(self)
+
     def coarsened(self) -> ElasticHalfSpace:
         """A new half-space: the same body on ``grid.coarsened(2)`` (the solver's nested cold start);
         ``ValueError`` if the grid's pixel counts are odd."""
@@ -431,3 +440,63 @@ class ElasticHalfSpace:
         if p.shape != u.shape:
             raise ValueError(f"pressure and displacement differ in size: {p.size} vs {u.size}")
         return 0.5 * self.grid.pixel_area * _pressure_work(p, u)
+
+
+class PaddedOperator:
+    """A free surface's operator K_T on its zero-padded transform grid ``shape`` (the body's ``transform_shape``),
+    as a periodic body: the Fourier multiplier Φ_T of :class:`ElasticHalfSpace` without the window, so it has an
+    exact inverse and a positive uniform mode Φ_T(0) (``uniform_compliance``). Made by
+    :meth:`ElasticHalfSpace.padded_operator`.
+
+    A traction on the window alone (zero on the padding) gives the window the free surface's displacement K p: the
+    padded convolution is the linear one. A solve on the whole transform grid that leaves the padding's
+    displacement free and acts on the window only therefore has zero traction on the padding at its minimum,
+    and its window is the free surface's (the smooth contact solve, ``docs/guide/interactions.md``).
+
+    Arrays are of ``shape`` in ``dtype``; :meth:`empty` gives ones the FFT uses in place. Shares the body's FFT
+    buffers: not thread-safe, and a transform discards the body's pending :meth:`~ElasticHalfSpace.quadratic_form`.
+    """
+
+    def __init__(self, body: ElasticHalfSpace):
+        self._body = body
+        self.shape, self.dtype = body.transform_shape, body.dtype
+        self._size = float(body.transform_shape[0] * body.transform_shape[1])
+        #: Φ_T(0) [m/Pa]: the mean displacement of the transform grid per unit mean traction
+        self.uniform_compliance = float(body._multiplier[0, 0]) * self._size
+        #: the largest Φ_T(q) [m/Pa]
+        self.largest_compliance = float(body._multiplier.max()) * self._size
+        #: the displacement of a pixel under unit pressure on it alone [m/Pa] (the body's)
+        self.pixel_compliance = body.pixel_compliance
+
+    def empty(self) -> np.ndarray:
+        """An uninitialised array of ``shape`` in ``dtype`` that the FFT uses without copying."""
+        return self._body._fft.empty()
+
+    def displacement_into(self, pressure: np.ndarray, out: np.ndarray) -> np.ndarray:
+        """Write u = K_T p [m] for ``pressure`` [Pa] on the transform grid into ``out`` (returned); shapes and
+        finiteness checked (``ValueError``), as :meth:`ElasticHalfSpace.displacement_into`."""
+        for name, array in (("pressure", pressure), ("out", out)):
+            if np.shape(array) != self.shape:
+                raise ValueError(f"{name} has shape {np.shape(array)}, but the transform grid's shape is {self.shape}")
+        if not _all_finite(pressure.reshape(-1)):
+            raise ValueError("pressure must be finite everywhere (found NaN or inf); valid range: finite reals [Pa]")
+        return self._displacement_into(pressure, out)
+
+    def _displacement_into(self, pressure, out):
+        """:meth:`displacement_into` without its checks: the solvers' inner loop, whose arrays are its own."""
+        fft = self._body._fft
+        self._body._pending = False
+        fft.forward(pressure)
+        apply_multiplier(fft.spectrum, self._body._multiplier)
+        fft.backward(out)
+        return out
+
+    def stiffness_into(self, displacement: np.ndarray, out: np.ndarray) -> np.ndarray:
+        """Write p = K_T⁻¹ u [Pa] for ``displacement`` [m] on the transform grid into ``out`` (returned; it may be
+        ``displacement``): the exact inverse, Φ_T being positive at every q."""
+        fft = self._body._fft
+        self._body._pending = False
+        fft.forward(displacement)
+        apply_inverse_multiplier(fft.spectrum, self._body._multiplier, self._size ** 2, 0.0)
+        fft.backward(out)
+        return out

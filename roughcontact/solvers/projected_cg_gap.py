@@ -1,7 +1,8 @@
 """Contact with a smooth interaction law and the impenetrable flat: the minimum of the total energy over the gap.
 
 Unknown: the gap g ≥ 0 [m] on a periodic grid (``docs/guide/interactions.md``); a free surface is solved as the
-periodic body of its zero-padded grid, the law and the wall acting on the window only (:class:`_PaddedBody`). With u = g + h − s, the body's
+periodic body of its zero-padded grid, the law and the wall acting on the window only
+(:class:`~roughcontact.body.PaddedOperator`). With u = g + h − s, the body's
 displacement fluctuation u_f = (g − ⟨g⟩) + (h − ⟨h⟩) fixes the elastic traction fluctuation p_el = K⁻¹ u_f
 (zero mean). The external load λ = ⟨p⟩ [Pa] is the mean traction. Total energy per unit area:
 
@@ -45,7 +46,6 @@ from numba import njit
 from surfaces.validation import check_integer, check_real
 
 from .._version import __version__
-from ..body.elastic import apply_inverse_multiplier, apply_multiplier
 from ..electrostatics import EPSILON_0
 from ..electrostatics.field import FieldLaw, FieldSolveStalled
 from ..interactions import ElectrostaticInteraction, ExponentialAdhesion, MaugisDugdale
@@ -364,35 +364,6 @@ class _Energy:
         return elastic + interaction + external, abs(elastic) + abs(interaction) + abs(external)
 
 
-class _PaddedBody:
-    """The free surface on its zero-padded 2n × 2n transform grid, as a periodic body: the padded operator K_T is
-    a Fourier multiplier with an exact inverse and a positive uniform mode. With the law and the wall acting on
-    the window only and the padding's displacement left free, the minimum has zero traction on the padding, so
-    the window's displacement is the free surface's (``docs/guide/interactions.md``)."""
-
-    def __init__(self, body):
-        self.dtype, self._fft, self._multiplier = body.dtype, body._fft, body._multiplier
-        self._size = float(body.transform_shape[0] * body.transform_shape[1])
-        self.uniform_compliance = float(self._multiplier[0, 0]) * self._size
-        self.largest_compliance = float(self._multiplier.max()) * self._size
-        self.pixel_compliance = body.pixel_compliance
-
-    def empty(self):
-        return self._fft.empty()
-
-    def _displacement_into(self, pressure, out):
-        self._fft.forward(pressure)
-        apply_multiplier(self._fft.spectrum, self._multiplier)
-        self._fft.backward(out)
-        return out
-
-    def stiffness_into(self, displacement, out):
-        self._fft.forward(displacement)
-        apply_inverse_multiplier(self._fft.spectrum, self._multiplier, self._size ** 2, 0.0)
-        self._fft.backward(out)
-        return out
-
-
 def _start(heights, body, load, flat_position, x0, tol, maxiter):
     """What the solve starts from: ``x0``, else the hard-wall solution at the same control where it exists (None
     otherwise: the undeformed surface); its name and FFT pairs."""
@@ -450,7 +421,7 @@ def solve_smooth(surface, body, law, *, mean_pressure=None, total_force=None, pe
         window = np.ones(h.size, np.bool_)
         largest_compliance = max(float(body.compliance(2 * math.pi / max(grid.lengths))), body.uniform_compliance)
     else:                                                   # the window in the corner of the padded grid
-        operator = _PaddedBody(body)
+        operator = body.padded_operator()
         padded = np.zeros(body.transform_shape)
         padded[:nx, :ny] = heights
         h = padded.reshape(-1)

@@ -315,3 +315,45 @@ def test_displacement_into_refuses_non_finite_pressure():
     pressure[2, 3] = np.nan
     with pytest.raises(ValueError, match="pressure must be finite"):
         half.displacement_into(pressure, half.empty())
+
+
+@pytest.mark.parametrize("layer, backend", [({}, "pyfftw"), ({"thickness": 1e-4, "poisson": 0.3}, "scipy")])
+def test_padded_operator_is_the_free_surface_on_its_padded_grid(layer, backend):
+    """The free surface's padded operator K_T: a traction on the window alone gives the window the free surface's
+    displacement K p (the padded convolution is the linear one) and the padding the rest of the linear
+    convolution; K_T⁻¹ inverts it exactly on the whole padded grid (the window's own inverse does not, see
+    test_stiffness_inverts_the_displacement); Φ_T(0) is the padded grid's response to a uniform traction; the
+    largest Φ_T(q) bounds every mode. 1e-12: round-off of two FFTs."""
+    grid = Grid((24, 17), (1e-3, 0.7e-3), periodic=False)
+    half = ElasticHalfSpace(grid, E_star=E_STAR, backend=backend, **layer)
+    padded = half.padded_operator()
+    assert padded.shape == half.transform_shape and padded.dtype == half.dtype
+    pressure = np.random.default_rng(5).random(grid.shape) * 1e4
+    traction = padded.empty()
+    traction[...] = 0.0
+    traction[:24, :17] = pressure
+    displacement = padded.displacement_into(traction, padded.empty())
+    expected = half.displacement(pressure)
+    scale = np.abs(expected).max()
+    np.testing.assert_allclose(displacement[:24, :17], expected, rtol=0, atol=1e-12 * scale)
+    assert np.abs(displacement[24:, :]).max() > 1e-3 * scale           # the padding moves: it is not the window
+    recovered = padded.stiffness_into(displacement, padded.empty())
+    np.testing.assert_allclose(recovered, traction, rtol=0, atol=1e-9 * pressure.max())
+    uniform = padded.empty()
+    uniform[...] = 1e3
+    np.testing.assert_allclose(padded.displacement_into(uniform, padded.empty()), 1e3 * padded.uniform_compliance,
+                               rtol=1e-12)
+    assert padded.uniform_compliance > 0 and padded.largest_compliance >= padded.uniform_compliance
+    assert padded.pixel_compliance == half.pixel_compliance
+
+
+def test_padded_operator_refuses_a_periodic_body_and_bad_arrays():
+    with pytest.raises(ValueError, match="periodic"):
+        ElasticHalfSpace(Grid((8, 8), (1e-3, 1e-3), periodic=True), E_star=1e6).padded_operator()
+    padded = ElasticHalfSpace(Grid((8, 8), (1e-3, 1e-3), periodic=False), E_star=1e6).padded_operator()
+    with pytest.raises(ValueError, match=r"pressure has shape \(8, 8\), but the transform grid's shape is \(16, 16\)"):
+        padded.displacement_into(np.zeros((8, 8)), padded.empty())
+    pressure = np.zeros(padded.shape)
+    pressure[3, 3] = np.inf
+    with pytest.raises(ValueError, match="pressure must be finite"):
+        padded.displacement_into(pressure, padded.empty())
