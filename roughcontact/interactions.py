@@ -23,16 +23,24 @@ law that also models it (a potential whose minimum is the contact, such as the f
 well far stiffer than a pixel at the wall, which the solver converges through slowly.
 ``docs/guide/interactions.md`` has an example and the measured cost. The built-in laws refuse a non-finite gap, and a negative one in traction and stiffness
 (``ValueError`` naming ``gap``); their energy is +inf where the wall is penetrated.
+
+A law that acts pixel by pixel may also carry its ``kernel``: a :class:`~typing.NamedTuple` of its constant
+parameters (floats) whose class has ``at(gap, kernel)`` → (V, p_int, k) at one gap, written in arithmetic that
+numba compiles (:class:`ParallelPlateKernel`, :class:`ExponentialKernel`, :class:`DugdaleKernel`). The smooth
+contact solve compiles ``at`` into its fused passes, one specialisation per kernel class (cached on disk), and
+evaluates a law without a kernel through its numpy methods. This module itself does not import numba.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
 from surfaces.validation import check_choice, check_finite_array, check_positive
 
-from .electrostatics import DielectricStack, LeakyStack
+from .electrostatics import EPSILON_0, DielectricStack, LeakyStack
 from .electrostatics.stack import check_frequency, check_voltage
 from .io.results import savable_field
 
@@ -54,6 +62,51 @@ def _with_wall(law_energy, gap) -> np.ndarray:
     return np.where(gap >= 0, law_energy(np.maximum(gap, 0.0)), np.inf)
 
 
+class ParallelPlateKernel(NamedTuple):
+    """The per-pixel electrostatic law's kernel: V = −a/h, h = c + g b, with a = ε0 U²/2 [J/m], b = 1/ε_a and
+    c the dielectric offset [m] (seed Eqs. 20–22)."""
+
+    a: float
+    b: float
+    c: float
+
+    @staticmethod
+    def at(gap, kernel):
+        """(V [J/m²], p_int [Pa], k [Pa/m]) at the gap g [m]: one division, 1/h."""
+        inverse = 1.0 / (kernel.c + gap * kernel.b)
+        energy = -kernel.a * inverse
+        traction = energy * inverse * kernel.b
+        return energy, traction, -2.0 * traction * inverse * kernel.b
+
+
+class ExponentialKernel(NamedTuple):
+    """:class:`ExponentialAdhesion`'s kernel: V = −w e^(−g b), b = 1/ρ [1/m], w the work of adhesion [J/m²]."""
+
+    work_of_adhesion: float
+    inverse_length: float
+
+    @staticmethod
+    def at(gap, kernel):
+        """(V [J/m²], p_int [Pa], k [Pa/m]) at the gap g [m]."""
+        b = kernel.inverse_length
+        e = kernel.work_of_adhesion * math.exp(-gap * b)
+        return -e, -e * b, e * b * b
+
+
+class DugdaleKernel(NamedTuple):
+    """:class:`MaugisDugdale`'s kernel: V = −σ0 (δ_c − g) below δ_c, 0 beyond (σ0 [Pa], δ_c = ``length`` [m])."""
+
+    cohesive_stress: float
+    length: float
+
+    @staticmethod
+    def at(gap, kernel):
+        """(V [J/m²], p_int [Pa], k [Pa/m]) at the gap g [m]."""
+        if gap < kernel.length:
+            return -kernel.cohesive_stress * (kernel.length - gap), -kernel.cohesive_stress, 0.0
+        return 0.0, 0.0, 0.0
+
+
 class Interaction:
     """Base class: a gap-dependent interaction law (energy, traction, stiffness; see the module docstring)."""
 
@@ -66,6 +119,8 @@ class Interaction:
     #: A law also has ``length``: the gap scale [m] over which it varies (a field or a property).
     #: The largest attraction max_g −p_int(g) [Pa] over g ≥ 0, where known (None: not known).
     strength: float | None = None
+    #: The law's numba kernel (module docstring), or None: the solve evaluates the numpy methods.
+    kernel: NamedTuple | None = None
 
     def energy(self, gap) -> np.ndarray:
         raise NotImplementedError(f"{type(self).__name__} must implement energy(gap), V(g) [J/m²] "
@@ -170,6 +225,15 @@ class ElectrostaticInteraction(Interaction):
         """σ_el(0) [Pa], the largest attraction of the per-pixel law (at contact); None for the layered field."""
         return float(self.stack.attraction(0.0, self.voltage)) if self.local else None
 
+    @property
+    def kernel(self) -> ParallelPlateKernel | None:
+        """The per-pixel law's :class:`ParallelPlateKernel`; None for the layered field (non-local)."""
+        if not self.local:
+            return None
+        stack = self.stack
+        return ParallelPlateKernel(float(0.5 * EPSILON_0 * self.voltage ** 2), float(1.0 / stack.eps_a),
+                                   float(stack.dielectric_offset))
+
     def energy(self, gap) -> np.ndarray:
         return _with_wall(lambda g: self.stack.energy(g, self.voltage), gap)
 
@@ -198,6 +262,10 @@ class ExponentialAdhesion(Interaction):
     def strength(self) -> float:
         """w/ρ [Pa], the attraction at contact (the largest)."""
         return self.work_of_adhesion / self.length
+
+    @property
+    def kernel(self) -> ExponentialKernel:
+        return ExponentialKernel(float(self.work_of_adhesion), float(1.0 / self.length))
 
     def energy(self, gap) -> np.ndarray:
         return _with_wall(self._energy, gap)
@@ -237,6 +305,10 @@ class MaugisDugdale(Interaction):
         """σ0 [Pa], the attraction at every gap below δ_c."""
         return self.cohesive_stress
 
+    @property
+    def kernel(self) -> DugdaleKernel:
+        return DugdaleKernel(float(self.cohesive_stress), float(self.length))
+
     def energy(self, gap) -> np.ndarray:
         return _with_wall(lambda g: -self.cohesive_stress * np.maximum(self.length - g, 0.0), gap)
 
@@ -254,4 +326,5 @@ for _kind in (*LAWS.values(), DielectricStack, LeakyStack):
     savable_field(_kind)
 
 
-__all__ = ["Interaction", "HardWall", "ElectrostaticInteraction", "ExponentialAdhesion", "MaugisDugdale"]
+__all__ = ["Interaction", "HardWall", "ElectrostaticInteraction", "ExponentialAdhesion", "MaugisDugdale",
+           "ParallelPlateKernel", "ExponentialKernel", "DugdaleKernel"]

@@ -20,7 +20,8 @@ compliance), with a projected Armijo line search on Π started from the step tha
 quadratic model (curvature ⟨d, K⁻¹ d⟩ − ⟨k d²⟩). No point whose gap can be stable closes by more than 2 (g + law
 length) in one step (no tunnelling through an energy barrier into contact). Each step costs one FFT
 pair for z = K r and one for K⁻¹ d, plus one where the projection clipped the step; the pointwise work is in
-fused numba passes (the built-in laws evaluated inside them; a user's law through its numpy methods).
+fused numba passes (a law's kernel compiled into them, :attr:`~roughcontact.interactions.Interaction.kernel`;
+a law without one through its numpy methods).
 Π decreases monotonically; a step along which Π is concave (⟨d, K⁻¹ d⟩ ≤ ⟨k d²⟩ plus the layer's mean
 term) crosses an instability and is counted on the result (``unstable_steps``). After such a step the next
 one skips the model and its K⁻¹ d: it tries twice the last length with the trial's exact p_el, and its own
@@ -42,13 +43,13 @@ import warnings
 
 import numpy as np
 from numba import njit
+from numba.extending import overload
 
 from surfaces.validation import check_integer, check_real
 
 from .._version import __version__
-from ..electrostatics import EPSILON_0
 from ..electrostatics.field import FieldLaw, FieldSolveStalled
-from ..interactions import ElectrostaticInteraction, ExponentialAdhesion, MaugisDugdale
+from ..interactions import ElectrostaticInteraction
 from ..io.results import ConvergenceWarning
 from .inputs import _heights
 from .polonsky_keer import solve_hard_wall
@@ -66,47 +67,29 @@ FIELD_TOL_CEILING = 1e-4 # and no looser (the start's, whose residual is not kno
 _REFRESH = 50             # exact recomputation of p_el at least every _REFRESH incremental steps
 RETRACT_HALVINGS = 10     # halvings of a cold tensile solve's retract step before its branch is said to end
 
-# built-in laws evaluated inside the kernels: (kind, a, b, c)
-_ELECTROSTATIC, _EXPONENTIAL, _DUGDALE, _USER = 0, 1, 2, -1
+
+def _law_at(kernel, gap):
+    """V [J/m²], p_int = −dV/dg [Pa] and k = dp_int/dg [Pa/m] of a law's ``kernel`` at the gap g
+    (:attr:`~roughcontact.interactions.Interaction.kernel`)."""
+    return type(kernel).at(gap, kernel)
 
 
-def _law_code(law):
-    """(kind, a, b, c) of a built-in local law for :func:`_law_at`; ``_USER`` for any other (numpy methods, or the
-    layered field)."""
-    if isinstance(law, ElectrostaticInteraction) and law.local:
-        stack = law.stack                                   # V = −a/h, h = c + g b, a = ε0 U²/2, b = 1/ε_a
-        return _ELECTROSTATIC, 0.5 * EPSILON_0 * law.voltage ** 2, 1.0 / stack.eps_a, stack.dielectric_offset
-    if isinstance(law, ExponentialAdhesion):                # V = −a e^(−g b), b = 1/ρ
-        return _EXPONENTIAL, law.work_of_adhesion, 1.0 / law.length, 0.0
-    if isinstance(law, MaugisDugdale):
-        return _DUGDALE, law.cohesive_stress, law.length, 0.0
-    return _USER, 0.0, 0.0, 0.0
-
-
-@njit(cache=True)
-def _law_at(kind, a, b, c, g):
-    """V [J/m²], p_int = −dV/dg [Pa] and k = dp_int/dg [Pa/m] of a built-in law at the gap g."""
-    if kind == 0:                                           # one division: 1/h
-        inverse = 1.0 / (c + g * b)
-        energy = -a * inverse
-        traction = energy * inverse * b
-        return energy, traction, -2.0 * traction * inverse * b
-    if kind == 1:                                           # b = 1/ρ
-        e = a * math.exp(-g * b)
-        return -e, -e * b, e * b * b
-    if g < b:
-        return -a * (b - g), -a, 0.0
-    return 0.0, 0.0, 0.0
+@overload(_law_at)
+def _compiled_law_at(kernel, gap):
+    """In numba: the kernel class's own ``at``, compiled for that class and inlined (a static call: each pass that
+    evaluates a law has one specialisation per kernel class, cached like the pass)."""
+    at = njit(kernel.instance_class.at)
+    return lambda kernel, gap: at(gap, kernel)
 
 
 @njit(cache=True)
-def _evaluate_law(kind, a, b, c, g, window, h_f, pel, traction, stiffness):
-    """traction, stiffness ← the law at every g in the window (0 outside); returns the sums of
+def _evaluate_law(kernel, g, window, h_f, pel, traction, stiffness):
+    """traction, stiffness ← the law's ``kernel`` at every g in the window (0 outside); returns the sums of
     :func:`_work_terms` and Σ V, in one pass."""
     gap_sum, work, pel_sum, energy_sum = 0.0, 0.0, 0.0, 0.0
     for i in range(g.size):
         if window[i]:
-            energy, traction[i], stiffness[i] = _law_at(kind, a, b, c, g[i])
+            energy, traction[i], stiffness[i] = _law_at(kernel, g[i])
             energy_sum += energy
         else:
             traction[i], stiffness[i] = 0.0, 0.0
@@ -116,11 +99,12 @@ def _evaluate_law(kind, a, b, c, g, window, h_f, pel, traction, stiffness):
     return gap_sum, work, pel_sum, energy_sum
 
 
-def _evaluate(law, code, g, window, h_f, pel, traction, stiffness) -> tuple:
-    """The law's traction and stiffness at g in the window into the two arrays (0 outside; numba for a built-in
-    law); returns Σ g, Σ (g + h_f) p_el, Σ p_el and Σ V (the sums of Π/A, :meth:`_Energy.value`)."""
-    if code[0] != _USER:
-        return _evaluate_law(*code, g, window, h_f, pel, traction, stiffness)
+def _evaluate(law, kernel, g, window, h_f, pel, traction, stiffness) -> tuple:
+    """The law's traction and stiffness at g in the window into the two arrays (0 outside; in numba through its
+    ``kernel`` where it has one); returns Σ g, Σ (g + h_f) p_el, Σ p_el and Σ V (the sums of Π/A,
+    :meth:`_Energy.value`)."""
+    if kernel is not None:
+        return _evaluate_law(kernel, g, window, h_f, pel, traction, stiffness)
     traction[:], stiffness[:] = 0.0, 0.0
     inside = g[window]
     traction[window], stiffness[window] = law.traction(inside), law.stiffness(inside)
@@ -509,7 +493,7 @@ class _Solver:
         operator = energy.operator
         self.energy, self.law, self.operator, self.gap_scale = energy, law, operator, gap_scale
         self.window, self.largest_compliance, self.scale_to_operator = window, largest_compliance, scale_to_operator
-        self.code = _law_code(law)
+        self.kernel = law.kernel
         n, dtype = g.size, operator.dtype
         self.n = n
         self.g, self.trial = g, np.empty(n, dtype)
@@ -538,7 +522,7 @@ class _Solver:
     def evaluate(self, gap, pel, arrays):
         """Π/A, its magnitude and Σ V at ``gap`` with elastic traction ``pel``; the law evaluated into ``arrays``."""
         if self.field is None:
-            sums = _evaluate(self.law, self.code, gap, self.window, self.energy.h_f, pel, *arrays)
+            sums = _evaluate(self.law, self.kernel, gap, self.window, self.energy.h_f, pel, *arrays)
         else:
             sums = _work_terms(gap, self.energy.h_f, pel) + (self.evaluate_field(gap, arrays),)
         return self.energy.value(*sums, self.n) + (sums[-1],)

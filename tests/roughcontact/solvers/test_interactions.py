@@ -40,21 +40,37 @@ def test_law_traction_and_stiffness_are_derivatives(law, gaps):
                                  ElectrostaticInteraction(DielectricStack(eps_a=2.0), -150.0, field="parallel_plate"),
                                  ExponentialAdhesion(0.05, 2e-7), MaugisDugdale(0.05, 2e-7)])
 def test_solver_kernel_evaluates_the_laws_as_their_methods(law):
-    # the solver evaluates the built-in laws in a numba kernel (projected_cg_gap._law_at), a second writing of the
-    # formulas of roughcontact.interactions: the two must agree to round-off
-    from roughcontact.solvers.projected_cg_gap import _evaluate, _law_at, _law_code
+    # the solver evaluates a law through its numba kernel (law.kernel, compiled into projected_cg_gap's passes by
+    # _law_at), a second writing of the formulas of the law's numpy methods: the two must agree to round-off, in
+    # Python and compiled
+    from numba import njit
+
+    from roughcontact.solvers.projected_cg_gap import _evaluate, _law_at
 
     gaps = np.concatenate([[0.0, 1.999e-7, 2.001e-7], np.random.default_rng(0).uniform(0, 5e-6, 50)])
-    code = _law_code(law)
-    energy = np.array([_law_at(*code, gap)[0] for gap in gaps])
-    np.testing.assert_allclose(energy, law.energy(gaps), rtol=1e-13, atol=0)
+    kernel = law.kernel
+    compiled = njit(lambda kernel, gap: _law_at(kernel, gap))
+    for at in (_law_at, compiled):
+        values = np.array([at(kernel, gap) for gap in gaps])
+        for column, method in enumerate((law.energy, law.traction, law.stiffness)):
+            np.testing.assert_allclose(values[:, column], method(gaps), rtol=1e-13, atol=0)
     traction, stiffness = np.empty_like(gaps), np.empty_like(gaps)
     pel, h_f = np.linspace(0.5, 1.5, gaps.size), np.linspace(-1e-6, 1e-6, gaps.size)
-    sums = _evaluate(law, code, gaps, np.ones(gaps.size, np.bool_), h_f, pel, traction, stiffness)
+    sums = _evaluate(law, kernel, gaps, np.ones(gaps.size, np.bool_), h_f, pel, traction, stiffness)
     np.testing.assert_allclose(traction, law.traction(gaps), rtol=1e-13, atol=0)
     np.testing.assert_allclose(stiffness, law.stiffness(gaps), rtol=1e-13, atol=0)
     expected = (gaps.sum(), np.sum((gaps + h_f) * pel), pel.sum(), np.sum(law.energy(gaps)))
     np.testing.assert_allclose(sums, expected, rtol=1e-13, atol=0)
+
+
+def test_only_the_per_pixel_laws_carry_a_kernel():
+    # the layered field is non-local and a user's law has no kernel unless it brings one: both are evaluated
+    # through their numpy methods; a kernel's parameters are floats (an integer would change the compiled pass)
+    assert HardWall().kernel is None and ElectrostaticInteraction(STACK, 100.0).kernel is None
+    assert ElectrostaticInteraction(STACK, 100.0, field="parallel_plate").kernel.a == pytest.approx(
+        0.5 * 8.8541878128e-12 * 100.0 ** 2, rel=1e-9)
+    for law in (ExponentialAdhesion(1, 2), MaugisDugdale(1, 2)):
+        assert all(type(value) is float for value in law.kernel)
 
 
 def test_laws_reject_bad_parameters():
@@ -221,7 +237,7 @@ def test_step_curvature_is_the_energy_second_difference():
     # (gap_solver._step_curvature); it must be Π's second derivative along that step. The central second
     # difference over Δg ~ 2.5 nm at gaps ≥ 0.2 µm differs by the law's fourth-order term: measured 8.3e-5,
     # 1.3e-3 at 10 nm, falling 4× per halving of Δg.
-    from roughcontact.solvers.projected_cg_gap import _Energy, _evaluate, _law_code, _step_curvature
+    from roughcontact.solvers.projected_cg_gap import _Energy, _evaluate, _step_curvature
     surface, half = rough_patch()
     law = ElectrostaticInteraction(STACK, 100.0)
     h = surface.heights.reshape(-1)
@@ -235,7 +251,7 @@ def test_step_curvature_is_the_energy_second_difference():
         """Π/A, p_el and k at the gap."""
         pel = energy.elastic_traction(gap, half.empty(), half.empty()).copy()
         traction, stiffness = np.empty(n), np.empty(n)
-        sums = _evaluate(law, _law_code(law), gap, window, energy.h_f, pel, traction, stiffness)
+        sums = _evaluate(law, law.kernel, gap, window, energy.h_f, pel, traction, stiffness)
         return energy.value(*sums, n)[0], pel, stiffness
 
     value, pel, stiffness = state(g)
