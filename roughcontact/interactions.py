@@ -27,8 +27,9 @@ well far stiffer than a pixel at the wall, which the solver converges through sl
 A law that acts pixel by pixel may also carry its ``kernel``: a :class:`~typing.NamedTuple` of its constant
 parameters (floats) whose class has ``at(gap, kernel)`` → (V, p_int, k) at one gap, written in arithmetic that
 numba compiles (:class:`ParallelPlateKernel`, :class:`ExponentialKernel`, :class:`DugdaleKernel`). The smooth
-contact solve compiles ``at`` into its fused passes, one specialisation per kernel class (cached on disk), and
-evaluates a law without a kernel through its numpy methods. This module itself does not import numba.
+contact solve compiles ``at`` into its fused passes, one specialisation per kernel class (the library's cached on
+disk, a user's compiled once per process), and evaluates a law without a kernel through its numpy methods. This
+module itself does not import numba.
 """
 from __future__ import annotations
 

@@ -1,20 +1,21 @@
 """Contact solvers. Layer 3: imports the body, the interaction laws and io below it.
 
-Inside, imports run one way: :mod:`.inputs` and :mod:`.result` (what every solver takes and returns) ←
-:mod:`.polonsky_keer` (the hard wall) ← :mod:`.projected_cg_gap` (smooth laws; its cold start is a hard-wall
-solve) ← :mod:`.deferred_correction` (an AC drive, around the smooth solve) ← :mod:`.dispatch`
-(:func:`solve_contact`, which picks the method) ← :mod:`.sweep` (:func:`load_path`) ←
-:mod:`.problem` (:class:`ContactProblem`) ← :mod:`.continuation` (approach/retract paths and pull-off).
+Inside, imports run one way: :mod:`.result` (what every solver returns) ← :mod:`.inputs` (the checks, and the
+:class:`Control` of a solve) ← :mod:`.polonsky_keer` (the hard wall) ← :mod:`.starts` (a smooth law's start: the
+hard-wall solve) ← :mod:`.projected_cg_gap` (smooth laws) ← :mod:`.deferred_correction` (an AC drive, around the
+smooth solve) ← :mod:`.dispatch` (the registry of methods) ← :mod:`.sweep` (a problem's load steps) ←
+:mod:`.problem` (:class:`ContactProblem`, checked once, with :func:`solve_contact` and :func:`load_path`) ←
+:mod:`.continuation` (approach/retract paths and pull-off). The methods take a checked problem and control and
+check nothing again.
 """
 from __future__ import annotations
 
 from .continuation import JUMP_AREA, LoadCycle, PullOff, load_cycle, pull_off
-from .dispatch import solve_contact
-from .inputs import default_tolerance
-from .problem import ContactProblem
+from .inputs import Control, default_tolerance
+from .problem import ContactProblem, load_path, solve_contact
 from .result import PERIMETER_CORRECTION, ContactResult, SolverReport, SolverState, boundary_edges
-from .sweep import PREDICTORS, load_path
+from .sweep import PREDICTORS
 
-__all__ = ["ContactProblem", "ContactResult", "JUMP_AREA", "LoadCycle", "PERIMETER_CORRECTION", "PREDICTORS", "PullOff",
-           "SolverReport", "SolverState", "boundary_edges", "default_tolerance", "load_cycle", "load_path", "pull_off",
-           "solve_contact"]
+__all__ = ["ContactProblem", "ContactResult", "Control", "JUMP_AREA", "LoadCycle", "PERIMETER_CORRECTION",
+           "PREDICTORS", "PullOff", "SolverReport", "SolverState", "boundary_edges", "default_tolerance",
+           "load_cycle", "load_path", "pull_off", "solve_contact"]

@@ -44,16 +44,15 @@ import warnings
 
 import numpy as np
 
-from surfaces.validation import check_real
-
 from ..electrostatics import EPSILON_0, DielectricStack, LeakyStack
 from ..electrostatics.ac import ACStackField, circuit_thickness, medium_ratio
 from ..electrostatics.field import StackField
 from ..interactions import ElectrostaticInteraction
 from ..io.results import ConvergenceWarning
-from .projected_cg_gap import FIELD_TOL_FLOOR, _start as energy_start, solve_smooth
-from .inputs import _heights
+from .inputs import Control
+from .projected_cg_gap import FIELD_TOL_FLOOR, solve_smooth
 from .result import ContactResult
+from .starts import hard_wall_start
 
 METHOD = "deferred-correction"
 MAX_CORRECTIONS = 20       # corrections before the fixed point is reported as not converged
@@ -160,24 +159,24 @@ def _correction_size(body, change, gap_scale: float) -> float:
     return float(np.sqrt(np.mean(fluctuation ** 2) + (longest * mean) ** 2)) / gap_scale
 
 
-def _start(heights, body, load, penetration, x0, tol, maxiter):
+def _start(problem, control, heights):
     """(the result the first solve starts from or None, its gap, its name, its FFT pairs): the energy solve's own
-    start (``x0``, else the hard-wall solution at the same control where one exists), solved here once since its
-    gap also matches ε_eff; else None and the rigid gap (the energy solve starts itself)."""
-    h_max = float(heights.max())
-    flat_position = None if penetration is None else h_max - penetration
-    begin, kind, pairs = energy_start(heights, body, load, flat_position, x0, tol, maxiter)
+    start (:func:`~.starts.hard_wall_start`: ``x0``, else the hard-wall solution at the same control where one
+    exists), solved here once since its gap also matches ε_eff; else None and the rigid gap of the float64
+    ``heights`` (the energy solve starts itself)."""
+    begin, kind, pairs = hard_wall_start(problem, control)
     if begin is None:
-        return None, np.maximum((h_max if flat_position is None else flat_position) - heights, 0.0), kind, pairs
+        h_max = float(heights.max())
+        flat_position = h_max if control.penetration is None else h_max - control.penetration
+        return None, np.maximum(flat_position - heights, 0.0), kind, pairs
     return begin, np.asarray(begin.gap, dtype=np.float64), kind, pairs
 
 
-def solve_driven(surface, body, law, *, mean_pressure=None, total_force=None, penetration=None, tol,
-                 maxiter=10000, x0=None, callback=None, warn=True) -> ContactResult:
-    """The equilibrium of ``surface`` on the flat under the time-averaged attraction of the AC drive ``law``
-    (module docstring); load control (``mean_pressure`` [Pa] or ``total_force`` [N]) or ``penetration`` [m], as
-    for :func:`~roughcontact.solvers.projected_cg_gap.solve_smooth`, whose ``tol``, ``maxiter``, ``callback`` and
-    ``warn`` every energy solve takes.
+def solve_driven(problem, control: Control) -> ContactResult:
+    """The equilibrium of the checked ``problem`` (a :class:`~roughcontact.solvers.problem.ContactProblem` whose
+    law is an AC drive) on the flat under the drive's time-averaged attraction (module docstring), at the checked
+    ``control`` (a load or a penetration), as for :func:`~roughcontact.solvers.projected_cg_gap.solve_smooth`,
+    whose ``tol``, ``maxiter``, ``callback`` and ``warn`` every energy solve takes.
 
     The result's ``interaction_traction`` is the true t(g) = −σ̄(g) at the returned gap and ``pressure`` the
     solved traction p_S + c (their difference on the open gap is the last correction's change);
@@ -191,17 +190,11 @@ def solve_driven(surface, body, law, *, mean_pressure=None, total_force=None, pe
     and of the leak surrogate's matching (``fft_pairs`` counts them with the solves' and the hard-wall start's).
     """
     began = time.perf_counter()
+    body, law, tol = problem.body, problem.interaction, control.tol
     grid = body.grid
-    given = {"mean_pressure": mean_pressure, "total_force": total_force, "penetration": penetration}
-    given = {name: value for name, value in given.items() if value is not None}
-    if len(given) != 1:
-        raise ValueError(f"give exactly one of mean_pressure, total_force, penetration; got {sorted(given) or 'none'}")
-    (control, requested), = given.items()
-    requested = check_real(control, requested)
-    heights = _heights(surface, body).astype(np.float64)
-    load = requested / grid.area if control == "total_force" else requested if control == "mean_pressure" else None
-    begin, gap, start_kind, pairs = _start(heights, body, load, None if load is not None else requested, x0, tol,
-                                           maxiter)
+    heights = np.asarray(problem.heights, dtype=np.float64)
+    load, requested = control.mean_pressure, control.value
+    begin, gap, start_kind, pairs = _start(problem, control, heights)
     deviation = heights - float(heights.mean())
     gap_scale = float(np.sqrt(np.mean(deviation ** 2))) or law.length
     correction = _Correction(law, grid, gap, max(FIELD_TOL_FLOOR, FIELD_TOL_FACTOR * tol))
@@ -212,8 +205,8 @@ def solve_driven(surface, body, law, *, mean_pressure=None, total_force=None, pe
         shifted = heights - shift
         target = dict(mean_pressure=load - float(np.mean(frozen))) if load is not None else \
             dict(penetration=requested + float(shifted.max()) - float(heights.max()))
-        result = solve_smooth(shifted, body, correction.surrogate, tol=tol, maxiter=maxiter, x0=result,
-                              callback=callback, warn=False, **target)
+        result = solve_smooth(problem.with_heights(shifted, correction.surrogate),
+                              control.at(**target, x0=result, warn=False))
         pairs += result.solver.fft_pairs + 2                                 # and K c, K Δc
         start_kind = result.solver.start if begin is None and not iterations else start_kind   # the solve's own
         iterations.append(result.iterations)
@@ -237,7 +230,7 @@ def solve_driven(surface, body, law, *, mean_pressure=None, total_force=None, pe
                    f"> {correction.tol:g}")
     leak = ", leaking interface" if leaking(law.stack) else ""
     message += f" (AC drive {law.frequency:g} Hz, {law.voltage:g} V RMS{leak})"
-    if not converged and warn:
+    if not converged and control.warn:
         warnings.warn(message, ConvergenceWarning, stacklevel=3)
     correction_pairs = correction.drive.fft_pairs + correction.matching_pairs
     surrogate = correction.surrogate
@@ -250,7 +243,7 @@ def solve_driven(surface, body, law, *, mean_pressure=None, total_force=None, pe
                                  iterations=sum(iterations), start=start_kind, fft_pairs=float(pairs + correction_pairs),
                                  wall_time=time.perf_counter() - began, details={**result.solver.details, **details})
     return _driven_result(result, body, heights, law, frozen, traction if result.converged else None, report,
-                          control, requested)
+                          control.kind, requested)
 
 
 def _driven_result(result, body, heights, law, frozen, traction, report, control, requested) -> ContactResult:

@@ -30,15 +30,9 @@ import warnings
 import numpy as np
 from numba import njit
 
-from surfaces import HeightField
-from surfaces.validation import (check_bool, check_choice, check_finite_array, check_integer, check_positive,
-                                 check_real)
-
 from .._version import __version__
-from ..body import ElasticHalfSpace
-from ..interactions import Interaction
 from ..io.results import ConvergenceWarning
-from .inputs import _check_body, _checked_interaction, _heights, default_tolerance
+from .inputs import Control
 from .result import ContactResult, SolverReport, SolverState
 
 METHOD = "polonsky-keer"
@@ -212,15 +206,10 @@ def _finalise_gap(u, h, p, shift, gap, contact):
         gap[i] = 0.0 if (contact[i] or g < 0) else g
 
 
-def _warm_pressure(x0, shape):
-    """The warm-start pressure [Pa] of ``x0`` (a ContactResult or a pressure array), checked; None without
-    ``x0`` or when it is zero everywhere (no information: the cold start applies)."""
-    if x0 is None:
-        return None
-    pressure = check_finite_array("x0", x0.pressure if isinstance(x0, ContactResult) else x0, nonnegative=True)
-    if pressure.shape != shape:
-        raise ValueError(f"x0 has shape {pressure.shape}, but the grid has shape {shape}")
-    return pressure if pressure.any() else None
+def _warm_pressure(x0):
+    """The warm-start pressure [Pa] ``x0`` (the checked control's pressure field); None without ``x0`` or when it
+    is zero everywhere (no information: the cold start applies)."""
+    return x0 if x0 is not None and x0.any() else None
 
 
 def _pk_pressure(heights, body, mean_pressure, flat_position):
@@ -233,25 +222,25 @@ def _pk_pressure(heights, body, mean_pressure, flat_position):
     return (overlap * (body.E_star / contact_size)).astype(body.dtype)
 
 
-def _nested_start(surface, body, mean_pressure, flat_position, tol, maxiter, preconditioned):
+def _nested_start(problem, control, flat_position, preconditioned):
     """Cold-start pressure [Pa]: the same problem solved on the grid coarsened 2 × 2 (itself started the same
     way, down to ``NESTED_MIN`` pixels per axis) to tol max(tol, ``NESTED_TOL``), whose pressure, each coarse
     pixel's on the fine pixels it covers (:func:`_repeat_into`), is the fine guess — cascade multi-resolution
     (Bemporad & Paggi 2015, Int. J. Solids Struct. 69:94). Returns the coarse pressure (None where the grid does
     not halve or the flat misses the coarse surface) and the coarse solves' iterations, coarsest first. The
     coarse body is built here and dropped, so the fine solve's peak memory is unchanged."""
-    grid = body.grid
+    grid = problem.body.grid
     if any(n % 2 or n // 2 < NESTED_MIN for n in grid.shape[:1 if grid.is_profile else 2]):
         return None, []
-    coarse = surface.coarsened(2)
-    if mean_pressure is not None:
-        control = {"mean_pressure": mean_pressure}
+    coarse = problem.coarsened()
+    if control.mean_pressure is not None:
+        target = {"mean_pressure": control.mean_pressure}
     else:                                                   # the same flat position (coarse peaks are lower)
-        control = {"penetration": float(coarse.heights.max()) - flat_position}
-        if control["penetration"] <= 0:
+        target = {"penetration": float(coarse.surface.heights.max()) - flat_position}
+        if target["penetration"] <= 0:
             return None, []
-    result = solve_hard_wall(coarse, body.coarsened(), **control, tol=max(tol, NESTED_TOL), maxiter=maxiter,
-                             preconditioned=preconditioned, warn=False)
+    result = solve_hard_wall(coarse, control.at(**target, tol=max(control.tol, NESTED_TOL), x0=None, callback=None,
+                                                warn=False), preconditioned=preconditioned)
     if not result.pressure.any():
         return None, []
     return result.pressure, result.solver.details["nested_iterations"] + [result.iterations]
@@ -286,35 +275,23 @@ def _full_contact(h, body, mean_pressure, pressure, displacement):
     return h_mean - body.uniform_compliance * mean_pressure
 
 
-def solve_hard_wall(surface, body: ElasticHalfSpace, interaction: Interaction | None = None, *,
-                    mean_pressure=None, total_force=None, penetration=None, tol=None, maxiter=10000, x0=None,
-                    cold_start="nested", callback=None, preconditioned=None, warn=True) -> ContactResult:
-    """Polonsky–Keer's solve (module docstring) of :func:`~roughcontact.solvers.dispatch.solve_contact` for the
-    hard wall, or a law that vanishes (0 V); same arguments."""
+def solve_hard_wall(problem, control: Control, *, cold_start="nested", preconditioned=None) -> ContactResult:
+    """Polonsky–Keer's solve (module docstring) of the checked ``problem`` (a
+    :class:`~roughcontact.solvers.problem.ContactProblem`: the hard wall, or a law that vanishes, 0 V) at the
+    checked ``control``, from its ``x0`` or the ``cold_start``; ``preconditioned`` by default on 2-D grids
+    (:func:`~roughcontact.solvers.problem.solve_contact`)."""
     start = time.perf_counter()
-    _check_body(body)
-    interaction = _checked_interaction(interaction)
-    tol = default_tolerance(body.dtype, interaction) if tol is None else tol
-    given = {name: value for name, value in (("mean_pressure", mean_pressure), ("total_force", total_force),
-                                             ("penetration", penetration)) if value is not None}
-    if len(given) != 1:
-        raise ValueError(f"give exactly one of mean_pressure, total_force, penetration; got {sorted(given) or 'none'}")
-    tol = check_real("tol", tol, low=0.0, high=1.0, low_open=True, high_open=True)
-    check_integer("maxiter", maxiter, low=0)
-    check_choice("cold_start", cold_start, COLD_STARTS)
-    if callback is not None and not callable(callback):
-        raise TypeError(f"callback must be callable, got {type(callback).__name__}")
+    body, interaction, heights = problem.body, problem.interaction, problem.heights
+    tol, maxiter, callback, warn = control.tol, control.maxiter, control.callback, control.warn
     grid = body.grid
     # K⁻¹ saves steps on 2-D grids; on 1-D profiles it does not (docs/guide/solver.md): off there by default
-    preconditioned = not grid.is_profile if preconditioned is None else check_bool("preconditioned", preconditioned)
-    heights = _heights(surface, body)
-    warm = _warm_pressure(x0, heights.shape)
+    preconditioned = not grid.is_profile if preconditioned is None else preconditioned
+    warm = _warm_pressure(control.x0)
     warm_started = warm is not None
-    if total_force is not None or mean_pressure is not None:    # a law that vanishes (0 V) takes any sign, as
-        mean_pressure = _checked_load(total_force, mean_pressure, grid, interaction)    # its smooth neighbours
+    mean_pressure, penetration = control.mean_pressure, control.penetration
     load_control = mean_pressure is not None
     h_max = float(heights.max())
-    flat_position = None if load_control else h_max - check_real("penetration", penetration)
+    flat_position = None if load_control else h_max - penetration
     if not load_control and body.periodic and body.uniform_compliance == 0.0:
         limit = h_max - float(heights.mean(dtype=np.float64))
         if penetration >= limit and penetration > 0:
@@ -323,7 +300,7 @@ def solve_hard_wall(surface, body: ElasticHalfSpace, interaction: Interaction | 
                              "load control for full contact)")
 
     settings = {"tol": tol, "maxiter": int(maxiter), "start": "x0" if warm is not None else "pk",
-              "control": next(iter(given)), "requested": float(next(iter(given.values()))),
+              "control": control.kind, "requested": float(control.value),
               "details": {"preconditioned": preconditioned, "nested_iterations": [], "restart_every_entry_from": None,
                           "full_contact": False}}
 
@@ -346,10 +323,8 @@ def solve_hard_wall(surface, body: ElasticHalfSpace, interaction: Interaction | 
                        start, 0, detached=True)
     coarse_pressure = None
     if warm is None and cold_start == "nested":             # solved first, before the fine work arrays exist
-        field = surface if isinstance(surface, HeightField) else HeightField(grid, heights)
         coarse_pressure, settings["details"]["nested_iterations"] = _nested_start(
-            field, body, mean_pressure, flat_position, tol, maxiter, preconditioned)
-        del field                                           # (a grid copy when the heights came as an array)
+            problem, control, flat_position, preconditioned)
         settings["start"] = "pk" if coarse_pressure is None else "nested"
     # grid-sized work arrays (aligned: the periodic FFT uses them in place); t and z_in stay 0 outside I_c
     p, u, t, r = (body.empty().reshape(-1) for _ in range(4))
@@ -379,10 +354,8 @@ def solve_hard_wall(surface, body: ElasticHalfSpace, interaction: Interaction | 
         # cycles with the K⁻¹ preconditioner far above round-off (seen on 1-D skin profiles at 0.25 µm pixels,
         # about one in ten) converges without it: solve again unpreconditioned
         del p, u, t, r, z_in, index, solver
-        retry = solve_hard_wall(surface, body, mean_pressure=mean_pressure if total_force is None else None,
-                                total_force=total_force, penetration=penetration, tol=tol, maxiter=maxiter,
-                                cold_start=cold_start, callback=callback,
-                                preconditioned=preconditioned and warm_started, interaction=interaction, warn=warn)
+        retry = solve_hard_wall(problem, dataclasses.replace(control, x0=None), cold_start=cold_start,
+                                preconditioned=preconditioned and warm_started)
         key = "warm_start_stalled_at" if warm_started else "preconditioned_stalled_at"
         details = {**retry.solver.details, key: iterations}
         return dataclasses.replace(retry, solver=dataclasses.replace(retry.solver, details=details))
@@ -561,13 +534,6 @@ class _PolonskyKeer:
             self.recompute_displacement()
         _scale(self.p, self.alpha)
         _scale(self.u, self.alpha)
-
-
-def _checked_load(total_force, mean_pressure, grid, interaction) -> float:
-    """The mean pressure [Pa] of a load control: > 0 for the hard wall; any sign for a law that vanishes."""
-    name, value = ("total_force", total_force) if total_force is not None else ("mean_pressure", mean_pressure)
-    value = check_real(name, value) if interaction.smooth else check_positive(name, value)
-    return value / grid.area if name == "total_force" else value
 
 
 def _result(p, u, h, shift, body, interaction, settings, iterations, residuals, converged, message, start, transforms,

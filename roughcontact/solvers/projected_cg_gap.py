@@ -45,22 +45,19 @@ import numpy as np
 from numba import njit
 from numba.extending import overload
 
-from surfaces.validation import check_integer, check_real
-
 from .._version import __version__
 from ..electrostatics.field import FieldLaw, FieldSolveStalled
 from ..interactions import ElectrostaticInteraction
 from ..io.results import ConvergenceWarning
-from .inputs import _heights
-from .polonsky_keer import solve_hard_wall
+from .inputs import Control
 from .result import ContactResult, SolverReport, SolverState
+from .starts import hard_wall_start
 
 METHOD = "projected-cg-gap"
 ARMIJO = 1e-4             # sufficient-decrease constant of the projected line search
 MAX_HALVINGS = 40         # line-search step halvings before the direction is given up
 APPROACH = 2.0            # a stable point closes by at most this times (gap + law length) in one step
 ENERGY_ROUND_OFF = 1e-12  # relative round-off of the energy sums (float64), below which a rise is not a rise
-START_TOL = 1e-2          # tolerance of the hard-wall solve that starts a cold solve (a guess, not the answer)
 FIELD_TOL_FACTOR = 0.1   # the layered field's solves to this times the solve's relative residual,
 FIELD_TOL_FLOOR = 1e-12  # but no tighter than this
 FIELD_TOL_CEILING = 1e-4 # and no looser (the start's, whose residual is not known yet)
@@ -99,12 +96,19 @@ def _evaluate_law(kernel, g, window, h_f, pel, traction, stiffness):
     return gap_sum, work, pel_sum, energy_sum
 
 
+#: :func:`_evaluate_law` compiled without numba's disk cache, for a kernel class defined outside roughcontact (a
+#: user's): the cache's index names every kernel class compiled into it, and a process that cannot import one could
+#: not read the index at all. Such a kernel compiles once per process.
+_evaluate_user_law = njit(_evaluate_law.py_func)
+
+
 def _evaluate(law, kernel, g, window, h_f, pel, traction, stiffness) -> tuple:
     """The law's traction and stiffness at g in the window into the two arrays (0 outside; in numba through its
     ``kernel`` where it has one); returns Σ g, Σ (g + h_f) p_el, Σ p_el and Σ V (the sums of Π/A,
     :meth:`_Energy.value`)."""
     if kernel is not None:
-        return _evaluate_law(kernel, g, window, h_f, pel, traction, stiffness)
+        cached = type(kernel).__module__.startswith("roughcontact.")
+        return (_evaluate_law if cached else _evaluate_user_law)(kernel, g, window, h_f, pel, traction, stiffness)
     traction[:], stiffness[:] = 0.0, 0.0
     inside = g[window]
     traction[window], stiffness[window] = law.traction(inside), law.stiffness(inside)
@@ -348,57 +352,19 @@ class _Energy:
         return elastic + interaction + external, abs(elastic) + abs(interaction) + abs(external)
 
 
-def _start(heights, body, load, flat_position, x0, tol, maxiter):
-    """What the solve starts from: ``x0``, else the hard-wall solution at the same control where it exists (None
-    otherwise: the undeformed surface); its name and FFT pairs."""
-    if isinstance(x0, ContactResult):
-        if x0.gap.shape != heights.shape:
-            raise ValueError(f"x0 has shape {x0.gap.shape}, but the grid has shape {heights.shape}")
-        return x0, "x0", 0.0
-    if x0 is not None:
-        raise TypeError(f"x0 of a smooth interaction must be a ContactResult (its gap starts the solve), got "
-                        f"{type(x0).__name__}")
-    h_max = float(heights.max())
-    # the start keeps the K⁻¹ preconditioner on profiles too: a smooth solve that crosses instabilities ends in an
-    # equilibrium that depends on its start (docs/dev/investigations.md), and the profile studies were measured so
-    if load is not None and load > 0:
-        start = solve_hard_wall(heights, body, mean_pressure=load, tol=max(tol, START_TOL), maxiter=maxiter,
-                                preconditioned=True, warn=False)
-    elif flat_position is not None and flat_position < h_max:
-        start = solve_hard_wall(heights, body, penetration=h_max - flat_position, tol=max(tol, START_TOL),
-                                maxiter=maxiter, preconditioned=True, warn=False)
-    else:
-        return None, "rigid", 0.0
-    return start, "hard wall", start.solver.fft_pairs
-
-
-def solve_smooth(surface, body, law, *, mean_pressure=None, total_force=None, penetration=None, tol,
-                 maxiter=10000, x0=None, callback=None, warn=True) -> ContactResult:
-    """Solve the contact of ``surface`` with the flat under the smooth ``law`` (module docstring).
-
-    Called by :func:`~roughcontact.solvers.dispatch.solve_contact` for a smooth interaction: ``mean_pressure`` [Pa] or
-    ``total_force`` [N] of any sign (external load control), or ``penetration`` δ = max(h) − s [m] of any sign.
-    ``x0``: a previous result, whose gap starts the solve.
+def solve_smooth(problem, control: Control) -> ContactResult:
+    """Solve the checked ``problem`` (a :class:`~roughcontact.solvers.problem.ContactProblem` with a smooth law) at
+    the checked ``control`` (module docstring): an external load of any sign, or a penetration δ = max(h) − s [m]
+    of any sign; ``control.x0``, a previous result, starts the solve from its gap.
     """
     start = time.perf_counter()
+    body, law, heights = problem.body, problem.interaction, problem.heights
     grid = body.grid
-    given = {name: value for name, value in (("mean_pressure", mean_pressure), ("total_force", total_force),
-                                             ("penetration", penetration)) if value is not None}
-    if len(given) != 1:
-        raise ValueError(f"give exactly one of mean_pressure, total_force, penetration; got {sorted(given) or 'none'}")
-    (control, requested), = given.items()
-    requested = check_real(control, requested)
-    tol = check_real("tol", tol, low=0.0, high=1.0, low_open=True, high_open=True)
-    check_integer("maxiter", maxiter, low=0)
-    if callback is not None and not callable(callback):
-        raise TypeError(f"callback must be callable, got {type(callback).__name__}")
-    heights = _heights(surface, body)
-    load = requested / grid.area if control == "total_force" else requested if control == "mean_pressure" else None
-    if x0 is None and load is not None and load < 0 and not (law.strength is not None and -load > law.strength):
-        return _retract_to(surface, body, law, load, control, requested, start,
-                           dict(tol=tol, maxiter=maxiter, callback=callback, warn=warn))
+    load, requested = control.mean_pressure, control.value
+    if control.x0 is None and load is not None and load < 0 and not (law.strength is not None and -load > law.strength):
+        return _retract_to(problem, control, start)
     flat_position = None if load is not None else float(heights.max()) - requested
-    begin, start_kind, start_pairs = _start(heights, body, load, flat_position, x0, tol, maxiter)
+    begin, start_kind, start_pairs = hard_wall_start(problem, control)
     nx, ny = grid.shape
     if body.periodic:                                       # the grid itself
         operator, h = body, heights.reshape(-1)
@@ -425,23 +391,24 @@ def solve_smooth(surface, body, law, *, mean_pressure=None, total_force=None, pe
     deviation = heights - float(heights.mean(dtype=np.float64))
     gap_scale = float(np.sqrt(np.mean(deviation * deviation, dtype=np.float64))) or law.length or 1.0
     state = _Solver(g, energy, law, gap_scale, start_pairs, window, largest_compliance, scale_to_operator, grid)
-    return state.run(tol, maxiter, callback, warn, body, heights, control, requested, start_kind, start)
+    return state.run(control.tol, control.maxiter, control.callback, control.warn, body, heights, control.kind,
+                     requested, start_kind, start)
 
 
-def _retract_to(surface, body, law, load, control, requested, start, options) -> ContactResult:
+def _retract_to(problem, control, start) -> ContactResult:
     """A cold solve under the tensile load ``load`` [Pa] (< 0, within the law's strength): the equilibrium at zero
     load, then a quasi-static retract along its branch to ``load``, each solve from the last equilibrium, the step
     halved where a solve finds none (at most ``RETRACT_HALVINGS`` times). A cold descent from the undeformed
     surface would not follow the branch: it separates where a retract stays attached. Returns the equilibrium at
     ``load`` (start "retract from 0 Pa"; ``details["retract_loads"]`` the loads solved), or, where the branch
     ends first, the detached result, its message bracketing the branch's pull-off."""
-    warn = options.pop("warn")
-    attached = solve_smooth(surface, body, law, mean_pressure=0.0, warn=False, **options)
+    load = control.mean_pressure
+    attached = solve_smooth(problem, control.at(mean_pressure=0.0, warn=False))
     solved, pairs, trial = [0.0], attached.solver.fft_pairs, attached
     attached_load, step = 0.0, -load
     while attached.converged and attached_load > load:
-        trial = solve_smooth(surface, body, law, mean_pressure=max(load, attached_load - step), x0=attached,
-                             warn=False, **options)
+        trial = solve_smooth(problem, control.at(mean_pressure=max(load, attached_load - step), x0=attached,
+                                                 warn=False))
         solved.append(trial.requested)
         pairs += trial.solver.fft_pairs
         if trial.converged:
@@ -459,9 +426,9 @@ def _retract_to(surface, body, law, load, control, requested, start, options) ->
     report = dataclasses.replace(trial.solver, message=message, start="retract from 0 Pa", fft_pairs=pairs,
                                  wall_time=time.perf_counter() - start,
                                  details={**trial.solver.details, "retract_loads": solved})
-    if not report.converged and warn:
+    if not report.converged and control.warn:
         warnings.warn(message, ConvergenceWarning, stacklevel=4)
-    return dataclasses.replace(trial, solver=report, control=control, requested=float(requested))
+    return dataclasses.replace(trial, solver=report, control=control.kind, requested=float(control.value))
 
 
 def _start_gap(begin, h, operator, window, heights, flat_position, start_pairs):

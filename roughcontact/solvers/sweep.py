@@ -1,14 +1,11 @@
-"""Load sweeps: :func:`load_path` solves a sequence of loads, each warm-started from a prediction of its
-pressure field."""
+"""Load sweeps: :func:`load_steps` solves a problem at a sequence of loads, each warm-started from a prediction of
+its pressure field (:func:`~roughcontact.solvers.problem.load_path`)."""
 from __future__ import annotations
 
 import numpy as np
 
 from surfaces.validation import check_choice
 
-from ..body import ElasticHalfSpace
-from .dispatch import solve_contact
-from .inputs import _checked_interaction
 from .result import ContactResult
 
 
@@ -38,20 +35,13 @@ def _start_results(start) -> list:
     return starts
 
 
-def load_path(surface, body: ElasticHalfSpace, mean_pressures, warm_start=True, start=None, progress=False,
-              predictor="secant", **solver_options):
-    """Yield :func:`solve_contact` results for each of ``mean_pressures`` [Pa] in order.
-
-    With ``warm_start`` each solve starts from a prediction of its pressure field, which the solver rescales
-    to the new load: ``predictor="secant"`` (default) extrapolates linearly in load from the two previous
-    results (:func:`_secant_prediction`; exact where p is linear in load, e.g. in full contact), ``"previous"``
-    takes the last field as it is; the first warm step has only one result and takes it. ``start`` warm-starts
-    the first step, so a sweep resumes where it stopped: a ``ContactResult`` (e.g. the last one saved by an
-    interrupted sweep) or the last two in order, with which the secant predictor continues exactly as if
-    uninterrupted. ``progress`` shows a tqdm bar with the contact fraction and iterations of the
-    last step. ``solver_options`` go to :func:`solve_contact`. (docs/guide/solver.md, "Warm start", measures the
-    predictors and lists the variants that did not shorten warm solves.)
-    """
+def load_steps(problem, mean_pressures, warm_start=True, start=None, progress=False, predictor="secant",
+               solver_options=None):
+    """The results of the checked ``problem`` (a :class:`~roughcontact.solvers.problem.ContactProblem`) at each of
+    ``mean_pressures`` [Pa] in order, each solve warm-started as :func:`~roughcontact.solvers.problem.load_path`
+    says (its arguments checked here, before the first step): ``problem.solve(mean_pressure=…, x0=…,
+    **solver_options)``."""
+    solver_options = solver_options or {}
     if "x0" in solver_options:
         raise ValueError("load_path sets x0 itself; pass warm_start=False to start every step cold, or start= "
                          "to warm-start the first step")
@@ -61,15 +51,14 @@ def load_path(surface, body: ElasticHalfSpace, mean_pressures, warm_start=True, 
     check_choice("predictor", predictor, PREDICTORS)
     if isinstance(mean_pressures, (str, bytes)) or not np.iterable(mean_pressures):
         raise TypeError(f"mean_pressures must be a sequence of mean pressures [Pa], got {mean_pressures!r:.60}")
-    smooth = _checked_interaction(solver_options.get("interaction")).smooth   # (its warm start is the last gap)
-    return _load_steps(surface, body, mean_pressures, warm_start, starts, progress, predictor, smooth,
-                       solver_options)
+    return _load_steps(problem, mean_pressures, warm_start, starts, progress, predictor, solver_options)
 
 
-def _load_steps(surface, body, mean_pressures, warm_start, starts, progress, predictor, smooth, solver_options):
-    """The generator behind :func:`load_path` (its arguments checked before the first step)."""
+def _load_steps(problem, mean_pressures, warm_start, starts, progress, predictor, solver_options):
+    """The generator behind :func:`load_steps` (its arguments checked before the first step)."""
     from tqdm.auto import tqdm
 
+    smooth = problem.interaction.smooth                     # (its warm start is the last gap)
     previous = starts[-1] if starts else None
     before = starts[0] if len(starts) == 2 else None
     steps = tqdm(mean_pressures, desc="load path", unit="step", disable=not progress)
@@ -77,7 +66,7 @@ def _load_steps(surface, body, mean_pressures, warm_start, starts, progress, pre
         x0 = previous if warm_start else None
         if warm_start and predictor == "secant" and before is not None and not smooth:
             x0 = _secant_prediction(previous, before, mean_pressure)
-        result = solve_contact(surface, body, mean_pressure=mean_pressure, x0=x0, **solver_options)
+        result = problem.solve(mean_pressure=mean_pressure, x0=x0, **solver_options)
         previous, before = result, previous
         steps.set_postfix(contact_fraction=f"{result.contact_fraction:.4g}", iterations=result.iterations,
                           refresh=False)

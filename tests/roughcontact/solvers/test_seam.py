@@ -1,6 +1,9 @@
-"""The solver seam: method registry and per-method options, the typed SolverReport, and the audit's misbehaving
-calls (tension, user laws, float32, 0 V, pull_off's arguments)."""
+"""The solver seam: method registry and per-method options, the typed SolverReport, the audit's misbehaving
+calls (tension, user laws, float32, 0 V, pull_off's arguments), and the inputs checked once (ContactProblem and
+its Control; the methods check nothing again)."""
 import dataclasses
+import math
+import typing
 import warnings
 
 import numpy as np
@@ -244,3 +247,165 @@ def test_a_pickled_result_comes_back_read_only():
     for array in (clone.pressure, clone.gap, clone.contact, clone.solver.residuals):
         with pytest.raises(ValueError, match="read-only"):
             array[0] = 0
+
+
+# -- checked once: ContactProblem and its Control; the methods check nothing again ---------------------------------
+CHECKS = ("check_body", "checked_surface", "checked_interaction", "checked_control")
+#: what a method module may not call: every check of surfaces.validation and of solvers.inputs
+CHECK_NAMES = {"check_real", "check_positive", "check_integer", "check_bool", "check_choice", "check_finite_array",
+               *CHECKS}
+
+
+@pytest.fixture
+def counted(monkeypatch):
+    """Counters on the input checks and on the heights' conversion to the body's dtype, where problem.py (their
+    only caller) calls them; ``conversions`` lists (input, output) of each conversion."""
+    from roughcontact.solvers import problem
+    counts = dict.fromkeys(CHECKS, 0)
+    conversions = []
+
+    def counting(name, original):
+        def check(*args, **kwargs):
+            counts[name] += 1
+            return original(*args, **kwargs)
+        return check
+
+    for name in CHECKS:
+        monkeypatch.setattr(problem, name, counting(name, getattr(problem, name)))
+    original = problem.body_heights
+
+    def converting(heights, body):
+        converted = original(heights, body)
+        conversions.append((heights, converted))
+        return converted
+
+    monkeypatch.setattr(problem, "body_heights", converting)
+    return counts, conversions
+
+
+def rough_patch(n, dtype=np.float64):
+    from surfaces import self_affine
+    grid = Grid((n, n), (1e-3, 1e-3), periodic=True)
+    return (self_affine(grid, hurst=0.8, rms_height=3e-6, short_cutoff=8e-3 / n, rng=1),
+            ElasticHalfSpace(grid, E_star=1e6, dtype=dtype))
+
+
+@pytest.mark.parametrize("case", ["nested", "smooth", "ac"])
+def test_each_input_is_checked_and_converted_once_per_solve(counted, case):
+    counts, conversions = counted
+    # float32: converting the heights makes a copy, so a second conversion of the user's heights would show
+    surface, body = rough_patch(128 if case == "nested" else 32, np.float32)
+    law = {"nested": None, "smooth": ElectrostaticInteraction(STACK, 50.0, field="parallel_plate"),
+           "ac": ElectrostaticInteraction(STACK, 30.0, frequency=1e3)}[case]
+    result = solve_contact(surface, body, mean_pressure=1e3, interaction=law, warn=False)
+    # each path solves more than one problem: the coarse grids, the hard-wall start, the corrections
+    assert {"nested": result.solver.details.get("nested_iterations"), "smooth": result.solver.start == "hard wall",
+            "ac": result.solver.details.get("corrections", 0) >= 1 and result.solver.start == "hard wall"}[case]
+    assert counts == dict.fromkeys(CHECKS, 1)
+    mine = [(given, converted) for given, converted in conversions if given is surface.heights]
+    assert len(mine) == 1 and mine[0][1].dtype == np.float32
+    for given, converted in conversions[1:]:          # later: the converted heights as they are, or other heights
+        assert converted is given or not np.shares_memory(given, surface.heights)
+
+
+def test_a_sweep_checks_its_problem_once_and_each_control_once(counted):
+    from roughcontact import load_path
+    counts, _ = counted
+    surface, body = rough_patch(32)
+    results = list(load_path(surface, body, [1e3, 2e3, 4e3]))
+    assert len(results) == 3 and all(result.converged for result in results)
+    assert counts == {"check_body": 1, "checked_surface": 1, "checked_interaction": 1, "checked_control": 3}
+
+
+def test_the_methods_call_no_check():
+    # structurally: the method modules import no check, so a second check of an input cannot happen there
+    from roughcontact.solvers import deferred_correction, polonsky_keer, projected_cg_gap, starts
+    for module in (polonsky_keer, projected_cg_gap, deferred_correction, starts):
+        assert not CHECK_NAMES & set(vars(module)), module.__name__
+
+
+def test_the_functional_form_is_the_problem_solved():
+    surface, body = rough_patch(32)
+    law = ExponentialAdhesion(1e-3, 2e-7)
+    for control in ({"mean_pressure": 1e3}, {"total_force": 1e3 * surface.grid.area}, {"penetration": 3e-6}):
+        direct = solve_contact(surface, body, interaction=law, **control)
+        solved = ContactProblem(surface, body, law).solve(**control)
+        np.testing.assert_array_equal(direct.gap, solved.gap)
+        assert (direct.control, direct.requested) == (solved.control, solved.requested) == next(iter(control.items()))
+
+
+def test_the_control_is_checked_and_in_si():
+    surface, body = rough_patch(16)
+    problem = ContactProblem(surface, body, ExponentialAdhesion(1e-3, 2e-7))
+    force = problem.control(total_force=2.0)
+    assert (force.kind, force.value, force.mean_pressure, force.penetration) == ("total_force", 2.0, 2e6, None)
+    assert force.tol == 1e-8 and force.maxiter == 10000 and force.x0 is None and force.warn is True
+    position = problem.control(penetration=-1e-6, tol=1e-3)
+    assert (position.mean_pressure, position.penetration, position.tol) == (None, -1e-6, 1e-3)
+    moved = position.at(mean_pressure=5.0, warn=False)
+    assert (moved.kind, moved.value, moved.mean_pressure, moved.tol, moved.warn) == ("mean_pressure", 5.0, 5.0,
+                                                                                      1e-3, False)
+    for keywords, error, words in [({}, ValueError, "give exactly one"),
+                                   ({"mean_pressure": 1.0, "penetration": 1e-6}, ValueError, "give exactly one"),
+                                   ({"mean_pressure": 1.0, "tol": 1.0}, ValueError, "tol"),
+                                   ({"mean_pressure": 1.0, "maxiter": -1}, ValueError, "maxiter"),
+                                   ({"mean_pressure": 1.0, "callback": 3}, TypeError, "callback must be callable"),
+                                   ({"mean_pressure": 1.0, "warn": "no"}, TypeError, "warn must be True or False"),
+                                   ({"mean_pressure": 1.0, "x0": np.zeros((16, 16))}, TypeError, "ContactResult")]:
+        with pytest.raises(error, match=words):
+            problem.control(**keywords)
+    with pytest.raises(ValueError, match=r"mean_pressure = -1.0 is out of range; valid range \(0, inf\)"):
+        ContactProblem(surface, body).control(mean_pressure=-1.0)
+    assert ContactProblem(surface, body).control(mean_pressure=1.0, x0=np.ones((16, 16))).x0.shape == (16, 16)
+
+
+def test_the_problem_holds_its_heights_in_the_body_dtype_once():
+    surface, body = rough_patch(64, np.float32)
+    problem = ContactProblem(surface, body)
+    assert problem.heights.dtype == np.float32 and not problem.heights.flags.writeable
+    np.testing.assert_array_equal(problem.heights, surface.heights.astype(np.float32))
+    assert ContactProblem(surface, ElasticHalfSpace(surface.grid, E_star=1e6)).heights is surface.heights  # no copy
+    coarse = problem.coarsened()
+    assert coarse.body.grid == surface.grid.coarsened(2) and coarse.interaction == problem.interaction
+    np.testing.assert_array_equal(coarse.surface.heights, surface.coarsened(2).heights)
+    shifted = problem.with_heights(surface.heights + 1e-6, ExponentialAdhesion(1e-3, 2e-7))
+    assert shifted.body is body and shifted.heights.dtype == np.float32
+    with pytest.raises(ValueError, match="finite"):                    # new heights get a HeightField's checks
+        problem.with_heights(np.full(surface.grid.shape, np.nan))
+
+
+class Exponential(typing.NamedTuple):
+    """A user's kernel: the exponential law's arithmetic (interactions.ExponentialKernel) in the user's class."""
+    work: float
+    inverse_length: float
+
+    @staticmethod
+    def at(gap, kernel):
+        e = kernel.work * math.exp(-gap * kernel.inverse_length)
+        return -e, -e * kernel.inverse_length, e * kernel.inverse_length ** 2
+
+
+@dataclasses.dataclass(frozen=True)
+class KernelOnly(Interaction):
+    """A user's law that only has its kernel: the solve must run on it (its numpy methods raise)."""
+    work: float = 1e-3
+    length: float = 2e-7
+
+    @property
+    def kernel(self):
+        return Exponential(self.work, 1.0 / self.length)
+
+
+def test_a_users_kernel_is_compiled_into_the_solve():
+    surface, body = rough_patch(32)
+    mine = solve_contact(surface, body, mean_pressure=1e3, interaction=KernelOnly())
+    built_in = solve_contact(surface, body, mean_pressure=1e3, interaction=ExponentialAdhesion(1e-3, 2e-7))
+    assert mine.converged and mine.iterations == built_in.iterations
+    np.testing.assert_array_equal(mine.gap, built_in.gap)                # the same arithmetic, bit for bit
+    # numba's disk cache of the pass holds the library's kernel classes only: its index names each class, and a
+    # process that cannot import this test module could not read it
+    from roughcontact.solvers.projected_cg_gap import _evaluate_law
+    assert {signature[0].instance_class.__module__ for signature in _evaluate_law.signatures} <= {
+        "roughcontact.interactions"}
+    with pytest.raises(TypeError, match="kernel must be None or a NamedTuple of floats"):
+        solve_contact(surface, body, mean_pressure=1e3, interaction=KernelOnly(work=1))   # an int parameter
