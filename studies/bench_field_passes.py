@@ -20,7 +20,7 @@ import numpy as np
 from _bench import count_argument
 from roughcontact import solve_contact
 from roughcontact.electrostatics import EPSILON_0
-from roughcontact.electrostatics.field import (FieldLaw, _cg_curvature, _cg_direction, _cg_update, _law_outputs_into,
+from roughcontact.electrostatics.field import (FieldLaw, cg_curvature, cg_direction, cg_update, _law_outputs_into,
                                                _law_start_into)
 from roughcontact.io import output_directory, parse_arguments, write_csv
 from roughcontact.study.patch import default_scene_patch
@@ -57,10 +57,10 @@ def rows_for(n, calls, repeat):
     elastic[...] = gap
 
     def cg_pass():                                                   # the pointwise work of one CG pass
-        _cg_curvature(direction.reshape(-1), product.reshape(-1), column.reshape(-1))
-        _cg_update(1e-30, direction.reshape(-1), product.reshape(-1), flux.reshape(-1), residual.reshape(-1),
+        cg_curvature(direction.reshape(-1), product.reshape(-1), column.reshape(-1))
+        cg_update(1e-30, direction.reshape(-1), product.reshape(-1), flux.reshape(-1), residual.reshape(-1),
                    z.reshape(-1), inverse_diagonal.reshape(-1))
-        _cg_direction(direction.reshape(-1), z.reshape(-1), 0.5)
+        cg_direction(direction.reshape(-1), z.reshape(-1), 0.5)
 
     passes = {
         "elastic FFT pair": lambda: patch.body.displacement_into(elastic, displacement),

@@ -32,7 +32,7 @@ class MissingDataWarning(UserWarning):
     """``missing="harmonic"`` filled more than :data:`FILL_WARNING_FRACTION` of a map's heights."""
 
 
-def _physical_size(shape: tuple, lengths, pixel_size) -> tuple:
+def physical_size(shape: tuple, lengths, pixel_size) -> tuple:
     """``(Lx, Ly)`` [m] of a map of ``shape`` from its ``lengths`` or its ``pixel_size`` (exactly one given)."""
     if (lengths is None) == (pixel_size is None):
         raise ValueError("give the physical size as lengths (Lx, Ly) or as pixel_size (dx or (dx, dy)) in m, "
@@ -145,7 +145,7 @@ def measured_window(measured) -> tuple:
     return window
 
 
-def _missing_handled(heights, lengths, periodic, missing: str, source: str) -> tuple:
+def missing_handled(heights, lengths, periodic, missing: str, source: str) -> tuple:
     """``(heights, lengths, periodic, record)`` of a measured map ``heights`` [m] on a window of ``lengths`` [m]
     whose NaN heights are missing: refused (``missing="refuse"``), filled by :func:`harmonic_fill` (warned above
     :data:`FILL_WARNING_FRACTION`) or cropped away (the :func:`measured_window`, its axes no longer periodic
@@ -292,7 +292,7 @@ class HeightField:
             heights = heights[:, None]
         if heights.size == 0:
             raise ValueError(f"heights is empty (shape {heights.shape}); it needs at least one pixel per axis")
-        grid = Grid(heights.shape, _physical_size(heights.shape, lengths, pixel_size), periodic)
+        grid = Grid(heights.shape, physical_size(heights.shape, lengths, pixel_size), periodic)
         return cls(grid, heights, {"generator": "from_array", **metadata})
 
     @classmethod
@@ -355,8 +355,8 @@ class HeightField:
             if lengths is None and pixel_size is None:
                 raise ValueError(f"lengths or pixel_size (physical size in m) is required to read {path.name}; "
                                  "got neither")
-        size = _physical_size(heights.shape, lengths, pixel_size)
-        heights, size, periodic, record = _missing_handled(heights * scale, size, periodic, missing, label)
+        size = physical_size(heights.shape, lengths, pixel_size)
+        heights, size, periodic, record = missing_handled(heights * scale, size, periodic, missing, label)
         return cls.from_array(heights, size, periodic, **source, **record)
 
     # -- arithmetic ----------------------------------------------------------------------------------------

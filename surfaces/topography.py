@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from .grid import Grid
-from .heightfield import MISSING, HeightField, _missing_handled, _physical_size
+from .heightfield import MISSING, HeightField, missing_handled, physical_size
 from .io import LENGTH_UNITS, length_unit
 from .validation import check_choice, check_real
 
@@ -74,7 +74,7 @@ def from_topography(topography, *, unit=None, missing: str = "refuse", detrend: 
         lengths = (length, length / heights.shape[0])
     else:
         lengths = tuple(float(size) * factor for size in topography.physical_sizes)
-    heights, lengths, periodic, fill = _missing_handled(heights * factor, lengths, bool(topography.is_periodic),
+    heights, lengths, periodic, fill = missing_handled(heights * factor, lengths, bool(topography.is_periodic),
                                                         missing, name)
     record = {"generator": "SurfaceTopography", "unit": topography.unit or str(unit), **metadata, **fill}
     field = HeightField(Grid(heights.shape, lengths, periodic), heights, record)
@@ -187,7 +187,7 @@ def _unit_and_size(path, info, unit, lengths, pixel_size) -> tuple:
         raise ValueError(f"{path} stores no physical size; pass lengths=(Lx, Ly) or pixel_size (dx or (dx, dy)) "
                          "in m")
     shape = counts if len(counts) == 2 else (counts[0], 1)
-    size = _physical_size(shape, lengths, pixel_size)[:len(counts)]
+    size = physical_size(shape, lengths, pixel_size)[:len(counts)]
     options["physical_sizes"] = tuple(check_real(f"lengths[{axis}]", length, low=0.0, low_open=True) / metres
                                       for axis, length in enumerate(size))
     return options, factor

@@ -70,8 +70,8 @@ from surfaces import HeightField
 from surfaces.validation import check_real
 
 from ..io.results import ConvergenceWarning
-from .field import (DEFAULT_TOL, FieldSolution, StackField, _cg_curvature, _cg_direction, _cg_start, _cg_update,
-                    _grid_and_gap)
+from .field import (DEFAULT_TOL, FieldSolution, StackField, cg_curvature, cg_direction, cg_start, cg_update,
+                    grid_and_gap)
 from .stack import EPSILON_0, DielectricStack, LeakyStack, check_frequency, check_voltage, slab_elastance
 
 
@@ -261,20 +261,20 @@ class ACStackField(StackField):
         # the dielectric CG's kernels run COCG on complex arrays: their sums are the bilinear rᵀz and pᵀAp; the
         # residual's norm rᴴr is taken apart (their r·r is the bilinear rᵀr)
         self.apply_elastance(flux, self._work[0])
-        rz = _cg_start(flat_flux, product, flat_column, flat_inverse, residual, z, direction)[0]
+        rz = cg_start(flat_flux, product, flat_column, flat_inverse, residual, z, direction)[0]
         rr = np.vdot(residual, residual).real
         target = (tol * tol) * column.size
         iterations = 0
         while rr > target and iterations < maxiter:
             self.apply_elastance(self._work[3], self._work[0])
-            curvature = _cg_curvature(direction, product, flat_column)
+            curvature = cg_curvature(direction, product, flat_column)
             if curvature == 0:
                 break                               # a COCG breakdown: reported through the residual
             step = rz / curvature
             rz_old = rz
-            rz = _cg_update(step, direction, product, flat_flux, residual, z, flat_inverse)[0]
+            rz = cg_update(step, direction, product, flat_flux, residual, z, flat_inverse)[0]
             rr = np.vdot(residual, residual).real
-            _cg_direction(direction, z, rz / rz_old)
+            cg_direction(direction, z, rz / rz_old)
             iterations += 1
         self.residual = self._work[1]
         return iterations, float(np.sqrt(rr / column.size))
@@ -378,7 +378,7 @@ def solve_ac_field(stack: DielectricStack, gap, lengths=None, voltage: float = 1
     ``gap``, ``lengths``, ``periodic``, ``model``, ``tol``, ``maxiter`` and ``backend`` as for ``solve_field``.
     """
     shape = np.shape(gap.heights if isinstance(gap, HeightField) else gap)
-    grid, gap = _grid_and_gap(gap, lengths, periodic)
+    grid, gap = grid_and_gap(gap, lengths, periodic)
     voltage = check_voltage(voltage)
     field = ACStackField(stack, grid, frequency, model=model, backend=backend, threads=1)
     unit_flux, iterations, residual = field.solve_flux(gap, tol=tol, maxiter=maxiter)

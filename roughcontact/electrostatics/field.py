@@ -161,17 +161,17 @@ class StackField:
             self._work = tuple(np.empty(column.shape) for _ in range(4))       # allocated once per grid
         product, residual, z, direction = self._work
         self.apply_elastance(flux, product)
-        rz, rr = _cg_start(flux.reshape(-1), product.reshape(-1), column.reshape(-1), inverse_diagonal.reshape(-1),
+        rz, rr = cg_start(flux.reshape(-1), product.reshape(-1), column.reshape(-1), inverse_diagonal.reshape(-1),
                            residual.reshape(-1), z.reshape(-1), direction.reshape(-1))
         target = (tol * tol) * column.size
         iterations = 0
         while rr > target and iterations < maxiter:
             self.apply_elastance(direction, product)
-            step = rz / _cg_curvature(direction.reshape(-1), product.reshape(-1), column.reshape(-1))
+            step = rz / cg_curvature(direction.reshape(-1), product.reshape(-1), column.reshape(-1))
             rz_old = rz
-            rz, rr = _cg_update(step, direction.reshape(-1), product.reshape(-1), flux.reshape(-1),
+            rz, rr = cg_update(step, direction.reshape(-1), product.reshape(-1), flux.reshape(-1),
                                 residual.reshape(-1), z.reshape(-1), inverse_diagonal.reshape(-1))
-            _cg_direction(direction.reshape(-1), z.reshape(-1), rz / rz_old)
+            cg_direction(direction.reshape(-1), z.reshape(-1), rz / rz_old)
             iterations += 1
         self.residual = residual
         return iterations, float(np.sqrt(rr / column.size))
@@ -314,7 +314,7 @@ def _law_outputs_into(gap, flux, inverse_factor, column, inverse_diagonal, resid
 
 
 @njit(cache=True)
-def _cg_start(flux, product, column, inverse_diagonal, residual, z, direction):
+def cg_start(flux, product, column, inverse_diagonal, residual, z, direction):
     """residual ← 1 − (M D + R D) (``product`` holds M D), z = direction ← P⁻¹ residual; returns (r·z, r·r)."""
     rz, rr = 0.0, 0.0
     for i in range(flux.size):
@@ -327,7 +327,7 @@ def _cg_start(flux, product, column, inverse_diagonal, residual, z, direction):
 
 
 @njit(cache=True)
-def _cg_curvature(direction, product, column):
+def cg_curvature(direction, product, column):
     """product ← M p + R p (``product`` holds M p); returns p·(M + R) p."""
     total = 0.0
     for i in range(direction.size):
@@ -337,7 +337,7 @@ def _cg_curvature(direction, product, column):
 
 
 @njit(cache=True)
-def _cg_update(step, direction, product, flux, residual, z, inverse_diagonal):
+def cg_update(step, direction, product, flux, residual, z, inverse_diagonal):
     """D += α p, r −= α (M + R) p, z ← P⁻¹ r; returns (r·z, r·r)."""
     rz, rr = 0.0, 0.0
     for i in range(flux.size):
@@ -351,7 +351,8 @@ def _cg_update(step, direction, product, flux, residual, z, inverse_diagonal):
 
 
 @njit(cache=True)
-def _cg_direction(direction, z, beta):
+def cg_direction(direction, z, beta):
+    """direction ← z + β direction (the next conjugate direction)."""
     for i in range(direction.size):
         direction[i] = z[i] + beta * direction[i]
 
@@ -419,7 +420,7 @@ def solve_field(stack: DielectricStack, gap, lengths=None, voltage: float = 1.0,
     pixel). ``tol`` bounds the field solve's relative residual.
     """
     shape = np.shape(gap.heights if isinstance(gap, HeightField) else gap)
-    grid, gap = _grid_and_gap(gap, lengths, periodic)
+    grid, gap = grid_and_gap(gap, lengths, periodic)
     voltage = check_voltage(voltage)
     model = check_choice("model", model, FIELD_MODELS)
     tol = check_real("tol", tol, low=0.0, low_open=True)
@@ -438,7 +439,7 @@ def solve_field(stack: DielectricStack, gap, lengths=None, voltage: float = 1.0,
                          attraction=attraction.reshape(shape), iterations=iterations, residual=residual)
 
 
-def _grid_and_gap(gap, lengths, periodic) -> tuple:
+def grid_and_gap(gap, lengths, periodic) -> tuple:
     """(Grid, 2-D gap array) from a HeightField or an array with its window ``lengths`` and ``periodic``."""
     if isinstance(gap, HeightField):
         if lengths is not None:

@@ -30,11 +30,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from surfaces.validation import check_finite_array, check_real
+from surfaces.validation import check_broadcast, check_finite_array, check_real
 
 from ..electrostatics import DielectricStack
 from ..io.results import SavableResult
-from .gap import LinearGap, _inputs
+from .gap import LinearGap
 from .power_law import MILLIMETRE, PowerLawContact
 
 
@@ -110,7 +110,7 @@ class SlidingFrictionModel:
 
     def gap(self, normal_force, voltage) -> np.ndarray:
         """Equivalent air gap d_eq [m] from the gap model, checked to be finite and >= 0."""
-        force, voltage = _inputs(normal_force, voltage)
+        force, voltage = check_broadcast(normal_force=normal_force, voltage=voltage)
         gap = check_finite_array("gap_model output (equivalent gap)", self.gap_model(force, voltage),
                                  nonnegative=True)
         if gap.shape not in ((), force.shape):
@@ -120,7 +120,7 @@ class SlidingFrictionModel:
 
     def state(self, normal_force, voltage) -> SlidingState:
         """Full sliding state at normal force F_N [N] and voltage U [V] (Eqs. 21–22, 9, 40–45)."""
-        force, voltage = _inputs(normal_force, voltage)
+        force, voltage = check_broadcast(normal_force=normal_force, voltage=voltage)
         gap = self.gap(force, voltage)
         sigma = self.stack.attraction(gap, voltage)
         w = self.stack.work_of_adhesion(gap, voltage)

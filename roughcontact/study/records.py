@@ -161,7 +161,8 @@ class PointResult:
     seconds: float
 
 
-_PER_REALISATION = ("equivalent_gap", "field_equivalent_gap", "ridge_equivalent_gap", "mean_gap",
+#: The fields of a :class:`PointResult` with one value per realisation (a :class:`PatchRecord`'s each).
+PER_REALISATION = ("equivalent_gap", "field_equivalent_gap", "ridge_equivalent_gap", "mean_gap",
                     "contact_fraction", "electrostatic_attraction", "pixel_law_attraction", "field_ratio",
                     "gap_slope", "converged", "iterations", "unstable_steps")
 
@@ -172,4 +173,4 @@ def point_result(force, voltage, area, pressures, records) -> PointResult:
                        nominal_pressures=tuple(pressures),
                        ridge_area_fractions=tuple(zip(*(record.ridge_area_fractions for record in records))),
                        seconds=sum(record.seconds for record in records),
-                       **{name: tuple(getattr(record, name) for record in records) for name in _PER_REALISATION})
+                       **{name: tuple(getattr(record, name) for record in records) for name in PER_REALISATION})

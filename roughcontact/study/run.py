@@ -62,13 +62,13 @@ from .apparent import apparent_scale
 from .coupled import coupled_chain
 from .execution import PATCH_FILE, InProcess, ResultsDirectory, TaskStore, check_executor, make_executor
 from .plan import StudyPlan, plan_study
-from .records import _PER_REALISATION, PointResult, confidence_interval, point_result
+from .records import PER_REALISATION, PointResult, confidence_interval, point_result
 from .resolved import solve_chain
 from .scene import Scene, load_scene
 
 
 #: The fields of a point with one value per realisation (per closing length and realisation for the A_R).
-SUMMARISED = (*_PER_REALISATION, "ridge_area_fractions")
+SUMMARISED = (*PER_REALISATION, "ridge_area_fractions")
 
 
 @dataclass(frozen=True)

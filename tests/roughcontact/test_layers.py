@@ -14,7 +14,8 @@ lives"):
 
 The checks: each module has a layer; no import goes to a higher layer; the import graph has no cycle (modules
 and package ``__init__`` files as nodes); an import inside a function is of a third-party (optional or heavy)
-module only, never of roughcontact or surfaces; no private name (``_x``) is imported from another package.
+module only, never of roughcontact or surfaces; no private name (``_x``, not a dunder) is imported from another
+module, in roughcontact or in surfaces (a name two modules share is public, or it moves to the one that uses it).
 A new module or package gets its layer in :data:`LAYERS`.
 """
 import ast
@@ -23,6 +24,7 @@ from pathlib import Path
 import pytest
 
 PACKAGE = Path(__file__).resolve().parents[2] / "roughcontact"
+SURFACES = PACKAGE.parent / "surfaces"
 
 #: module name prefix -> layer (the longest matching prefix decides; "roughcontact" is its __init__ alone)
 LAYERS = {
@@ -89,13 +91,16 @@ def collect(root: Path = PACKAGE) -> tuple:
             elif (isinstance(node, ast.Assign) and path.name == "__init__.py" and not in_function
                   and any(isinstance(t, ast.Name) and t.id == "_LAZY" for t in node.targets)):
                 for value in node.value.values:                 # lazy_attributes: name -> submodule
+                    if isinstance(value, ast.Call):             # **dict.fromkeys([names], submodule)
+                        value = value.args[-1]
                     imports.append(Import(source, f"{source}.{value.value}", (), False, node.lineno))
     first_party = [i for i in imports if i.target.split(".")[0] in FIRST_PARTY]
     return set(files), first_party
 
 
 def problems(root: Path = PACKAGE, layers=LAYERS) -> list:
-    """Everything that breaks the rules of the module docstring, one string each."""
+    """Everything that breaks the layers' rules of the module docstring, one string each (private names:
+    :func:`private_imports`)."""
     modules, imports = collect(root)
     found = [f"{module} has no layer" for module in sorted(modules) if layer_of(module, layers) is None]
     inside = [i for i in imports if i.target.split(".")[0] == "roughcontact"]
@@ -105,15 +110,19 @@ def problems(root: Path = PACKAGE, layers=LAYERS) -> list:
             found.append(f"upward (layer {source_layer} -> {target_layer}): {i}")
         if i.target not in modules:
             found.append(f"no such module: {i}")
-        private = [name for name in i.names if name.startswith("_") and not name.startswith("__")]
-        if private and i.source.split(".")[:2] != i.target.split(".")[:2]:
-            found.append(f"private name across packages: {i}")
     found += [f"first-party import inside a function: {i}" for i in imports if i.in_function]
     graph = {}
     for i in inside:
         graph.setdefault(i.source, set()).add(i.target)
     found += [f"import cycle: {' -> '.join(cycle)}" for cycle in cycles(graph)]
     return found
+
+
+def private_imports(root: Path = PACKAGE) -> list:
+    """Every import of a private name (``_x``, not a dunder) from another module of the package at ``root``."""
+    _, imports = collect(root)
+    return [f"private name across modules: {i}" for i in imports
+            if any(name.startswith("_") and not name.startswith("__") for name in i.names)]
 
 
 def cycles(graph: dict) -> list:
@@ -153,6 +162,11 @@ def test_imports_run_down_the_layers():
     assert not found, "\n".join(found)
 
 
+def test_no_private_name_crosses_a_module():
+    found = private_imports(PACKAGE) + private_imports(SURFACES)
+    assert not found, "\n".join(found)
+
+
 def test_every_subpackage_is_seen():
     # the parser must see the package as it is: every subpackage, and the imports that dissolved the old circles
     modules, imports = collect()
@@ -168,7 +182,7 @@ def test_every_subpackage_is_seen():
 @pytest.fixture
 def bad_package(tmp_path):
     """A package with one of each fault: an upward import, a cycle, a first-party import inside a function and a
-    private name taken from another package."""
+    private name taken from another package and from another module of the same package."""
     root = tmp_path / "roughcontact"
     files = {
         "__init__.py": "_LAZY = {'solve': 'solvers.run'}\n",
@@ -177,7 +191,9 @@ def bad_package(tmp_path):
         "io/provenance.py": "_private = 1\n",
         "solvers/__init__.py": "",
         "solvers/run.py": "from .steps import step\n\ndef solve():\n    from ..io import provenance\n",
-        "solvers/steps.py": "from .run import solve\nfrom ..io.provenance import _private\n",
+        "solvers/steps.py": ("from .run import solve\nfrom ..io.provenance import _private\nfrom .run import _step\n"
+                             "from .._version import __version__\n"),
+        "_version.py": "__version__ = '0'\n",
     }
     for name, text in files.items():
         (root / name).parent.mkdir(parents=True, exist_ok=True)
@@ -190,6 +206,9 @@ def test_checks_fail_on_each_fault(bad_package):
     assert "upward (layer 1 -> 3): roughcontact.io.results:1 imports roughcontact.solvers.run" in found
     assert "import cycle: roughcontact.solvers.run -> roughcontact.solvers.steps -> roughcontact.solvers.run" in found
     assert "first-party import inside a function: roughcontact.solvers.run:4 imports roughcontact.io.provenance" in found
-    assert "private name across packages: roughcontact.solvers.steps:2 imports roughcontact.io.provenance" in found
+    private = "\n".join(private_imports(bad_package))
+    assert "private name across modules: roughcontact.solvers.steps:2 imports roughcontact.io.provenance" in private
+    assert "private name across modules: roughcontact.solvers.steps:3 imports roughcontact.solvers.run (_step)" in private
+    assert len(private.splitlines()) == 2 and "__version__" not in private          # a dunder is not private
     unassigned = problems(bad_package, layers={k: v for k, v in LAYERS.items() if k != "roughcontact.io"})
     assert "roughcontact.io.results has no layer" in unassigned
