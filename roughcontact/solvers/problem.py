@@ -41,6 +41,10 @@ class ContactProblem:
         object.__setattr__(self, "interaction", checked_interaction(self.interaction))
         object.__setattr__(self, "heights", body_heights(self.surface.heights, self.body))
 
+    def __reduce__(self):
+        """Pickles by its parts (rebuilt and checked on loading, the heights read-only again)."""
+        return type(self), (self.surface, self.body, self.interaction)
+
     def control(self, *, mean_pressure=None, total_force=None, penetration=None, tol=None, maxiter=10000, x0=None,
                 callback=None, warn=True) -> Control:
         """The checked :class:`~roughcontact.solvers.inputs.Control` of a solve of this problem (keywords as in

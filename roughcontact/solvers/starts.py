@@ -5,7 +5,7 @@ corrections.
 
 Polonsky–Keer's own nested cold start stays in :mod:`.polonsky_keer`: it is the method solving its own problem on
 the coarsened grid (with its options and its record of the coarse iterations), a cascade inside the method rather
-than a guess from outside it."""
+than a guess from outside it; here it would also make an import cycle (this module solves the hard wall)."""
 from __future__ import annotations
 
 from ..interactions import HardWall

@@ -3,6 +3,7 @@ calls (tension, user laws, float32, 0 V, pull_off's arguments), and the inputs c
 its Control; the methods check nothing again)."""
 import dataclasses
 import math
+import pickle
 import typing
 import warnings
 
@@ -239,7 +240,6 @@ def test_a_cold_tensile_solve_on_a_rough_patch_stays_attached():
 
 
 def test_a_pickled_result_comes_back_read_only():
-    import pickle
     surface, body = sinusoid()
     result = solve_contact(surface, body, mean_pressure=0.1, interaction=ExponentialAdhesion(0.05, 0.05))
     clone = pickle.loads(pickle.dumps(result))
@@ -365,6 +365,8 @@ def test_the_problem_holds_its_heights_in_the_body_dtype_once():
     assert problem.heights.dtype == np.float32 and not problem.heights.flags.writeable
     np.testing.assert_array_equal(problem.heights, surface.heights.astype(np.float32))
     assert ContactProblem(surface, ElasticHalfSpace(surface.grid, E_star=1e6)).heights is surface.heights  # no copy
+    clone = pickle.loads(pickle.dumps(problem))                       # rebuilt from its parts, checked again
+    assert not clone.heights.flags.writeable and np.array_equal(clone.heights, problem.heights)
     coarse = problem.coarsened()
     assert coarse.body.grid == surface.grid.coarsened(2) and coarse.interaction == problem.interaction
     np.testing.assert_array_equal(coarse.surface.heights, surface.coarsened(2).heights)
