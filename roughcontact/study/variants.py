@@ -122,6 +122,8 @@ class Input:
         counterpart; of listed values the ⌊u n⌋-th (the last at u = 1)."""
         if self.values:
             return self.values[min(int(math.floor(unit * len(self.values))), len(self.values) - 1)]
+        if unit <= 0.0 or unit >= 1.0:                       # the ends exactly (shared with other designs' tasks)
+            return self.low if unit <= 0.0 else self.high
         if self.scale == "log":
             return float(math.exp(math.log(self.low) + unit * (math.log(self.high) - math.log(self.low))))
         return float(self.low + unit * (self.high - self.low))
@@ -261,10 +263,10 @@ class _Located:
 
 def _entries(table: dict, prefix: str = ""):
     """``(name, value)`` of a ``[vary]`` table, dotted keys written unquoted (nested tables) joined again; a table
-    of range keys is a value."""
+    with a range key (:data:`RANGE_KEYS`) is a value."""
     for key, value in table.items():
         name = f"{prefix}{key}"
-        if isinstance(value, dict) and value and not set(value) <= set(RANGE_KEYS):
+        if isinstance(value, dict) and not set(value) & set(RANGE_KEYS):
             yield from _entries(value, name + ".")
         else:
             yield name, value
