@@ -47,7 +47,7 @@ _LAZY = {
     "StaleTaskWarning": "execution",
     "StudyResult": "run",
     "run_study": "run",
-    "open_results": "run",
+    "open_results": "variant_run",
     "bottom_up_friction": "friction",
     "friction_recipe": "friction",
     "friction_realisations": "friction",

@@ -11,7 +11,7 @@ from .._version import __version__
 from .friction import friction_computed
 from .records import CONFIDENCE
 from .run import StudyResult
-from .tables import FIELDS, friction_rows
+from .tables import FIELDS, friction_rows, input_value
 
 #: Modules that writing results.nc needs (the ``io`` dependencies).
 NETCDF_MODULES = ("xarray", "h5netcdf", "h5py")
@@ -80,7 +80,6 @@ def variant_dataset(result):
     the outputs' sensitivity measures as ``sensitivity_<measure>`` (dimensions output, input, load, voltage);
     the base scene with its ``[vary]`` table and the design in the attributes."""
     import xarray as xr
-    from .tables import input_value
     parts = [dataset(study.at_frequency(0) if study.frequencies else study) for study in result.results]
     data = xr.concat([part.drop_vars("apparent_area") for part in parts], dim="variant", combine_attrs="drop")
     data["apparent_area"] = xr.concat([part["apparent_area"] for part in parts], dim="variant")

@@ -10,6 +10,7 @@ from ..io.provenance import save_figure
 from ..macro import LinearGap, PowerLawGap, SlidingFrictionModel
 from .friction import bottom_up_friction, friction_computed, friction_realisations
 from .records import confidence_interval, positive_interval
+from .sensitivity import OUTPUTS
 from .run import StudyResult
 from .tables import MICRO, MM2, bars_note, realisation_samples, sweep_crossover, sweep_samples
 
@@ -200,7 +201,6 @@ def write_sensitivity_figure(result, out, provenance) -> list:
 
 def _sensitivity_panel(axis, sensitivity, output: str, force: float, voltage: float) -> None:
     """One output's panel of ``sensitivity.png``."""
-    from .sensitivity import OUTPUTS
     symbol = OUTPUTS[output][0]
     names = list(sensitivity.ranking(output, force, voltage))[::-1]           # the largest on top
     order = [sensitivity.inputs.index(name) for name in names]

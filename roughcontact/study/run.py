@@ -257,22 +257,22 @@ def _study_result(plan: StudyPlan, records: dict, apparent, todo) -> StudyResult
                        frequencies=frequencies)
 
 
-def open_results(directory, tasks=None):
+def open_results(directory, tasks=None) -> StudyResult:
     """The :class:`StudyResult` of a finished results directory (``roughcontact run --out DIR`` or
     ``run_study(scene, DIR)``), read from its ``scene.toml``, its measured patch (``patch.npz``, so the scan's
     file is not needed) and its tasks (or the shared task directory ``tasks`` it was run with) without solving
     anything (``computed`` and ``solves`` are 0). ``roughcontact.study.bottom_up_friction(open_results(DIR))``
     is the friction model of that run. ``ValueError`` naming the directory when it holds no scene or misses tasks
-    (the same ``roughcontact run`` command resumes it). The results of a parameter study (a scene with a
-    ``[vary]`` table) are its whole set, a :class:`~.variant_run.VariantStudyResult`."""
+    (the same ``roughcontact run`` command resumes it), or that holds a parameter study
+    (:func:`roughcontact.study.open_results` reads either)."""
     path = Path(directory)
     stored = path / "scene.toml"
     if not stored.is_file():
         raise ValueError(f"directory = {str(path)!r} holds no scene.toml: not a results directory of "
                          "'roughcontact run --out' or run_study(scene, directory)")
     if has_variation(stored):
-        from .variant_run import open_variant_results          # (it builds on this module)
-        return open_variant_results(path, tasks)
+        raise ValueError(f"directory = {str(path)!r} holds a parameter study (its scene.toml has a [vary] table): "
+                         "roughcontact.study.open_results reads it")
     scene = load_scene(stored, read_scan=False)
     patch = path / PATCH_FILE
     topography = HeightField.load(patch) if scene.roughness.topography and patch.exists() else None

@@ -20,9 +20,9 @@ from ..io.provenance import output_directory
 from .apparent import apparent_scale
 from .execution import PATCHES, TaskStore, VariantDirectory, check_executor
 from .plan import plan_study
-from .run import StudyResult, _study_result, check_drive, solve_plans
+from .run import StudyResult, _study_result, check_drive, open_results as open_study_results, solve_plans
 from .sensitivity import OUTPUTS, Sensitivity, analyse, study_outputs
-from .variants import VariantStudy, load_variant_study
+from .variants import VariantStudy, has_variation, load_variant_study
 
 
 @dataclass(frozen=True, eq=False)
@@ -149,3 +149,12 @@ def open_variant_results(directory, tasks=None) -> VariantStudyResult:
                          f"in {store.directory}; the same 'roughcontact run' command resumes it")
     return _assemble(study, plans, _apparent(variant.scene for variant in study.variants), records, set())
 
+
+
+def open_results(directory, tasks=None) -> StudyResult | VariantStudyResult:
+    """The results of a finished results directory (``roughcontact run --out DIR``) without solving: a parameter
+    study's whole set (:func:`open_variant_results`), else the one study (:func:`~.run.open_results`)."""
+    stored = Path(directory) / "scene.toml"
+    if stored.is_file() and has_variation(stored):
+        return open_variant_results(directory, tasks)
+    return open_study_results(directory, tasks)

@@ -12,14 +12,15 @@ import sys
 import numpy as np
 import pytest
 
+import roughcontact.study
 import surfaces
 from roughcontact.cli import main
 from roughcontact.study.execution import TaskStore
 from roughcontact.study.plan import plan_study
-from roughcontact.study.run import open_results, run_study
+from roughcontact.study.run import open_results as open_study_results, run_study
 from roughcontact.study.scene import SECTIONS, load_scene
 from roughcontact.study.sensitivity import analyse, one_at_a_time_indices
-from roughcontact.study.variant_run import VariantStudyResult, run_variants
+from roughcontact.study.variant_run import VariantStudyResult, open_results, run_variants
 from roughcontact.study.variants import (Input, Variation, literature_ranges, load_variant_study, substitute,
                                          unit_sample, variable_keys)
 from study_scenes import TINY
@@ -253,6 +254,10 @@ def test_the_command_runs_resumes_and_reopens_a_parameter_study(varied, tmp_path
         capsys.readouterr().out
     opened = open_results(tmp_path / "out", tasks=directory / "out" / "tasks")
     assert isinstance(opened, VariantStudyResult) and opened.study == result.study
+    assert roughcontact.study.open_results is open_results
+    with pytest.raises(ValueError, match=r"holds a parameter study \(its scene.toml has a \[vary\] table\): "
+                                         r"roughcontact.study.open_results reads it"):
+        open_study_results(tmp_path / "out")
     assert [numbers(r) for r in opened.results] == [numbers(r) for r in result.results]
     np.testing.assert_array_equal(opened.sensitivity.measures["swing"], result.sensitivity.measures["swing"])
     report = (tmp_path / "out" / "report.md").read_text()
