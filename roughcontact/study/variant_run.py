@@ -153,7 +153,7 @@ def open_variant_results(directory, tasks=None) -> VariantStudyResult:
 
 def open_results(directory, tasks=None) -> StudyResult | VariantStudyResult:
     """The results of a finished results directory (``roughcontact run --out DIR``) without solving: a parameter
-    study's whole set (:func:`open_variant_results`), else the one study (:func:`~.run.open_results`)."""
+    study's whole set (:func:`open_variant_results`), else the one study's (``run.open_results``)."""
     stored = Path(directory) / "scene.toml"
     if stored.is_file() and has_variation(stored):
         return open_variant_results(directory, tasks)

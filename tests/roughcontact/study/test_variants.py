@@ -136,11 +136,14 @@ def test_the_literature_ranges_are_valid_values_of_the_default_scene():
         assert known.tag in ("literature", "recalled", "estimate") and known.source and known.unit, name
         for value in (known.low, known.high):
             assert substitute(driven, {name: value}).flat()[name] == value, name
-    # the ranges the brief's findings rest on
-    assert (ranges["skin.layer_E_star"].low, ranges["skin.layer_E_star"].high) == (1e7, 1e9)
-    assert (ranges["screen.eps_sc"].low, ranges["screen.eps_sc"].high) == (1e3, 1e4)
-    assert (ranges["screen.sigma_sc"].low, ranges["screen.sigma_sc"].high) == (1e-5, 1e-3)
-    assert (ranges["screen.d_sc"].low, ranges["screen.d_sc"].high) == (2e-4, 5e-4)
+    # the table of docs/references.md, section 12
+    documented = {"skin.layer_E_star": (1e7, 1e9, "log"), "skin.layer_thickness": (1e-5, 3e-4, "log"),
+                  "skin.E_star": (5e4, 2e6, "log"), "skin.poisson": (0.48, 0.5, "linear"),
+                  "screen.d_sc": (2e-4, 5e-4, "linear"), "screen.eps_sc": (1e3, 1e4, "log"),
+                  "screen.sigma_sc": (1e-5, 1e-3, "log"), "roughness.hurst": (0.7, 0.9, "linear"),
+                  "roughness.rms_height": (1e-6, 1e-5, "log"), "ridges.period": (4.3e-4, 4.8e-4, "linear"),
+                  "ridges.height": (5e-5, 1e-4, "linear")}
+    assert {name: (known.low, known.high, known.scale) for name, known in ranges.items()} == documented
 
 
 def test_an_input_maps_the_unit_interval_onto_its_values():
