@@ -20,7 +20,6 @@ import time
 
 from roughcontact.io import output_directory, parse_arguments, write_csv
 from roughcontact.study.run import run_study
-from roughcontact.study.scene import load_scene
 from roughcontact.study.variant_run import run_variants
 from roughcontact.study.variants import load_variant_study
 

@@ -42,7 +42,7 @@ from pathlib import Path
 import numpy as np
 
 from .presets import auto_scene, parse_target
-from .scene import (AUTO, SECTIONS, VARY, Scene, _error, _parse, _read_scene_file, _Real, _toml_value,
+from .scene import (AUTO, SECTIONS, VARY, Scene, _parse, _read_scene_file, _Real, _toml_value,
                     check_measured, load_scene)
 
 if sys.version_info >= (3, 11):

@@ -4,7 +4,6 @@ executor through one task store (a task that variants share is solved once, an i
 cluster gives the local numbers, a replaced scan is solved again), and the sensitivity measures match analytic
 references and rank the inputs as single studies do."""
 import dataclasses
-import math
 import re
 import shutil
 import sys
@@ -16,9 +15,8 @@ import roughcontact.study
 import surfaces
 from roughcontact.cli import main
 from roughcontact.study.execution import TaskStore
-from roughcontact.study.plan import plan_study
 from roughcontact.study.run import open_results as open_study_results, run_study
-from roughcontact.study.scene import SECTIONS, load_scene
+from roughcontact.study.scene import load_scene
 from roughcontact.study.sensitivity import analyse, one_at_a_time_indices
 from roughcontact.study.variant_run import VariantStudyResult, open_results, run_variants
 from roughcontact.study.variants import (Input, Variation, literature_ranges, load_variant_study, substitute,
