@@ -77,9 +77,12 @@ def _cmd_figures(args, provenance) -> int:
 
 
 def _cmd_scene(args, provenance) -> int:
+    path = getattr(args, "scene", None)
     try:
-        scene = study.load_scene(getattr(args, "scene", None))
-    except ValueError as error:
+        if path is not None and study.has_variation(path):
+            return _show_variant_study(study.load_variant_study(path), args.show, path)
+        scene = study.load_scene(path)
+    except (ValueError, ImportError) as error:
         print(f"roughcontact scene: error: {error}", file=sys.stderr)
         return USAGE_ERROR
     if args.show:
@@ -92,14 +95,32 @@ def _cmd_scene(args, provenance) -> int:
     return 0
 
 
+def _show_variant_study(variants, show: bool, path) -> int:
+    """``roughcontact scene`` of a parameter study: its TOML, or a line saying what it varies."""
+    if show:
+        print(variants.to_toml(), end="")
+    else:
+        base = variants.base
+        print(f"{path}: valid parameter study (preset {base.study.preset}, {len(base.loads.normal_forces)} loads x "
+              f"{len(base.loads.voltages)} voltages; design {variants.design}, {len(variants.variants)} variants "
+              f"of {', '.join(variants.variation.names)})")
+    return 0
+
+
 def _cmd_run(args, provenance) -> int:
     start = time.perf_counter()
+    path, preset, target = (getattr(args, name, None) for name in ("scene", "preset", "target_error"))
+    executor = {"workers": getattr(args, "workers", None), "dask": getattr(args, "dask", None),
+                "tasks": getattr(args, "tasks", None)}
     try:
-        scene = study.scene_at_preset(getattr(args, "scene", None), getattr(args, "preset", None),
-                                      getattr(args, "target_error", None))
+        if path is not None and study.has_variation(path):
+            variants = study.load_variant_study(path, preset=preset, target_error=target)
+            output = output_directory(args.out)
+            return _report_variants(study.run_variants(variants, output, progress=True, **executor), output,
+                                    provenance, start)
+        scene = study.scene_at_preset(path, preset, target)
         output = output_directory(args.out)
-        result = study.run_study(scene, output, progress=True, workers=getattr(args, "workers", None),
-                                 dask=getattr(args, "dask", None), tasks=getattr(args, "tasks", None))
+        result = study.run_study(scene, output, progress=True, **executor)
     except (ValueError, ImportError) as error:   # a scene key or parameter the preset cannot resolve, another
         print(f"roughcontact run: error: {error}", file=sys.stderr)        # scene, dask not installed
         return USAGE_ERROR
@@ -114,6 +135,19 @@ def _cmd_run(args, provenance) -> int:
               "(pip install 'roughcontact[io]'); the CSV tables hold the results", file=sys.stderr)
     print(f"{result.computed} points computed ({result.solves} contact solves), "
           f"{result.array('seconds').size - result.computed} resumed; "
+          f"{written['seconds']:.0f} s")
+    print(f"report, figures and tables written to {output.resolve()}")
+    return 0
+
+
+def _report_variants(result, output, provenance, start) -> int:
+    """Write a parameter study's results and say what was solved."""
+    written = study.write_results(result, output, provenance, time.perf_counter() - start)
+    if not written["netcdf"]:
+        print("roughcontact run: results.nc not written: xarray and h5netcdf are not installed "
+              "(pip install 'roughcontact[io]'); the CSV tables hold the results", file=sys.stderr)
+    print(f"{len(result.variants)} variants ({result.design}): {result.computed} of {result.tasks} distinct tasks "
+          f"solved ({result.solves} contact solves), {result.tasks - result.computed} read back; "
           f"{written['seconds']:.0f} s")
     print(f"report, figures and tables written to {output.resolve()}")
     return 0

@@ -11,7 +11,7 @@ from .._version import __version__
 from .friction import friction_computed
 from .records import CONFIDENCE
 from .run import StudyResult
-from .tables import FIELDS, friction_rows
+from .tables import FIELDS, friction_rows, input_value
 
 #: Modules that writing results.nc needs (the ``io`` dependencies).
 NETCDF_MODULES = ("xarray", "h5netcdf", "h5py")
@@ -68,6 +68,44 @@ def write_dataset(result: StudyResult, out, provenance):
     if not all(importlib.util.find_spec(name) is not None for name in NETCDF_MODULES):
         return None
     data = dataset(result)
+    data.attrs["provenance"] = provenance.line
+    data.to_netcdf(out / "results.nc", engine="h5netcdf")
+    return out / "results.nc"
+
+
+def variant_dataset(result):
+    """A parameter study (a :class:`VariantStudyResult`) as an ``xarray.Dataset``: each variant's study
+    (:func:`dataset`, at its drive frequency) along a ``variant`` dimension, the varied inputs as coordinates on
+    it (their names, e.g. ``skin.layer_E_star``; a topography's file name; NaN for an absent drive frequency),
+    the outputs' sensitivity measures as ``sensitivity_<measure>`` (dimensions output, input, load, voltage);
+    the base scene with its ``[vary]`` table and the design in the attributes."""
+    import xarray as xr
+    parts = [dataset(study.at_frequency(0) if study.frequencies else study) for study in result.results]
+    data = xr.concat([part.drop_vars("apparent_area") for part in parts], dim="variant", combine_attrs="drop")
+    data["apparent_area"] = xr.concat([part["apparent_area"] for part in parts], dim="variant")
+    names = result.study.variation.names
+    coords = {"variant": np.arange(len(result.variants)),
+              "label": ("variant", [variant.label for variant in result.variants])}
+    for n, name in enumerate(names):
+        coords[name] = ("variant", [input_value(variant.values[n]) for variant in result.variants])
+    data = data.assign_coords(coords)
+    sensitivity = result.sensitivity
+    for measure, values in sensitivity.measures.items():
+        data[f"sensitivity_{measure}"] = (("output", "input", "normal_force", "voltage"), values,
+                                          {"long_name": f"{sensitivity.design} sensitivity measure {measure}"})
+    data = data.assign_coords(output=list(sensitivity.outputs), input=list(names))
+    attrs = dict(parts[0].attrs)
+    attrs.update({"title": "roughcontact parameter study of the multiscale fingerpad", "design": result.design,
+                  "scene_toml": result.study.to_toml(), "ranked_by": sensitivity.ranked_by})
+    data.attrs = {key: value for key, value in attrs.items() if not key.startswith("scene.")}
+    return data
+
+
+def write_variant_dataset(result, out, provenance):
+    """Write ``results.nc`` of a parameter study into ``out``; its path, or None without xarray and h5netcdf."""
+    if not all(importlib.util.find_spec(name) is not None for name in NETCDF_MODULES):
+        return None
+    data = variant_dataset(result)
     data.attrs["provenance"] = provenance.line
     data.to_netcdf(out / "results.nc", engine="h5netcdf")
     return out / "results.nc"

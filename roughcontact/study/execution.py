@@ -22,6 +22,7 @@ from ..io.provenance import output_directory, write_atomic
 from .plan import StudyPlan, Task, task_key
 from .records import RECORD_FIELDS, PatchRecord
 from .scene import load_scene
+from .variants import has_variation, load_variant_study
 
 
 class SceneMismatch(ValueError):
@@ -171,6 +172,9 @@ class ResultsDirectory:
     def _check_scene(self) -> None:
         stored, scene = self.directory / "scene.toml", self.plan.scene
         if stored.exists() and stored.stat().st_size > 0:           # (an empty one: a write cut short)
+            if has_variation(stored):
+                raise SceneMismatch(f"{self.directory} holds the results of a parameter study (its scene.toml has "
+                                    "a [vary] table); run into a new --out directory")
             old = load_scene(stored, read_scan=False)
             if old != scene:
                 new, before = scene.flat(), old.flat()
@@ -211,6 +215,47 @@ class ResultsDirectory:
 
 #: The measured patch in a results directory (:class:`ResultsDirectory`).
 PATCH_FILE = "patch.npz"
+#: The measured patches of a parameter study's variants, ``patches/{variant index}.npz`` (:class:`VariantDirectory`).
+PATCHES = "patches"
+
+
+class VariantDirectory(ResultsDirectory):
+    """The results directory of a parameter study (:mod:`.variants`): ``scene.toml`` holds the base scene and its
+    ``[vary]`` table, ``patches/{index}.npz`` the measured patch of each variant with a topography, and one task
+    store (``tasks/``, or the shared ``tasks``) all the variants' tasks. Locked as a :class:`ResultsDirectory`;
+    another study or a single scene in it is refused (:class:`SceneMismatch`). ``plans``: the variants' plans,
+    in the study's order."""
+
+    def __init__(self, directory, study, plans, tasks=None):
+        self.study, self.plans = study, plans
+        super().__init__(directory, plans[0], tasks)
+
+    def _check_scene(self) -> None:
+        stored = self.directory / "scene.toml"
+        if stored.exists() and stored.stat().st_size > 0:
+            if not has_variation(stored):
+                raise SceneMismatch(f"{self.directory} holds the results of one scene, not of a parameter study; "
+                                    "run into a new --out directory")
+            old = load_variant_study(stored, read_scan=False)
+            if old != self.study:
+                new, before = self.study.base.flat(), old.base.flat()
+                changed = [f"{key} = {before[key]!r} -> {new[key]!r}" for key in new if new[key] != before.get(key)]
+                if old.variation != self.study.variation:
+                    changed.append("the [vary] table")
+                raise SceneMismatch(f"{self.directory} holds the results of another parameter study "
+                                    f"({'; '.join(changed)}); run into a new --out directory, or delete this one "
+                                    "to start over")
+        else:
+            write_atomic(stored, self.study.to_toml())
+
+    def _keep_patch(self) -> None:
+        """Store each variant's measured patch as ``patches/{index}.npz``."""
+        for index, plan in enumerate(self.plans):
+            if plan.topography is not None:
+                path = self.directory / PATCHES / f"{index}.npz"
+                path.parent.mkdir(exist_ok=True)
+                if not path.exists() or HeightField.load(path) != plan.topography:
+                    os.replace(plan.topography.save(path.with_name(f"{index}.part.npz")), path)
 
 
 def _lock(path: Path) -> int:

@@ -10,6 +10,7 @@ from ..io.provenance import save_figure
 from ..macro import LinearGap, PowerLawGap, SlidingFrictionModel
 from .friction import bottom_up_friction, friction_computed, friction_realisations
 from .records import confidence_interval, positive_interval
+from .sensitivity import OUTPUTS
 from .run import StudyResult
 from .tables import MICRO, MM2, bars_note, realisation_samples, sweep_crossover, sweep_samples
 
@@ -169,3 +170,59 @@ def write_figures(result: StudyResult, out, provenance) -> list:
     """Write the figures of ``result`` into the directory ``out`` (the sweep's for a frequency sweep); returns
     their paths."""
     return _sweep_figure(result, out, provenance) if result.frequencies else _figures(result, out, provenance)
+
+
+def write_sensitivity_figure(result, out, provenance) -> list:
+    """``sensitivity.png`` of a parameter study (a :class:`VariantStudyResult`) at its report point (F_N, U), one
+    panel per output: one at a time, a tornado of the output's relative change at each input's lowest and
+    highest level; Morris, μ* against σ; Sobol', S1 and ST with their 95 % intervals."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    sensitivity, (force, voltage) = result.sensitivity, result.point
+    outputs = [name for name in sensitivity.outputs
+               if np.any(np.isfinite(sensitivity.measure(sensitivity.ranked_by, name, force, voltage)))]
+    columns = min(max(len(outputs), 1), 3)
+    rows = -(-max(len(outputs), 1) // columns)
+    figure, axes = plt.subplots(rows, columns, figsize=(4.2 * columns, 3.2 * rows), squeeze=False)
+    for axis, output in zip(axes.flat, outputs):
+        _sensitivity_panel(axis, sensitivity, output, force, voltage)
+    for axis in list(axes.flat)[len(outputs):]:
+        axis.set_axis_off()
+    if not outputs:
+        axes[0, 0].text(0.5, 0.5, "no output varies at this point", ha="center", va="center")
+    figure.suptitle(f"sensitivity ({sensitivity.design}) at F_N = {force:g} N, U = {voltage:g} V", fontsize=9)
+    figure.tight_layout()
+    written = [save_figure(figure, out / "sensitivity.png", provenance)]
+    plt.close(figure)
+    return written
+
+
+def _sensitivity_panel(axis, sensitivity, output: str, force: float, voltage: float) -> None:
+    """One output's panel of ``sensitivity.png``."""
+    symbol = OUTPUTS[output][0]
+    names = list(sensitivity.ranking(output, force, voltage))[::-1]           # the largest on top
+    order = [sensitivity.inputs.index(name) for name in names]
+    rows = np.arange(len(names))
+
+    def values(name):
+        return sensitivity.measure(name, output, force, voltage)[order]
+
+    if sensitivity.design == "one-at-a-time":
+        axis.barh(rows - 0.2, 100 * values("low"), height=0.4, color="C0", label="lowest level")
+        axis.barh(rows + 0.2, 100 * values("high"), height=0.4, color="C3", label="highest level")
+        axis.axvline(0.0, color="k", lw=0.8)
+        axis.set(xlabel=f"{symbol}: change from the baseline [%]")
+    elif sensitivity.design == "morris":
+        axis.errorbar(values("mu_star"), values("sigma"), xerr=values("mu_star_conf"), fmt="o", capsize=3)
+        for name, x, y in zip(names, values("mu_star"), values("sigma")):
+            axis.annotate(name, (x, y), fontsize=6, xytext=(3, 3), textcoords="offset points")
+        axis.set(xlabel=f"μ* of {symbol}", ylabel="σ")
+        return
+    else:
+        axis.barh(rows - 0.2, values("S1"), height=0.4, xerr=values("S1_conf"), color="C0", label="S1")
+        axis.barh(rows + 0.2, values("ST"), height=0.4, xerr=values("ST_conf"), color="C3", label="ST")
+        axis.set(xlabel=f"Sobol' index of {symbol}")
+    axis.set_yticks(rows, names, fontsize=7)
+    axis.legend(fontsize=6)

@@ -16,14 +16,17 @@ import numpy as np
 
 from .._version import __version__
 from ..macro import LinearGap, PowerLawGap
-from .dataset import write_dataset
-from .figures import write_figures
+from .dataset import write_dataset, write_variant_dataset
+from .figures import write_figures, write_sensitivity_figure
 from .friction import FRICTION_MIN_LOADS, HOLDS_WITHIN, assumption_errors, friction_computed, friction_realisations
 from .presets import applicability, describe
 from .records import confidence_interval, positive_interval
 from .run import StudyResult
 from .scene import LEAK_KEYS
-from .tables import MICRO, bars_note, friction_rows, realisation_samples, sweep_crossover, sweep_samples, write_tables
+from .sensitivity import OUTPUTS
+from .tables import (MICRO, bars_note, friction_rows, realisation_samples, sweep_crossover, sweep_samples,
+                     write_tables, write_variant_tables)
+from .variant_run import VariantStudyResult
 
 def _number(value, digits) -> str:
     return f"{np.round(value, digits) + 0.0:.{digits}f}"                  # + 0.0: no "-0.00" for a rounded zero
@@ -354,12 +357,100 @@ def sweep_report_text(result: StudyResult, nc_written: bool, seconds: float | No
     return "\n".join(text) + "\n"
 
 
-def write_results(result: StudyResult, out, provenance, seconds: float | None = None) -> dict:
+def variant_report_text(result: VariantStudyResult, nc_written: bool, seconds: float | None = None) -> str:
+    """The Markdown report of a parameter study: what was solved, the inputs with their ranges and sources, the
+    sensitivity at the report point and every variant's d_eq, d_field, F_el, A_R/A0 and μ."""
+    study, sensitivity = result.study, result.sensitivity
+    base, (force, voltage) = study.base, result.point
+    converged = np.concatenate([variant.array("converged").ravel() for variant in result.results])
+    text = [f"# Parameter study: {len(result.variants)} variants of the scene ({result.design})", "",
+            f"roughcontact {__version__}, preset `{base.study.preset}`, solver tolerance {base.preset.tolerance:g}. "
+            f"Scene: `scene.toml` in this directory, the base scene (the baseline) and its `[vary]` table. The "
+            f"variants hold {result.tasks} distinct tasks ({result.computed} solved in this run with "
+            f"{result.solves} contact solves, the others read back; a task that several variants share is solved "
+            f"once). {converged.size - int(converged.sum())} of {converged.size} patch results did not converge "
+            "and are left out of the means."
+            + (f" Run time {seconds:.0f} s, tables and figures included." if seconds is not None else ""), "",
+            describe(base.preset, base.study.preset) + applicability(base), "",
+            "## Inputs", "", "Each variant is the base scene with these values substituted (the others at the "
+            "baseline's); every variant's roughness uses the same seeds (`study.seed`), so the variants differ by "
+            "their inputs only.", "", "| input | baseline | values | source |", "|---|---|---|---|"]
+    for item, baseline in zip(study.inputs, study.baseline_values()):
+        shown = "none" if baseline is None else Path(baseline).name if isinstance(baseline, str) else f"{baseline:g}"
+        text.append(f"| `{item.name}` | {shown} | {item.describe()} | {item.source or 'the scene file'} |")
+    text += ["", _design_sentence(result), "",
+             f"## Sensitivity at F_N = {force:g} N, U = {voltage:g} V", "",
+             f"Figure: `sensitivity.png`. Inputs in the order of their {sensitivity.ranked_by} for F_el; every "
+             "load and voltage in `sensitivity.csv` and `results.nc`.", "",
+             "| input | " + " | ".join(f"{OUTPUTS[name][0]}" for name in sensitivity.outputs) + " |",
+             "|---" * (len(sensitivity.outputs) + 1) + "|"]
+    for name in sensitivity.ranking("electrostatic_force", force, voltage):
+        n = sensitivity.inputs.index(name)
+        cells = [_measure_cell(sensitivity, output, n, force, voltage) for output in sensitivity.outputs]
+        text.append(f"| `{name}` | " + " | ".join(cells) + " |")
+    text += ["", "## Variants", "", "Realisation means; μ the bottom-up friction coefficient (ridge-area recipe). "
+             "Tables: `variants.csv`, `sensitivity.csv`"
+             + (", all of it in `results.nc` (dimension `variant`, the inputs as its coordinates)." if nc_written
+                else "; `results.nc` was not written (xarray/h5netcdf missing: `pip install 'roughcontact[io]'`)."),
+             "", "| variant | F_N [N] | U [V] | d_eq [µm] | d_field [µm] | F_el [N] | A_R/A0 [%] | μ |",
+             "|---" * 8 + "|"]
+    for variant in result.variants:
+        for i, f in enumerate(result.normal_forces):
+            for j, u in enumerate(result.voltages):
+                value = {name: result.outputs[name][variant.index, i, j] for name in OUTPUTS}
+                text.append(f"| {variant.index}: {variant.label} | {f:g} | {u:g} | "
+                            f"{value['equivalent_gap'] * MICRO:.3f} | {value['field_equivalent_gap'] * MICRO:.3f} | "
+                            f"{value['electrostatic_force']:.4g} | {100 * value['ridge_area_fraction']:.3g} | "
+                            f"{value['friction_coefficient']:.3f} |")
+    return "\n".join(text) + "\n"
+
+
+def _design_sentence(result: VariantStudyResult) -> str:
+    """What the design's variants are and what its measures mean."""
+    variation = result.study.variation
+    if result.design == "one-at-a-time":
+        return (f"Design: one at a time, {len(result.variants)} variants (the baseline, then each input at each "
+                "listed value or at its range's two ends). Each cell: the change of the output from the baseline "
+                "at the input's lowest / highest level [%]; the inputs are ranked by the swing, the output's range "
+                "over the baseline and the input's levels over the baseline's value.")
+    sampler = (f"Morris, {variation.samples} trajectories on {variation.levels} levels" if result.design == "morris"
+               else f"Sobol'/Saltelli, {variation.samples} base points (first and total order)")
+    measures = ("μ* ± its 95 % interval (σ): the mean absolute elementary effect of a step across the input's range "
+                "(the unit cube of the sampler: a log range per its log-span) and its spread, which nonlinearity "
+                "and interactions raise" if result.design == "morris" else
+                "S1 / ST: the share of the output's variance due to the input alone, and with all its interactions")
+    return (f"Design: {sampler} (SALib, seed {variation.seed}), {len(result.variants)} variants. Each cell: "
+            f"{measures}.")
+
+
+def _measure_cell(sensitivity, output: str, n: int, force: float, voltage: float) -> str:
+    """One input's measures of ``output`` at (``force``, ``voltage``) for the report's table."""
+    def value(name):
+        return sensitivity.measure(name, output, force, voltage)[n]
+    if not np.isfinite(value(sensitivity.ranked_by)):
+        return "–"
+    if sensitivity.design == "one-at-a-time":
+        return f"{100 * value('low'):+.1f} / {100 * value('high'):+.1f}"
+    if sensitivity.design == "morris":
+        return f"{value('mu_star'):.3g} ± {value('mu_star_conf'):.2g} ({value('sigma'):.3g})"
+    return f"{value('S1'):.2f} / {value('ST'):.2f}"
+
+
+def write_results(result: StudyResult | VariantStudyResult, out, provenance, seconds: float | None = None) -> dict:
     """Write ``results.nc`` (when xarray and h5netcdf are installed), the CSV tables, the figures and
     ``report.md`` into the directory ``out``; ``seconds`` the run time so far (the study's). Returns
     ``{"netcdf": written?, "files": [paths], "seconds": the run time the report states}``, the writing
-    included, so that a command can print the report's number."""
+    included, so that a command can print the report's number. A parameter study (a
+    :class:`~.variant_run.VariantStudyResult`) gets ``variants.csv``, ``sensitivity.csv``, ``sensitivity.png``,
+    ``results.nc`` with a variant dimension and its report (:func:`variant_report_text`)."""
     start = time.perf_counter()
+    if isinstance(result, VariantStudyResult):
+        files = write_variant_tables(result, out, provenance) + write_sensitivity_figure(result, out, provenance)
+        netcdf = write_variant_dataset(result, out, provenance)
+        files += [netcdf] if netcdf is not None else []
+        seconds = None if seconds is None else seconds + time.perf_counter() - start
+        (out / "report.md").write_text(variant_report_text(result, netcdf is not None, seconds))
+        return {"netcdf": netcdf is not None, "files": files + [out / "report.md"], "seconds": seconds}
     files = write_tables(result, out, provenance) + write_figures(result, out, provenance)
     netcdf = write_dataset(result, out, provenance)
     if netcdf is not None:

@@ -65,6 +65,7 @@ from .plan import StudyPlan, plan_study
 from .records import PER_REALISATION, PointResult, confidence_interval, point_result
 from .resolved import solve_chain
 from .scene import Scene, load_scene
+from .variants import has_variation
 
 
 #: The fields of a point with one value per realisation (per closing length and realisation for the A_R).
@@ -164,36 +165,62 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
         raise TypeError(f"progress must be True or False, got {progress!r}")
     plan = plan_study(scene)
     check_executor(workers, dask)
+    check_drive(plan)
+    results = None if directory is None else ResultsDirectory(output_directory(directory), plan, tasks)
+    store = results.tasks if results is not None else None if tasks is None else TaskStore(output_directory(tasks))
+    apparent = apparent_scale(scene)                # once, for every task
+    try:
+        records, solved = solve_plans([(plan, apparent)], store, workers, dask, progress)
+    finally:
+        if results is not None:
+            results.release()
+    return _study_result(plan, {task.index: records[task.key] for task in plan.tasks}, apparent,
+                         [task for task in plan.tasks if task.key in solved])
+
+
+def check_drive(plan: StudyPlan) -> None:
+    """Refuse a drive frequency on the coupled scale path (its interface law is the dielectric one)."""
+    scene = plan.scene
     if plan.frequencies and scene.preset.scales == "coupled":
         raise ValueError(f"screen.frequency = {list(plan.frequencies)!r} Hz with presets."
                          f"{scene.study.preset}.scales = 'coupled': the interface law of the micro-roughness is the "
                          "dielectric one; a drive frequency needs scales = \"resolved\"")
-    results = None if directory is None else ResultsDirectory(output_directory(directory), plan, tasks)
-    store = results.tasks if results is not None else None if tasks is None else TaskStore(output_directory(tasks))
+
+
+def solve_plans(plans, store: TaskStore | None, workers: int | None = None, dask: str | None = None,
+                progress: bool = False) -> tuple:
+    """``(records, solved)``: the records of every task of ``plans`` (pairs of a :class:`~.plan.StudyPlan` and
+    its :func:`~.apparent.apparent_scale`) by task key, and the set of keys solved in this call. A task found in
+    ``store`` is read back; the others run on one executor (:func:`run_study`'s ``workers`` and ``dask``), each
+    distinct key once however many plans hold it, and are stored as they finish."""
+    jobs = {}
+    for plan, apparent in plans:
+        for task in plan.tasks:
+            jobs.setdefault(task.key, (plan, task, apparent))
     records = {}
     if store is not None:
-        records = {task.index: done for task in plan.tasks if (done := store.load(plan, task)) is not None}
-    todo = [task for task in plan.tasks if task.index not in records]
+        records = {key: done for key, (plan, task, _) in jobs.items() if (done := store.load(plan, task)) is not None}
+    todo = [job for key, job in jobs.items() if key not in records]
     executor = make_executor(workers, dask, len(todo)) if todo else InProcess()
-    bar, points_per_task = None, len(plan.normal_forces) / plan.realisations
-    chain = coupled_chain if scene.preset.scales == "coupled" else solve_chain   # the roughness as a law: .coupled
-    apparent = apparent_scale(scene)                # once, for every task
+    bar = None
     try:
         with executor:
             if progress and todo:                   # (once the executor runs: a refused one shows no bar)
                 from tqdm import tqdm
-                bar = tqdm(total=len(todo) * points_per_task, desc="roughcontact run", unit="point",
+                bar = tqdm(total=sum(_points(plan) for plan, _, _ in todo), desc="roughcontact run", unit="point",
                            bar_format="{l_bar}{bar}| {n:.4g}/{total:.4g} [{elapsed}<{remaining}]")
             # the highest voltages first: their solves take the longest, so the workers finish together
-            futures = {executor.submit(chain, plan, *task.index[:2], executor.threads, apparent, *task.index[2:]):
-                       task for task in sorted(todo, key=lambda task: -abs(plan.voltages[task.voltage_index]))}
+            futures = {executor.submit(coupled_chain if plan.scene.preset.scales == "coupled" else solve_chain,
+                                       plan, *task.index[:2], executor.threads, apparent, *task.index[2:]):
+                       (plan, task) for plan, task, apparent in
+                       sorted(todo, key=lambda job: -abs(job[0].voltages[job[1].voltage_index]))}
             for future in executor.as_completed(list(futures)):
-                task = futures[future]
-                records[task.index] = future.result()
+                plan, task = futures[future]
+                records[task.key] = future.result()
                 if store is not None:
-                    store.save(plan, task, records[task.index])
+                    store.save(plan, task, records[task.key])
                 if bar is not None:
-                    bar.update(points_per_task)
+                    bar.update(_points(plan))
     except BrokenProcessPool as error:
         raise RuntimeError("a worker of the study's process pool ended abruptly: killed (e.g. out of memory), or, "
                            "in a script, the pool was started without the 'if __name__ == \"__main__\":' guard "
@@ -203,9 +230,12 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
     finally:
         if bar is not None:
             bar.close()
-        if results is not None:
-            results.release()
-    return _study_result(plan, records, apparent, todo)
+    return records, {task.key for _, task, _ in todo}
+
+
+def _points(plan: StudyPlan) -> float:
+    """The points a task of ``plan`` finishes: its loads, shared by the realisations."""
+    return len(plan.normal_forces) / plan.realisations
 
 
 def _study_result(plan: StudyPlan, records: dict, apparent, todo) -> StudyResult:
@@ -233,12 +263,16 @@ def open_results(directory, tasks=None) -> StudyResult:
     file is not needed) and its tasks (or the shared task directory ``tasks`` it was run with) without solving
     anything (``computed`` and ``solves`` are 0). ``roughcontact.study.bottom_up_friction(open_results(DIR))``
     is the friction model of that run. ``ValueError`` naming the directory when it holds no scene or misses tasks
-    (the same ``roughcontact run`` command resumes it)."""
+    (the same ``roughcontact run`` command resumes it), or that holds a parameter study
+    (:func:`roughcontact.study.open_results` reads either)."""
     path = Path(directory)
     stored = path / "scene.toml"
     if not stored.is_file():
         raise ValueError(f"directory = {str(path)!r} holds no scene.toml: not a results directory of "
                          "'roughcontact run --out' or run_study(scene, directory)")
+    if has_variation(stored):
+        raise ValueError(f"directory = {str(path)!r} holds a parameter study (its scene.toml has a [vary] table): "
+                         "roughcontact.study.open_results reads it")
     scene = load_scene(stored, read_scan=False)
     patch = path / PATCH_FILE
     topography = HeightField.load(patch) if scene.roughness.topography and patch.exists() else None

@@ -353,6 +353,9 @@ class Preset(_Section):
     scales: str = _field(_Choice(SCALES))
 
 
+#: The table of a parameter study (:mod:`roughcontact.study.variants`), read beside the sections.
+VARY = "vary"
+
 SECTIONS = {"fingerpad": Fingerpad, "ridges": Ridges, "roughness": Roughness, "skin": Skin, "screen": Screen,
             "loads": Loads, "ridge_area": RidgeArea, "study": Study}
 
@@ -556,11 +559,14 @@ def _read_scene_file(path) -> str:
                          f"column {column} (TOML files are UTF-8; save it as UTF-8 in the editor)") from None
 
 
-def load_scene(path=None, *, text: str | None = None, preset: str | None = None, read_scan: bool = True) -> Scene:
+def load_scene(path=None, *, text: str | None = None, preset: str | None = None, read_scan: bool = True,
+               vary: bool = False) -> Scene:
     """The scene of the TOML file ``path`` (or of the TOML ``text``; neither: the default scene), every value
     not given taken from :data:`DEFAULT_SCENE_TOML`; ``preset`` overrides ``study.preset``. A measured
     topography is read once to validate it, unless ``read_scan`` is False (a results directory's scene, whose
-    patch is stored beside it: the scan may have moved since)."""
+    patch is stored beside it: the scan may have moved since). A ``[vary]`` table (a parameter study,
+    :mod:`roughcontact.study.variants`) is refused unless ``vary`` is True, which leaves it to the caller and
+    returns the base scene."""
     if path is not None and text is not None:
         raise ValueError("give a scene path or its text, not both")
     origin = "the default scene" if path is None and text is None else str(path) if path is not None else "scene"
@@ -568,10 +574,15 @@ def load_scene(path=None, *, text: str | None = None, preset: str | None = None,
         text = _read_scene_file(path)
     text = "" if text is None else text
     given = _parse(text, origin)
+    if VARY in given and not vary:
+        raise _error(origin, text, (VARY,), None, "a [vary] table makes a parameter study of the scene, not one "
+                     "scene", "roughcontact run (or roughcontact.study.load_variant_study) for a [vary] table")
     for name, value in given.items():
+        if name == VARY and vary:
+            continue
         if name not in SECTIONS and name != "presets":
             raise _error(origin, text, (name,), None, "unknown section",
-                         "the sections " + ", ".join([*SECTIONS, "presets"]))
+                         "the sections " + ", ".join([*SECTIONS, "presets", VARY]))
         if not isinstance(value, dict):
             raise _error(origin, text, (name,), None, "a section must be a table", f"[{name}] with its keys")
     sections = {name: _build(cls, (name,), _DEFAULTS[name], given.get(name, {}), origin, text)
@@ -609,17 +620,22 @@ def _with_measured_topography(scene: Scene, path, origin, text, read_scan: bool 
     location = Path(roughness.topography).expanduser()
     if not location.is_absolute():
         location = (Path(path).parent if path is not None else Path.cwd()) / location
-    roughness = dataclasses.replace(roughness, topography=str(location.resolve()))
+    scene = dataclasses.replace(scene, roughness=dataclasses.replace(roughness, topography=str(location.resolve())))
+    try:
+        check_measured(scene, read_scan)
+    except (ValueError, TypeError, ImportError, OSError) as error:
+        raise _error(origin, text, ("roughness",), "topography", str(error), None) from None
+    return scene
+
+
+def check_measured(scene: Scene, read_scan: bool = True) -> None:
+    """Refuse a scene whose measured topography (an absolute path) has ridges on top, a coupled preset or, with
+    ``read_scan``, a scan that cannot be read (ValueError naming the reason and what is valid)."""
     if scene.ridges.enabled:
-        raise _error(origin, text, ("roughness",), "topography", "a measured topography is the whole patch, its "
-                     "ridges included, but ridges.enabled = true", "ridges.enabled = false with a topography")
+        raise ValueError("a measured topography is the whole patch, its ridges included, but ridges.enabled = true; "
+                         "valid: ridges.enabled = false with a topography")
     if scene.preset.scales == "coupled":
-        raise _error(origin, text, ("roughness",), "topography", f"presets.{scene.study.preset}.scales = "
-                     "'coupled' reduces synthetic roughness to an interface law; a measured topography is solved "
-                     "resolved", 'scales = "resolved"')
+        raise ValueError(f"presets.{scene.study.preset}.scales = 'coupled' reduces synthetic roughness to an "
+                         "interface law; a measured topography is solved resolved; valid: scales = \"resolved\"")
     if read_scan:
-        try:
-            measured_topography(roughness)
-        except (ValueError, TypeError, ImportError, OSError) as error:
-            raise _error(origin, text, ("roughness",), "topography", str(error), None) from None
-    return dataclasses.replace(scene, roughness=roughness)
+        measured_topography(scene.roughness)

@@ -5,6 +5,8 @@ of a field, the friction rows of the recipe beside the seed's, a sweep's samples
 the intervals."""
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 
 from ..electrostatics import crossover_frequency
@@ -177,3 +179,51 @@ def write_tables(result: StudyResult, out, provenance) -> list:
     if not result.frequencies and friction_computed(result):
         files.append(write_csv(out / "friction.csv", friction_rows(result), provenance))
     return files
+
+
+#: The outputs of a parameter study in its tables: (output, column, scale).
+VARIANT_COLUMNS = (("equivalent_gap", "equivalent_gap_um", MICRO), ("field_equivalent_gap", "field_equivalent_gap_um",
+                                                                     MICRO),
+                   ("electrostatic_force", "electrostatic_force_N", 1.0),
+                   ("ridge_area_fraction", "ridge_area_fraction", 1.0),
+                   ("friction_coefficient", "bottom_up_friction_coefficient", 1.0))
+
+
+def input_value(value):
+    """An input's value in a table: a number, a topography's file name, or NaN for an absent drive frequency."""
+    if value is None:
+        return float("nan")
+    return Path(value).name if isinstance(value, str) else value
+
+
+def variant_rows(result) -> list:
+    """The rows of ``variants.csv``: one per variant, load and voltage, with the variant's inputs and the
+    realisation means of d_eq, d_field, F_el, A_R/A0 and the bottom-up μ (a :class:`VariantStudyResult`)."""
+    names = result.study.variation.names
+    rows = []
+    for variant in result.variants:
+        for i, force in enumerate(result.normal_forces):
+            for j, voltage in enumerate(result.voltages):
+                row = {"variant": variant.index, "label": variant.label,
+                       **{name: input_value(value) for name, value in zip(names, variant.values)},
+                       "normal_force_N": force, "voltage_V": voltage}
+                row.update({column: result.outputs[name][variant.index, i, j] * scale
+                            for name, column, scale in VARIANT_COLUMNS})
+                rows.append(row)
+    return rows
+
+
+def sensitivity_rows(result) -> list:
+    """The rows of ``sensitivity.csv``: one per output, load, voltage and input, with the design's measures
+    (:data:`~.sensitivity.MEASURES`)."""
+    sensitivity = result.sensitivity
+    return [{"output": output, "normal_force_N": force, "voltage_V": voltage, "input": name,
+             **{measure: values[o, n, i, j] for measure, values in sensitivity.measures.items()}}
+            for o, output in enumerate(sensitivity.outputs) for i, force in enumerate(sensitivity.normal_forces)
+            for j, voltage in enumerate(sensitivity.voltages) for n, name in enumerate(sensitivity.inputs)]
+
+
+def write_variant_tables(result, out, provenance) -> list:
+    """Write ``variants.csv`` and ``sensitivity.csv`` of a parameter study into ``out``; returns their paths."""
+    return [write_csv(out / "variants.csv", variant_rows(result), provenance),
+            write_csv(out / "sensitivity.csv", sensitivity_rows(result), provenance)]
