@@ -174,7 +174,7 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
     finally:
         if results is not None:
             results.release()
-    return _study_result(plan, {task.index: records[task.key] for task in plan.tasks}, apparent,
+    return assemble_study_result(plan, {task.index: records[task.key] for task in plan.tasks}, apparent,
                          [task for task in plan.tasks if task.key in solved])
 
 
@@ -238,7 +238,7 @@ def _points(plan: StudyPlan) -> float:
     return len(plan.normal_forces) / plan.realisations
 
 
-def _study_result(plan: StudyPlan, records: dict, apparent, todo) -> StudyResult:
+def assemble_study_result(plan: StudyPlan, records: dict, apparent, todo) -> StudyResult:
     """The :class:`StudyResult` of every task's ``records`` ({(r, j) or (r, j, k): records per load}); ``todo``
     the tasks solved in this run."""
     forces, voltages, frequencies = plan.normal_forces, plan.voltages, plan.frequencies
@@ -285,4 +285,4 @@ def open_results(directory, tasks=None) -> StudyResult:
         raise ValueError(f"directory = {str(path)!r} is not finished: {len(missing)} of {len(plan.tasks)} task files "
                          f"missing or unusable in {store.directory} ({named}{', ...' if len(missing) > 3 else ''}); "
                          "the same 'roughcontact run' command resumes it")
-    return _study_result(plan, records, apparent_scale(scene), [])
+    return assemble_study_result(plan, records, apparent_scale(scene), [])

@@ -58,7 +58,8 @@ DEFAULT_SCENE_TOML = resources.files(__package__).joinpath("default_scene.toml")
 # Field validators: each returns the checked value or raises ValueError/TypeError; ``valid`` describes them
 # ---------------------------------------------------------------------------------------------------------
 @dataclass(frozen=True)
-class _Real:
+class RealKey:
+    """The check of a real-valued scene key: a finite float in [low, high] (open where ``*_open``)."""
     low: float | None = None
     high: float | None = None
     low_open: bool = False
@@ -118,7 +119,7 @@ class _Choice:
 @dataclass(frozen=True)
 class _Increasing:
     """A non-empty, strictly increasing list of numbers in ``element``'s range."""
-    element: _Real
+    element: RealKey
 
     @property
     def valid(self):
@@ -143,8 +144,8 @@ class _Frequencies:
         if value is None:
             return None
         if isinstance(value, (list, tuple)):
-            return _Increasing(_Real(0.0))(name, value)
-        return (_Real(0.0)(name, value),)
+            return _Increasing(RealKey(0.0))(name, value)
+        return (RealKey(0.0)(name, value),)
 
 
 def _field(check, **default):
@@ -172,10 +173,10 @@ class Fingerpad(_Section):
     pressed onto the skin's layer on that tissue, solved on ``layer_grid`` × ``layer_grid`` pixels)."""
     section = "fingerpad"
     model: str = _field(_Choice(("power_law", "fingertip")))
-    area_prefactor: float = _field(_Real(0.0, low_open=True))
-    area_exponent: float = _field(_Real(0.0, 1.0, low_open=True))
-    radius: float = _field(_Real(0.0, low_open=True))
-    E_star: float = _field(_Real(0.0, low_open=True))
+    area_prefactor: float = _field(RealKey(0.0, low_open=True))
+    area_exponent: float = _field(RealKey(0.0, 1.0, low_open=True))
+    radius: float = _field(RealKey(0.0, low_open=True))
+    E_star: float = _field(RealKey(0.0, low_open=True))
     layer: bool = _field(_BOOLEAN)
     layer_grid: int = _field(_Integer(16, 2048))
 
@@ -186,12 +187,12 @@ class Ridges(_Section):
     of ``pore_density`` [1/m²], ``pore_diameter`` and ``pore_depth`` [m] on the crests."""
     section = "ridges"
     enabled: bool = _field(_BOOLEAN)
-    period: float = _field(_Real(0.0, low_open=True))
-    height: float = _field(_Real(0.0))
-    width_ratio: float = _field(_Real(0.43, 2.33))
-    pore_density: float = _field(_Real(0.0))
-    pore_diameter: float = _field(_Real(0.0, low_open=True))
-    pore_depth: float = _field(_Real(0.0))
+    period: float = _field(RealKey(0.0, low_open=True))
+    height: float = _field(RealKey(0.0))
+    width_ratio: float = _field(RealKey(0.43, 2.33))
+    pore_density: float = _field(RealKey(0.0))
+    pore_diameter: float = _field(RealKey(0.0, low_open=True))
+    pore_depth: float = _field(RealKey(0.0))
 
     def __post_init__(self):
         super().__post_init__()
@@ -208,10 +209,10 @@ class Roughness(_Section):
     "free"), ``detrend`` ("plane", "mean") and handling of ``missing`` points ("refuse", "harmonic")."""
     section = "roughness"
     enabled: bool = _field(_BOOLEAN)
-    hurst: float = _field(_Real(0.0, 1.0, low_open=True))
-    rms_height: float = _field(_Real(0.0, low_open=True))
-    long_cutoff: float = _field(_Real(0.0, low_open=True))
-    short_cutoff: float = _field(_Real(0.0, low_open=True))
+    hurst: float = _field(RealKey(0.0, 1.0, low_open=True))
+    rms_height: float = _field(RealKey(0.0, low_open=True))
+    long_cutoff: float = _field(RealKey(0.0, low_open=True))
+    short_cutoff: float = _field(RealKey(0.0, low_open=True))
     topography: str = _field(_TEXT)
     boundary: str = _field(_Choice(BOUNDARIES))
     detrend: str = _field(_Choice(("plane", "mean")))
@@ -229,10 +230,10 @@ class Skin(_Section):
     """Half-space of ``E_star`` [Pa], or a layer (``layer_E_star`` [Pa], ``layer_thickness`` [m] > 0) bonded on
     it; one ``poisson`` ratio for both."""
     section = "skin"
-    E_star: float = _field(_Real(0.0, low_open=True))
-    poisson: float = _field(_Real(-1.0, 0.5, low_open=True))
-    layer_E_star: float = _field(_Real(0.0, low_open=True))
-    layer_thickness: float = _field(_Real(0.0))
+    E_star: float = _field(RealKey(0.0, low_open=True))
+    poisson: float = _field(RealKey(-1.0, 0.5, low_open=True))
+    layer_E_star: float = _field(RealKey(0.0, low_open=True))
+    layer_thickness: float = _field(RealKey(0.0))
 
 
 #: The keys of a leak across the interface (:class:`LeakyStack`), each with its value when absent (no leak).
@@ -247,19 +248,19 @@ class Screen(_Section):
     (``frequency``) the stratum corneum's ``sigma_sc`` and a leak across the interface (:data:`LEAK_KEYS`, the
     fields of :class:`~roughcontact.electrostatics.LeakyStack`)."""
     section = "screen"
-    d_sc: float = _field(_Real(0.0, low_open=True))
-    eps_sc: float = _field(_Real(0.0, low_open=True))
-    d_i: float = _field(_Real(0.0, low_open=True))
-    eps_i: float = _field(_Real(0.0, low_open=True))
-    eps_a: float = _field(_Real(0.0, low_open=True))
+    d_sc: float = _field(RealKey(0.0, low_open=True))
+    eps_sc: float = _field(RealKey(0.0, low_open=True))
+    d_i: float = _field(RealKey(0.0, low_open=True))
+    eps_i: float = _field(RealKey(0.0, low_open=True))
+    eps_a: float = _field(RealKey(0.0, low_open=True))
     field: str = _field(_Choice(FIELDS))
     frequency: tuple | None = _field(_Frequencies(), default=None)
-    sigma_sc: float = _field(_Real(0.0), default=SIGMA_SC)
-    gap_conductance: float = _field(_Real(0.0), default=0.0)
-    gap_conductivity: float = _field(_Real(0.0), default=0.0)
-    gap_cpe: float = _field(_Real(0.0), default=0.0)
-    gap_cpe_exponent: float = _field(_Real(0.0, 1.0, low_open=True), default=1.0)
-    surface_conductance: float = _field(_Real(0.0), default=0.0)
+    sigma_sc: float = _field(RealKey(0.0), default=SIGMA_SC)
+    gap_conductance: float = _field(RealKey(0.0), default=0.0)
+    gap_conductivity: float = _field(RealKey(0.0), default=0.0)
+    gap_cpe: float = _field(RealKey(0.0), default=0.0)
+    gap_cpe_exponent: float = _field(RealKey(0.0, 1.0, low_open=True), default=1.0)
+    surface_conductance: float = _field(RealKey(0.0), default=0.0)
     contact_transfer: bool = _field(_BOOLEAN, default=False)
 
     def __post_init__(self):
@@ -314,16 +315,16 @@ class Screen(_Section):
 class Loads(_Section):
     """``normal_forces`` F_N [N] (> 0) and ``voltages`` U [V] (>= 0), each strictly increasing."""
     section = "loads"
-    normal_forces: tuple = _field(_Increasing(_Real(0.0, low_open=True)))
-    voltages: tuple = _field(_Increasing(_Real(0.0, 1e5)))
+    normal_forces: tuple = _field(_Increasing(RealKey(0.0, low_open=True)))
+    voltages: tuple = _field(_Increasing(RealKey(0.0, 1e5)))
 
 
 @dataclass(frozen=True)
 class RidgeArea(_Section):
     """A_R definition: the closing diameter ``coarse_graining`` [m] and the ``sensitivity`` factors on it."""
     section = "ridge_area"
-    coarse_graining: float = _field(_Real(0.0))
-    sensitivity: tuple = _field(_Increasing(_Real(0.0, low_open=True)))
+    coarse_graining: float = _field(RealKey(0.0))
+    sensitivity: tuple = _field(_Increasing(RealKey(0.0, low_open=True)))
 
 
 @dataclass(frozen=True)
@@ -345,9 +346,9 @@ class Preset(_Section):
     grid: int = _field(_Integer(8, 4096))
     periods: int = _field(_Integer(1, 64))
     realisations: int = _field(_Integer(1, 1000))
-    tolerance: float = _field(_Real(1e-14, 0.1))
+    tolerance: float = _field(RealKey(1e-14, 0.1))
     rings: int = _field(_Integer(1, 64))
-    pixels_per_cutoff: float = _field(_Real(2.0, 64.0))
+    pixels_per_cutoff: float = _field(RealKey(2.0, 64.0))
     dtype: str = _field(_Choice(DTYPES))
     warm_start: bool = _field(_BOOLEAN)
     scales: str = _field(_Choice(SCALES))
@@ -406,7 +407,7 @@ class Scene:
             tables = table.items() if name == "presets" else [(None, table)]
             for sub, values in tables:
                 lines.append(f"[{name}]" if sub is None else f"[{name}.{sub}]")
-                lines += [f"{key} = {_toml_value(value)}" for key, value in values.items()]
+                lines += [f"{key} = {toml_value(value)}" for key, value in values.items()]
                 lines.append("")
         return "\n".join(lines)
 
@@ -474,14 +475,15 @@ def _measured(path: str, digest: str, boundary: str, detrend: str, missing: str)
                                                    "parts": [field.metadata]})
 
 
-def _toml_value(value) -> str:
+def toml_value(value) -> str:
+    """``value`` (bool, number, string, list or None) as TOML text: floats exact (``repr``)."""
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, (int, float)):
         return repr(value)
     if isinstance(value, str):
         return json.dumps(value)
-    return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    return "[" + ", ".join(toml_value(v) for v in value) + "]"
 
 
 # ---------------------------------------------------------------------------------------------------------
@@ -532,17 +534,19 @@ def _build(cls, table, defaults: dict, given: dict, origin, text):
         raise _error(origin, text, table, key, str(error), None) from None
 
 
-def _parse(text: str, origin: str) -> dict:
+def parse_scene_text(text: str, origin: str) -> dict:
+    """The TOML ``text`` of a scene as a dict; a ValueError naming ``origin`` (a file or "scene text") and the line
+    where it is not TOML."""
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise ValueError(f"{origin}: not valid TOML: {error}") from None
 
 
-_DEFAULTS = _parse(DEFAULT_SCENE_TOML, "the default scene")
+_DEFAULTS = parse_scene_text(DEFAULT_SCENE_TOML, "the default scene")
 
 
-def _read_scene_file(path) -> str:
+def read_scene_file(path) -> str:
     """The text of the scene file ``path`` (TOML is UTF-8); a ValueError naming the file if it cannot be read."""
     try:
         data = Path(path).read_bytes()
@@ -571,9 +575,9 @@ def load_scene(path=None, *, text: str | None = None, preset: str | None = None,
         raise ValueError("give a scene path or its text, not both")
     origin = "the default scene" if path is None and text is None else str(path) if path is not None else "scene"
     if path is not None:
-        text = _read_scene_file(path)
+        text = read_scene_file(path)
     text = "" if text is None else text
-    given = _parse(text, origin)
+    given = parse_scene_text(text, origin)
     if VARY in given and not vary:
         raise _error(origin, text, (VARY,), None, "a [vary] table makes a parameter study of the scene, not one "
                      "scene", "roughcontact run (or roughcontact.study.load_variant_study) for a [vary] table")

@@ -20,7 +20,7 @@ from ..io.provenance import output_directory
 from .apparent import apparent_scale
 from .execution import PATCHES, TaskStore, VariantDirectory, check_executor
 from .plan import plan_study
-from .run import StudyResult, _study_result, check_drive, open_results as open_study_results, solve_plans
+from .run import StudyResult, assemble_study_result, check_drive, open_results as open_study_results, solve_plans
 from .sensitivity import OUTPUTS, Sensitivity, analyse, study_outputs
 from .variants import VariantStudy, has_variation, load_variant_study
 
@@ -83,7 +83,7 @@ def _apparent(scenes) -> list:
 def _assemble(study: VariantStudy, plans, apparents, records: dict, solved: set) -> VariantStudyResult:
     """The :class:`VariantStudyResult` of every task's ``records`` by key; ``solved`` the keys solved in this
     run."""
-    results = tuple(_study_result(plan, {task.index: records[task.key] for task in plan.tasks}, apparent,
+    results = tuple(assemble_study_result(plan, {task.index: records[task.key] for task in plan.tasks}, apparent,
                                   [task for task in plan.tasks if task.key in solved])
                     for plan, apparent in zip(plans, apparents))
     per_variant = [study_outputs(result) for result in results]

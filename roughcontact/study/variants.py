@@ -42,7 +42,7 @@ from pathlib import Path
 import numpy as np
 
 from .presets import auto_scene, parse_target
-from .scene import (AUTO, SECTIONS, VARY, Scene, _parse, _read_scene_file, _Real, _toml_value,
+from .scene import (AUTO, SECTIONS, VARY, Scene, parse_scene_text, read_scene_file, RealKey, toml_value,
                     check_measured, load_scene)
 
 if sys.version_info >= (3, 11):
@@ -74,7 +74,7 @@ def variable_keys() -> tuple:
     """The scene keys a parameter study may vary: every real number of :data:`VARIABLE_SECTIONS`, the drive
     frequency and the measured topography."""
     keys = [f"{section}.{item.name}" for section in VARIABLE_SECTIONS
-            for item in dataclasses.fields(SECTIONS[section]) if isinstance(item.metadata["check"], _Real)]
+            for item in dataclasses.fields(SECTIONS[section]) if isinstance(item.metadata["check"], RealKey)]
     return tuple(keys) + (FREQUENCY, TOPOGRAPHY)
 
 
@@ -137,7 +137,7 @@ class Input:
     def to_toml(self) -> str:
         """The input's line of a ``[vary]`` table."""
         if self.values:
-            return f"{json.dumps(self.name)} = {_toml_value(list(self.values))}"
+            return f"{json.dumps(self.name)} = {toml_value(list(self.values))}"
         source = f", source = {json.dumps(self.source)}" if self.source else ""
         return (f"{json.dumps(self.name)} = {{ low = {self.low!r}, high = {self.high!r}, scale = "
                 f"{json.dumps(self.scale)}{source} }}")
@@ -168,7 +168,7 @@ class Variation:
             if self.design == "morris":
                 lines.append(f"levels = {self.levels}")
         if self.point is not None:
-            lines.append(f"point = {_toml_value(list(self.point))}")
+            lines.append(f"point = {toml_value(list(self.point))}")
         return "\n".join(lines + [item.to_toml() for item in self.inputs]) + "\n"
 
 
@@ -476,7 +476,7 @@ def has_variation(path=None, *, text: str | None = None) -> bool:
     """Whether the scene file ``path`` (or ``text``) has a ``[vary]`` table (False where it is not valid TOML:
     :func:`~.scene.load_scene` names the error)."""
     if path is not None:
-        text = _read_scene_file(path)
+        text = read_scene_file(path)
     try:
         return VARY in tomllib.loads(text or "")
     except tomllib.TOMLDecodeError:
@@ -499,9 +499,9 @@ def load_variant_study(path=None, *, text: str | None = None, preset: str | None
     if preset == AUTO:
         base = auto_scene(base, parse_target(target_error))
     origin = str(path) if path is not None else "scene"
-    text = _read_scene_file(path) if path is not None else (text or "")
+    text = read_scene_file(path) if path is not None else (text or "")
     folder = Path(path).parent if path is not None else Path.cwd()
-    table = _parse(text, origin).get(VARY)
+    table = parse_scene_text(text, origin).get(VARY)
     where = _Located(origin, text, folder)
     if table is None:
         raise where.error(None, None, "the scene has no [vary] table", "a [vary] table with the inputs to vary")
