@@ -30,7 +30,10 @@ Convergence criterion, with ``gap_scale`` the rms height of h (the law's length 
 
     sqrt(⟨(K r)²⟩_F) ≤ tol · gap_scale,   r = G on F,
 
-the displacement that the residual traction would still cause. Under load control a tensile load with no
+the displacement that the residual traction would still cause. The layered field (a non-local law) is solved to a
+tenth of the last residual (within [1e-12, 1e-4]), and a residual at or below tol is trusted only once its law has
+been solved to a tenth of tol or tighter (a snap into full contact leaves F empty and the residual 0 at once, its field still
+solved as loosely as at the start). Under load control a tensile load with no
 contact left and every pixel pulled harder than the law attracts it has no equilibrium: reported, not
 iterated.
 """
@@ -512,6 +515,8 @@ class _Solver:
         iterations, converged, message, detached = 0, False, "", False
         previous_rz, tau, since_exact = 0.0, 0.0, 0
         start_tol = FIELD_TOL_CEILING                   # the field's at the start (FieldLaw's first tolerance)
+        law_tol = start_tol if self.field is not None else 0.0   # the tolerance the accepted gap's law was solved to
+        accept_tol = max(FIELD_TOL_FLOOR, FIELD_TOL_FACTOR * tol)   # and the one it needs to be accepted
         try:
             while True:
                 g, d, r, free = self.g, self.d, self.r, self.free
@@ -534,7 +539,7 @@ class _Solver:
                         # a start near its equilibrium (x0): its law solved again, warm, as tightly as its residual
                         # asks, before that residual is trusted (once)
                         value, magnitude, interaction = self.evaluate(g, pel, self.law_now)
-                        start_tol = 0.0
+                        start_tol, law_tol = 0.0, self.field.tol
                         history[-1] = value
                         residuals.pop()
                         continue
@@ -547,6 +552,14 @@ class _Solver:
                 if residual <= tol:
                     if since_exact:                             # accept only on an exactly recomputed p_el
                         pel, since_exact = self.elastic(g, self.pel_field), 0
+                        residuals.pop()
+                        continue
+                    if law_tol > accept_tol:
+                        # a residual that fell past its law's accuracy (a snap into full contact empties F: 0 at
+                        # once): the law solved again, warm, as tightly as that residual asks, before it is trusted
+                        value, magnitude, interaction = self.evaluate(g, pel, self.law_now)
+                        law_tol = self.field.tol
+                        history[-1] = value
                         residuals.pop()
                         continue
                     converged, message = True, f"converged: relative residual {residual:.3g} <= tol {tol:g}"
@@ -583,6 +596,7 @@ class _Solver:
                 self.g, self.trial = self.trial, self.g
                 self.pel_field, self.trial_field = self.trial_field, self.pel_field
                 self.law_now, self.law_trial = self.law_trial, self.law_now
+                law_tol = self.field.tol if self.field is not None else 0.0
                 self.r, self.r_prev = self.r_prev, self.r
                 previous_rz = rz
                 pel = step
