@@ -842,8 +842,50 @@ def _meets_tol(outcome):
     return converged and contact_fraction == 1.0 and error <= tol
 
 
+def _field_stalled_at_start():
+    """The snap patch with the layered field's CG cut to one iteration: its very first field solve (the start's, to
+    1e-4) stalls. Returns the result and the traction of an independent field solve (1e-12) of its gap."""
+    from unittest import mock
+    from roughcontact.electrostatics.field import StackField
+    original = StackField.conjugate_gradients
+
+    def one_iteration(self, column, inverse_diagonal, flux, tol, maxiter):
+        return original(self, column, inverse_diagonal, flux, tol, 1)
+    surface, half, law = _snap_patch()
+    with mock.patch.object(StackField, "conjugate_gradients", one_iteration):
+        result = solve_contact(surface, half, mean_pressure=10.0, interaction=law)
+    exact = solve_field(law.stack, np.asarray(result.gap, dtype=np.float64), surface.grid.lengths, law.voltage,
+                        tol=1e-12)
+    return result, exact.traction
+
+
+def _reported_unconverged_start(outcome):
+    # not converged, at the start (no step taken), the message naming the stalled field solve; every field finite,
+    # the traction the stalled solve's own (one CG iteration, relative residual 2.5e-3: 2.2e-2 of the exact field's
+    # largest σ_el off; zeros would be 1 off)
+    result, exact = outcome
+    fields = (result.gap, result.pressure, result.displacement, result.interaction_traction, result.contact_pressure)
+    error = np.max(np.abs(np.asarray(result.interaction_traction) - exact)) / np.max(np.abs(exact))
+    return (not result.converged and result.iterations == 0 and "field's solve stalled" in result.message
+            and all(np.isfinite(np.asarray(field)).all() for field in fields)
+            and math.isfinite(result.interaction_energy) and result.interaction_energy < 0 and error < 5e-2)
+
+
+def _field_law_at(gap):
+    """FieldLaw's traction at a 4² gap field [m] (the contact solver's layered law), to its default tol."""
+    from roughcontact.electrostatics.field import FieldLaw
+    grid = Grid((4, 4), (1e-4, 1e-4))
+    arrays = [np.zeros(grid.shape) for _ in range(4)]
+    FieldLaw(DielectricStack(), 100.0, grid).evaluate(np.full(grid.shape, gap), *arrays)
+    return arrays[0]
+
+
 ROWS += [
     ("layered-snap-to-full-contact-traction", _layered_traction_error, right(_meets_tol)),
+    ("layered-field-stalls-at-start", _field_stalled_at_start, right(_reported_unconverged_start,
+                                                                      warns=ConvergenceWarning)),
+    # a gap beyond float range in the columns' elastance: the solve's residual is NaN, which is no convergence
+    ("field-law-gap-1e300", lambda: _field_law_at(1e300), refused(FloatingPointError, "stalled", "nan")),
 ]
 
 

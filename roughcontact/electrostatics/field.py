@@ -463,7 +463,13 @@ def grid_and_gap(gap, lengths, periodic) -> tuple:
 
 class FieldSolveStalled(FloatingPointError):
     """A field solve of :class:`FieldLaw` did not reach its tolerance: the contact solver reports it (not converged,
-    warned) with the last accepted state."""
+    warned) with the last accepted state. ``energy`` is Σ V [J/m² per pixel, summed] of the flux the solve reached,
+    whose traction, stiffness and flux :meth:`FieldLaw.evaluate` wrote as for a solved field (None where nothing
+    was written)."""
+
+    def __init__(self, message: str, energy: float | None = None):
+        super().__init__(message)
+        self.energy = energy
 
 
 class FieldLaw:
@@ -488,7 +494,9 @@ class FieldLaw:
         """traction, stiffness, the unit-voltage flux and the column elastance (grid-shaped) ← the law at
         ``gap``; returns Σ V [J/m² per pixel, summed].
 
-        ``start``: (columns, flux) of a nearby evaluation, whose flux starts the field solve."""
+        ``start``: (columns, flux) of a nearby evaluation, whose flux starts the field solve. A solve that misses
+        ``tol`` (or whose residual is not a number) writes the flux it reached and raises
+        :class:`FieldSolveStalled` with its Σ V."""
         field, work = self.field, self._work
         inverse_permittivity = 1.0 / (EPSILON_0 * field.stack.eps_a)
         start_column, start_flux = (work[1], work[3]) if start is None else start
@@ -497,9 +505,6 @@ class FieldLaw:
         inverse_factor, column, inverse_diagonal, unit_flux = work
         iterations, residual = field.conjugate_gradients(column, inverse_diagonal, unit_flux, self.tol,
                                                          10 * unit_flux.size)
-        if residual > self.tol:
-            raise FieldSolveStalled(f"the layered field's solve stalled at relative residual {residual:.3g} "
-                                    f"(tol {self.tol:g}) after {iterations} iterations")
         self.fft_pairs += iterations + 1
         self.evaluations += 1
         squared_voltage = self.voltage ** 2
@@ -507,4 +512,8 @@ class FieldLaw:
                                   field._stencil, inverse_permittivity, squared_voltage, traction, stiffness, flux,
                                   columns)
         # Φ = U² (−½⟨D₁⟩ − ½⟨D₁ ρ₁⟩) with ρ₁ = 1 − (M + R) D₁ the residual of the unit-voltage solve
-        return -0.5 * squared_voltage * total
+        energy = -0.5 * squared_voltage * total
+        if not residual <= self.tol:
+            raise FieldSolveStalled(f"the layered field's solve stalled at relative residual {residual:.3g} "
+                                    f"(tol {self.tol:g}) after {iterations} iterations", energy)
+        return energy

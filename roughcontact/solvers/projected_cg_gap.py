@@ -505,19 +505,24 @@ class _Solver:
         start = None
         if self.field.evaluations:                     # the accepted gap's columns and flux
             start = tuple(array.reshape(shape)[inside] for array in (self.law_now[3], self.law_now[2]))
-        return self.field.evaluate(gap.reshape(shape)[inside], traction, stiffness, flux, columns, start=start)
+        try:
+            return self.field.evaluate(gap.reshape(shape)[inside], traction, stiffness, flux, columns, start=start)
+        except FieldSolveStalled as error:          # whether it wrote the accepted gap's law (as far as it got)
+            error.accepted = arrays is self.law_now
+            raise
 
     def run(self, tol, maxiter, callback, warn, body, heights, control, requested, start_kind, start):
         energy, operator, n = self.energy, self.operator, self.n
         pel = self.elastic(self.g, self.pel_field)
-        value, magnitude, interaction = self.evaluate(self.g, pel, self.law_now)
-        history, residuals = [value], []
+        history, residuals, interaction = [], [], 0.0
         iterations, converged, message, detached = 0, False, "", False
         previous_rz, tau, since_exact = 0.0, 0.0, 0
         start_tol = FIELD_TOL_CEILING                   # the field's at the start (FieldLaw's first tolerance)
         law_tol = start_tol if self.field is not None else 0.0   # the tolerance the accepted gap's law was solved to
         accept_tol = max(FIELD_TOL_FLOOR, FIELD_TOL_FACTOR * tol)   # and the one it needs to be accepted
         try:
+            value, magnitude, interaction = self.evaluate(self.g, pel, self.law_now)
+            history.append(value)
             while True:
                 g, d, r, free = self.g, self.d, self.r, self.free
                 traction = self.law_now[0]
@@ -602,8 +607,10 @@ class _Solver:
                 pel = step
                 value, magnitude, interaction = step_value
                 history.append(value)
-        except FieldSolveStalled as error:              # a trial's field solve: report the last accepted state
+        except FieldSolveStalled as error:              # report the last accepted state, its law as last solved
             message = f"stopped after {iterations} iterations: {error}"
+            if error.accepted and error.energy is not None:     # the start's field, or the accepted gap's again
+                interaction = error.energy
         if not converged and warn:
             warnings.warn(message, ConvergenceWarning, stacklevel=4)
         return self.result(pel, interaction, body, heights, control, requested, iterations, residuals, converged,
