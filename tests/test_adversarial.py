@@ -880,12 +880,31 @@ def _field_law_at(gap):
     return arrays[0]
 
 
+def _flat_pulled_off(**law):
+    """A flat (16², E* = 1 MPa) under the layered field at 100 V and twice the tension the dielectric stack's
+    contact attraction σ_el(0) holds (767 kPa): beyond every pull-off here (at DC the conducting stratum corneum
+    leaves the insulator alone: σ_el(0) = 673 kPa)."""
+    stack = DielectricStack(**{key: value for key, value in law.items() if key != "frequency"})
+    tension = 2 * float(DielectricStack().attraction(0.0, 100.0))
+    return solve_contact(flat16(), half16(), mean_pressure=-tension,
+                         interaction=ElectrostaticInteraction(stack, 100.0, frequency=law.get("frequency")))
+
+
+def _detached(result):
+    return (result.detached and not result.converged and "detached" in result.message
+            and "pull-off" in result.message and math.isfinite(result.mean_gap))
+
+
 ROWS += [
     ("layered-snap-to-full-contact-traction", _layered_traction_error, right(_meets_tol)),
     ("layered-field-stalls-at-start", _field_stalled_at_start, right(_reported_unconverged_start,
                                                                       warns=ConvergenceWarning)),
     # a gap beyond float range in the columns' elastance: the solve's residual is NaN, which is no convergence
     ("field-law-gap-1e300", lambda: _field_law_at(1e300), refused(FloatingPointError, "stalled", "nan")),
+    # a flat pulled off as a whole: its first step opens it along a direction without elastic curvature, which
+    # the line search once took as far as 1e297 m (the field then NaN: "stalled", not detached)
+    ("driven-dc-flat-beyond-pull-off", lambda: _flat_pulled_off(frequency=0.0), right(_detached, warns=ConvergenceWarning)),
+    ("layered-flat-beyond-pull-off", lambda: _flat_pulled_off(eps_sc=1000.0), right(_detached, warns=ConvergenceWarning)),
 ]
 
 

@@ -18,10 +18,11 @@ Method: projected non-linear conjugate gradients (Polak–Ribière⁺) on the fr
 preconditioned by the compliance K (the inverse of the elastic Hessian; its q = 0 mode given the largest
 compliance), with a projected Armijo line search on Π started from the step that minimises the local
 quadratic model (curvature ⟨d, K⁻¹ d⟩ − ⟨k d²⟩). No point whose gap can be stable closes by more than 2 (g + law
-length) in one step (no tunnelling through an energy barrier into contact). Each step costs one FFT
-pair for z = K r and one for K⁻¹ d, plus one where the projection clipped the step; the pointwise work is in
-fused numba passes (a law's kernel compiled into them, :attr:`~roughcontact.interactions.Interaction.kernel`;
-a law without one through its numpy methods).
+length) in one step (no tunnelling through an energy barrier into contact), nor opens by more than that in the
+first step along a concave direction (a body pulled off as a whole has no elastic curvature to limit it). Each
+step costs one FFT pair for z = K r and one for K⁻¹ d, plus one where the projection clipped the step; the
+pointwise work is in fused numba passes (a law's kernel compiled into them,
+:attr:`~roughcontact.interactions.Interaction.kernel`; a law without one through its numpy methods).
 Π decreases monotonically; a step along which Π is concave (⟨d, K⁻¹ d⟩ ≤ ⟨k d²⟩ plus the layer's mean
 term) crosses an instability and is counted on the result (``unstable_steps``). After such a step the next
 one skips the model and its K⁻¹ d: it tries twice the last length with the trial's exact p_el, and its own
@@ -32,10 +33,9 @@ Convergence criterion, with ``gap_scale`` the rms height of h (the law's length 
 
 the displacement that the residual traction would still cause. The layered field (a non-local law) is solved to a
 tenth of the last residual (within [1e-12, 1e-4]), and a residual at or below tol is trusted only once its law has
-been solved to a tenth of tol or tighter (a snap into full contact leaves F empty and the residual 0 at once, its field still
-solved as loosely as at the start). Under load control a tensile load with no
-contact left and every pixel pulled harder than the law attracts it has no equilibrium: reported, not
-iterated.
+been solved to a tenth of tol or tighter (a snap into full contact leaves F empty and the residual 0 at once, its
+field still solved as loosely as at the start). Under load control a tensile load with no contact left and every
+pixel pulled harder than the law attracts it has no equilibrium: reported, not iterated.
 """
 from __future__ import annotations
 
@@ -246,6 +246,17 @@ def _cap(g, d, stiffness, window, length, pixel_compliance, approach):
     cap = np.inf
     for i in range(d.size):
         cap = min(cap, _closing_limit(g[i], d[i], stiffness[i], window[i], length, pixel_compliance, approach))
+    return cap
+
+
+@njit(cache=True)
+def _opening_cap(g, d, window, length, approach):
+    """The largest step τ by which no point of the window opens by more than ``approach`` (g + ρ) (inf if none
+    opens)."""
+    cap = np.inf
+    for i in range(d.size):
+        if d[i] > 0 and window[i]:
+            cap = min(cap, approach * (g[i] + length) / d[i])
     return cap
 
 
@@ -638,7 +649,8 @@ class _Solver:
         """Projected Armijo search along d. Where the last step was concave (the solve is crossing an instability)
         it first tries twice that step's length, evaluated exactly, without the model's FFT pair; otherwise, or if
         that fails, it starts from the minimiser of the quadratic model along d (twice the last length where Π is
-        concave along d) and halves. Every first try is capped so that no stable point tunnels into contact.
+        concave along d) and halves. Every first try is capped so that no stable point tunnels into contact, and a
+        concave one with no last length opens no point by more than 2 (g + ρ).
         Returns (accepted, τ, the trial's p_el, steps since an exact p_el, the trial's Π/A, its magnitude and Σ V
         (None if rejected))."""
         operator, n, g, d = self.operator, self.n, self.g, self.d
@@ -663,8 +675,12 @@ class _Solver:
         concave = curvature <= 0
         if not concave:
             tau = min(-slope / n / curvature, cap)
-        else:                                               # concave along d: step out; the cap and Armijo bound it
-            tau = min(2 * tau if tau > 0 else -slope / max(dw, 1e-300), cap, rejected / 2)
+        else:                                               # concave along d: step out; the caps and Armijo bound it
+            # with no last length, the elastic model's, no point opening by more than 2 (g + ρ): the body's opening
+            # as a whole has no elastic curvature, and a tensile load beyond pull-off would take it out of range
+            first = 2 * tau if tau > 0 else min(-slope / max(dw, 1e-300),
+                                                _opening_cap(g, d, self.window, length, APPROACH))
+            tau = min(first, cap, rejected / 2)
         for _ in range(MAX_HALVINGS):
             trial = self.trial_step(tau, w, pel, value, magnitude, since_exact)
             if trial is not None:
