@@ -880,6 +880,14 @@ def _field_law_at(gap):
     return arrays[0]
 
 
+def _result_copy(**changes):
+    """hard16's result (exponential16's where the law changes) rebuilt with ``changes``, its arrays copied."""
+    import dataclasses
+    result = exponential16() if "interaction" in changes else hard16()
+    arrays = {name: np.array(value) for name, value in vars(result).items() if isinstance(value, np.ndarray)}
+    return dataclasses.replace(result, **{**arrays, **changes})
+
+
 def _flat_pulled_off(**law):
     """A flat (16², E* = 1 MPa) under the layered field at 100 V and twice the tension the dielectric stack's
     contact attraction σ_el(0) holds (767 kPa): beyond every pull-off here (at DC the conducting stratum corneum
@@ -905,6 +913,20 @@ ROWS += [
     # the line search once took as far as 1e297 m (the field then NaN: "stalled", not detached)
     ("driven-dc-flat-beyond-pull-off", lambda: _flat_pulled_off(frequency=0.0), right(_detached, warns=ConvergenceWarning)),
     ("layered-flat-beyond-pull-off", lambda: _flat_pulled_off(eps_sc=1000.0), right(_detached, warns=ConvergenceWarning)),
+
+    # --- ContactResult: field-wise equality (arrays by value, NaN equal to NaN), no hash
+    ("result-load-equal", in_tmp(lambda tmp: ContactResult.load(hard16().save(tmp / "r.npz")) == hard16()),
+     right(lambda equal: equal is True)),
+    ("result-load-smooth-equal", in_tmp(lambda tmp: ContactResult.load(exponential16().save(tmp / "r.npz"))
+                                         == exponential16()), right(lambda equal: equal is True)),
+    ("result-pressure-differs", lambda: _result_copy(pressure=2 * hard16().pressure) == hard16(),
+     right(lambda equal: equal is False)),
+    ("result-law-differs", lambda: _result_copy(interaction=ExponentialAdhesion(2e-3, 1e-7)) == exponential16(),
+     right(lambda equal: equal is False)),
+    ("result-nan-equal", lambda: _result_copy(requested=math.nan) == _result_copy(requested=math.nan),
+     right(lambda equal: equal is True)),
+    ("result-other-type", lambda: hard16() == "result", right(lambda equal: equal is False)),
+    ("result-unhashable", lambda: hash(hard16()), refused(TypeError, "unhashable", "ContactResult")),
 ]
 
 

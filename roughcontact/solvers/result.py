@@ -145,6 +145,16 @@ class ContactResult(SavableResult):
                             f"{type(self.grid).__name__} and {type(self.solver).__name__}")
 
     __setstate__ = _read_only_state
+
+    def __eq__(self, other):
+        """Field by field (as :class:`SolverReport`'s): arrays by value, floats with NaN equal to NaN, the grid, the
+        law and the report by their own equality (a result and its saved-and-loaded copy are equal)."""
+        if not isinstance(other, ContactResult):
+            return NotImplemented
+        return all(_same(getattr(self, name), getattr(other, name)) for name in self.__dataclass_fields__)
+
+    __hash__ = None     # equal by value, arrays included: no hash consistent with it
+
     converged = _from_report("converged", "Whether the solver met its tolerance.")
     message = _from_report("message", "The solver's closing message.")
     iterations = _from_report("iterations", "Steps of the method.")
