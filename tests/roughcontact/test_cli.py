@@ -92,8 +92,9 @@ def test_every_figures_output_carries_its_provenance(figures_run):
         date = line.split(", ")[1]
         assert abs(datetime.fromisoformat(date) - datetime.now(timezone.utc)) < timedelta(hours=1)
         command, parameters = line.split(", command: ")[1].split(", parameters: ")
-        assert command == f"roughcontact figures --output {output}"
-        assert json.loads(parameters) == {"command": "figures", "output": str(output)}
+        # a path outside the working directory is recorded by its name (no machine path in a shipped file)
+        assert command == f"roughcontact figures --output {output.name}"
+        assert json.loads(parameters) == {"command": "figures", "output": output.name}
 
 
 def test_figures_csv_readers_skip_the_provenance(figures_run):
