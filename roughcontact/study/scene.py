@@ -22,11 +22,14 @@ import hashlib
 import json
 import re
 import sys
+import warnings
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
 
-from surfaces import Grid, HeightField, read_topography
+from surfaces import Grid, HeightField, MissingDataWarning, read_topography
+from surfaces.heightfield import FILL_WARNING_FRACTION, MISSING
+from surfaces.io import LENGTH_UNITS
 from surfaces.ridges import ridge_fraction
 from surfaces.validation import check_integer, check_real
 
@@ -148,6 +151,44 @@ class _Frequencies:
         return (RealKey(0.0)(name, value),)
 
 
+@dataclass(frozen=True)
+class _ScanUnit:
+    """The unit of a scan's numbers: "" (the file's own), a name of ``surfaces.io.LENGTH_UNITS``, or metres per
+    number."""
+    valid = ('"" (the unit the file stores), one of ' + ", ".join(f'"{unit}"' for unit in LENGTH_UNITS)
+             + " or metres per number, in (0, inf)")
+
+    def __call__(self, name, value):
+        if isinstance(value, str):
+            if value and value not in LENGTH_UNITS:
+                raise ValueError(f"{name} = {value!r} is not a length unit; valid: {self.valid}")
+            return value
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not 0 < value < float("inf"):
+            raise ValueError(f"{name} = {value!r} is not a length unit; valid: {self.valid}")
+        return float(value)
+
+
+@dataclass(frozen=True)
+class _Optional:
+    """Absent (``[]``) or a list of ``count`` values, each checked by ``element``, held as a tuple; ``single``:
+    one value alone stands for ``count`` equal ones."""
+    count: int
+    element: object
+    single: bool = False
+
+    @property
+    def valid(self):
+        return (f"[] (none), {'one value or ' if self.single else ''}a list of {self.count} values, each "
+                f"{self.element.valid}")
+
+    def __call__(self, name, value):
+        if self.single and not isinstance(value, (list, tuple)):
+            value = [value] * self.count
+        if not isinstance(value, (list, tuple)) or len(value) not in (0, self.count):
+            raise ValueError(f"{name} must be {self.valid}, got {value!r}")
+        return tuple(self.element(f"{name}[{i}]", item) for i, item in enumerate(value))
+
+
 def _field(check, **default):
     return field(metadata={"check": check}, **default)
 
@@ -202,11 +243,22 @@ class Ridges(_Section):
                              f"period {self.period:g} m, width_ratio {self.width_ratio:g}); valid range (0, {width:g}]")
 
 
+#: The [roughness] keys that say how a measured scan is read and windowed, each with its value when absent (the
+#: file's own unit, size and first channel; no crop, no resampling): :func:`measured_topography`.
+SCAN_KEYS = {"unit": "", "lengths": (), "pixel_size": (), "channel": 0, "crop": (), "crop_by": "pixels",
+             "resample": ()}
+
+
 @dataclass(frozen=True)
 class Roughness(_Section):
     """Self-affine micro-roughness: Hurst exponent, ``rms_height`` [m], cut-off wavelengths [m]; or a measured
     ``topography`` (a file path, "" for none) as the whole patch, with its ``boundary`` ("mirrored", "periodic",
-    "free"), ``detrend`` ("plane", "mean") and handling of ``missing`` points ("refuse", "harmonic")."""
+    "free"), ``detrend`` ("plane", "mean") and handling of ``missing`` points ("refuse", "harmonic", "crop").
+
+    How the scan is read (:data:`SCAN_KEYS`, for a file that does not store them): the ``unit`` of its numbers
+    (a name or metres per number), its size as ``lengths`` [Lx, Ly] or ``pixel_size`` (dx or [dx, dy]) [m], its
+    ``channel``; then the window ``crop`` = [x0, x1, y0, y1] of the scan as read, half-open, in pixels or, with
+    ``crop_by = "metres"``, in metres, and ``resample`` = [nx, ny] pixels over that window."""
     section = "roughness"
     enabled: bool = _field(_BOOLEAN)
     hurst: float = _field(RealKey(0.0, 1.0, low_open=True))
@@ -216,13 +268,47 @@ class Roughness(_Section):
     topography: str = _field(_TEXT)
     boundary: str = _field(_Choice(BOUNDARIES))
     detrend: str = _field(_Choice(("plane", "mean")))
-    missing: str = _field(_Choice(("refuse", "harmonic")))
+    missing: str = _field(_Choice(MISSING))
+    unit: str | float = _field(_ScanUnit(), default="")
+    lengths: tuple = _field(_Optional(2, RealKey(0.0, low_open=True)), default=())
+    pixel_size: tuple = _field(_Optional(2, RealKey(0.0, low_open=True), single=True), default=())
+    channel: int = _field(_Integer(0, 1000), default=0)
+    crop: tuple = _field(_Optional(4, RealKey(0.0)), default=())
+    crop_by: str = _field(_Choice(("pixels", "metres")), default="pixels")
+    resample: tuple = _field(_Optional(2, _Integer(8, 4096)), default=())
 
     def __post_init__(self):
         super().__post_init__()
         if self.short_cutoff >= self.long_cutoff:
             raise ValueError(f"roughness.short_cutoff = {self.short_cutoff!r} m must be below roughness.long_cutoff "
                              f"= {self.long_cutoff!r} m")
+        self._check_scan_keys()
+
+    def _check_scan_keys(self):
+        """The relations of the :data:`SCAN_KEYS`: set only with a topography, one size, a crop window that
+        keeps something (whole pixels with ``crop_by = "pixels"``)."""
+        if self.crop and self.crop_by == "pixels":
+            if any(bound != int(bound) for bound in self.crop):
+                raise ValueError(f"roughness.crop = {toml_value(self.crop)} with crop_by = \"pixels\" needs pixel "
+                                 "indices; valid: whole numbers, or crop_by = \"metres\" for positions")
+            object.__setattr__(self, "crop", tuple(int(bound) for bound in self.crop))
+        given = [key for key, absent in SCAN_KEYS.items() if getattr(self, key) != absent]
+        if given and not self.topography:
+            raise ValueError(f"roughness.{given[0]} = {toml_value(getattr(self, given[0]))} says how a measured "
+                             "scan is read, but roughness.topography is empty; valid: set roughness.topography, "
+                             f"or leave {', '.join(given)} out")
+        if self.lengths and self.pixel_size:
+            raise ValueError(f"roughness.pixel_size = {toml_value(self.pixel_size)} with roughness.lengths = "
+                             f"{toml_value(self.lengths)}: give the scan's size once; valid: one of the two")
+        if self.crop and (self.crop[0] >= self.crop[1] or self.crop[2] >= self.crop[3]):
+            raise ValueError(f"roughness.crop = {toml_value(self.crop)} keeps nothing; valid: [x0, x1, y0, y1] with "
+                             "x0 < x1 and y0 < y1 (half-open, as a slice)")
+
+    def items(self) -> dict:
+        """The keys as written in a scene file: the :data:`SCAN_KEYS` only where set (a scene without them reads
+        and writes as before they existed)."""
+        return {key: value for key, value in dataclasses.asdict(self).items()
+                if key not in SCAN_KEYS or value != SCAN_KEYS[key]}
 
 
 @dataclass(frozen=True)
@@ -425,21 +511,36 @@ class Scene:
 
 def _items(section) -> dict:
     """A section's keys and values as written in a scene file."""
-    return section.items() if isinstance(section, Screen) else dataclasses.asdict(section)
+    return section.items() if isinstance(section, (Screen, Roughness)) else dataclasses.asdict(section)
 
 
 def measured_topography(roughness: Roughness):
     """The scene's measured patch: ``roughness.topography`` read as a HeightField (a saved ``.npz`` field, or
-    any format of ``surfaces.read_topography``, which needs the optional SurfaceTopography), its tilt or mean
-    removed (``detrend``), then mirrored, declared periodic or left free (``boundary``); None without one.
+    any format of ``surfaces.read_topography``, which needs the optional SurfaceTopography) with the scan keys
+    (:data:`SCAN_KEYS`: unit, size, channel) and its ``missing`` points refused, filled or cropped away, then
+    cropped to ``crop`` and resampled to ``resample``, its tilt or mean removed (``detrend``), then mirrored,
+    declared periodic or left free (``boundary``); None without one. A reader's error names the scene key that
+    remedies it.
 
     A file is read once per content: the fields read are cached by the SHA-256 of the file's bytes and the read
     options, so a scan replaced under the same path is read again. The field's metadata names the file
-    (``source``), the SHA-256 of its bytes (``sha256``) and the read options."""
+    (``source``), the SHA-256 of its bytes (``sha256``), the read options and, where points were missing, the
+    reader's record of them (``missing_points``, ``filled_fraction``, and for a crop ``kept_fraction`` and the
+    pixel ranges kept, ``measured_window``). A fill of more than 5 % of the scan warns
+    (:class:`surfaces.MissingDataWarning`) every time the patch is used."""
     if not roughness.topography:
         return None
-    return _measured(roughness.topography, file_digest(roughness.topography), roughness.boundary, roughness.detrend,
-                     roughness.missing)
+    options = tuple((key, getattr(roughness, key)) for key in SCAN_KEYS)
+    patch = _measured(roughness.topography, file_digest(roughness.topography), roughness.boundary, roughness.detrend,
+                      roughness.missing, options)
+    record = patch.metadata
+    if record["missing"] == "harmonic" and record.get("filled_fraction", 0.0) > FILL_WARNING_FRACTION:
+        warnings.warn(f"{Path(roughness.topography).name}: roughness.missing = \"harmonic\" invented "
+                      f"{record['missing_points']} of its heights ({record['filled_fraction']:.1%}, above "
+                      f"{FILL_WARNING_FRACTION:.0%}), which the study solves as measured ones; roughness.missing = "
+                      "\"crop\" keeps the largest fully measured rectangle instead", MissingDataWarning,
+                      stacklevel=1)            # one place: a run warns once however often it uses the patch
+    return patch
 
 
 def file_digest(path) -> str:
@@ -456,23 +557,88 @@ def file_digest(path) -> str:
     return digest.hexdigest()
 
 
+#: The reader's record of missing points carried to the top of a measured patch's metadata, by the names there.
+_MISSING_RECORD = {"missing_points": "missing_points", "filled_fraction": "filled_fraction",
+                   "kept_fraction": "kept_fraction", "crop": "measured_window"}
+
+
 @functools.lru_cache(maxsize=4)
-def _measured(path: str, digest: str, boundary: str, detrend: str, missing: str):
-    """The patch of the scan ``path`` whose bytes have the SHA-256 ``digest`` (the cache's key with the options)."""
-    if path.endswith(".npz"):
-        field = HeightField.load(path).detrended(detrend)
-    else:
-        field = read_topography(path, missing=missing, detrend=detrend)
+def _measured(path: str, digest: str, boundary: str, detrend: str, missing: str, options: tuple):
+    """The patch of the scan ``path`` whose bytes have the SHA-256 ``digest`` (the cache's key with the options;
+    ``options``, the :data:`SCAN_KEYS` as pairs)."""
+    options = dict(options)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", MissingDataWarning)      # measured_topography warns, by the scene's keys
+        field = _read_scan(path, missing, options)
     if field.grid.is_profile:
         raise ValueError(f"{path} is a line scan ({field.grid.shape[0]} points); the patch needs a 2-D map")
+    record = {name: field.metadata[key] for key, name in _MISSING_RECORD.items() if key in field.metadata}
+    field = _window(field, options).detrended(detrend)
     if boundary == "mirrored":
         field = field.mirrored()
     else:
         field = HeightField(Grid(field.grid.shape, field.grid.lengths, periodic=boundary == "periodic"), field.heights,
                             {"generator": f"declared {boundary}", "parts": [field.metadata]})
+    given = {key: list(value) if isinstance(value, tuple) else value for key, value in options.items()
+             if value != SCAN_KEYS[key]}
     return HeightField(field.grid, field.heights, {"generator": "measured patch", "source": path, "sha256": digest,
                                                    "boundary": boundary, "detrend": detrend, "missing": missing,
-                                                   "parts": [field.metadata]})
+                                                   **given, **record, "parts": [field.metadata]})
+
+
+def _read_scan(path: str, missing: str, options: dict) -> HeightField:
+    """The scan ``path`` as read with the scene's ``missing`` and :data:`SCAN_KEYS` ``options`` (the reader's
+    errors in the scene's keys)."""
+    if path.endswith(".npz"):
+        given = [f"roughness.{key}" for key in ("unit", "lengths", "pixel_size", "channel")
+                 if options[key] != SCAN_KEYS[key]]
+        if given:
+            raise ValueError(f"{path} is a saved HeightField, which stores its size and its heights in metres, one "
+                             f"map (channel 0); valid: leave {', '.join(given)} out")
+        return HeightField.load(path)
+    size = {key: options[key] or None for key in ("lengths", "pixel_size")}
+    try:
+        return read_topography(path, channel=options["channel"], unit=options["unit"] or None, missing=missing,
+                               **size)
+    except ValueError as error:
+        raise ValueError(_in_scene_keys(str(error))) from None
+
+
+#: The reader's arguments as the [roughness] keys that set them (:func:`_in_scene_keys`).
+_READER_PHRASES = (
+    (re.compile(r"pass (\w+)=None and (\w+)=None"), r"leave roughness.\1 and roughness.\2 out"),
+    (re.compile(r"pass (\w+)=None"), r"leave roughness.\1 out"),
+    (re.compile(r"pass unit= \(e\.g\. 'um'"), 'set roughness.unit (e.g. "um"'),
+    (re.compile(r"pass lengths=\(Lx, Ly\) or pixel_size \(dx or \(dx, dy\)\)"),
+     "set roughness.lengths = [Lx, Ly] or roughness.pixel_size = dx or [dx, dy]"),
+    (re.compile(r"pass missing='(\w+)'"), r'set roughness.missing = "\1"'),
+    (re.compile(r"\bmissing='(\w+)'"), r'roughness.missing = "\1"'),
+    (re.compile(r"^(unit|lengths|pixel_size|channel) = "), r"roughness.\1 = "),
+    (re.compile(r"(roughness\.\w+ = )'([^']*)'"), r'\1"\2"'),               # TOML's quotes
+)
+
+
+def _in_scene_keys(message: str) -> str:
+    """A reader's ``message`` with its arguments (``pass unit=``, ``missing='crop'``, …) written as the
+    [roughness] keys a scene sets."""
+    for pattern, replacement in _READER_PHRASES:
+        message = pattern.sub(replacement, message)
+    return message
+
+
+def _window(field: HeightField, options: dict) -> HeightField:
+    """``field`` cropped to ``options["crop"]`` (by ``crop_by``) and resampled to ``options["resample"]``."""
+    crop, by = options["crop"], options["crop_by"]
+    if crop:
+        try:
+            field = field.cropped(crop[:2], crop[2:], by=by)
+        except (TypeError, ValueError) as error:
+            raise ValueError(f"roughness.crop = {toml_value(crop)} ({by}) does not fit the scan as read, "
+                             f"{field.shape[0]} x {field.shape[1]} pixels over {field.grid.lengths[0]:g} x "
+                             f"{field.grid.lengths[1]:g} m: {error}") from None
+    if options["resample"]:
+        field = field.resampled(options["resample"])
+    return field
 
 
 def toml_value(value) -> str:
@@ -628,7 +794,7 @@ def _with_measured_topography(scene: Scene, path, origin, text, read_scan: bool 
     try:
         check_measured(scene, read_scan)
     except (ValueError, TypeError, ImportError, OSError) as error:
-        raise _error(origin, text, ("roughness",), "topography", str(error), None) from None
+        raise _error(origin, text, ("roughness",), _key_named(str(error), text), str(error), None) from None
     return scene
 
 
@@ -643,3 +809,12 @@ def check_measured(scene: Scene, read_scan: bool = True) -> None:
                          "interface law; a measured topography is solved resolved; valid: scales = \"resolved\"")
     if read_scan:
         measured_topography(scene.roughness)
+
+
+def _key_named(message: str, text: str) -> str:
+    """The [roughness] key that a scan's error ``message`` names first and the scene ``text`` sets (its line is
+    the error's), else ``topography``."""
+    for key in re.findall(r"roughness\.(\w+)", message):
+        if _line_of(text, ("roughness",), key) is not None:
+            return key
+    return "topography"

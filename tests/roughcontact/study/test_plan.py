@@ -93,7 +93,7 @@ def _candidates(value, check):
         return [value + 1, value - 1]
     if isinstance(value, float):
         return [value * 1.25, value * 0.8] if value else [1e7]
-    return [(*value[:-1], value[-1] * 1.25)]
+    return [(*value[:-1], value[-1] * 1.25)] if value else []          # (an absent list: a measured scan's keys)
 
 
 def _variants(scene):
