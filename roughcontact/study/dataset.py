@@ -59,6 +59,10 @@ def dataset(result: StudyResult, friction: bool = True):
              "scene_toml": scene.to_toml(), "short_cutoff_in_use": result.short_cutoff, "confidence": CONFIDENCE}
     for key, value in scene.flat().items():
         attrs[f"scene.{key}"] = int(value) if isinstance(value, bool) else value
+    if result.plan.topography is not None:             # a measured scan's missing points (report.md words them)
+        record = result.plan.topography.metadata
+        attrs.update({f"scan_{key}": record[key] for key in ("missing_points", "filled_fraction", "kept_fraction")
+                      if key in record})
     return xr.Dataset(variables, coords=coords, attrs=attrs)
 
 

@@ -14,6 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
+from surfaces.heightfield import FILL_WARNING_FRACTION
+
 from .._version import __version__
 from ..macro import LinearGap, PowerLawGap
 from .dataset import write_dataset, write_variant_dataset
@@ -80,6 +82,39 @@ def _patch_sentence(result: StudyResult, realisations: int) -> str:
             f"short cut-off in use {result.short_cutoff * MICRO:.3g} µm")
 
 
+def _caveats(result: StudyResult) -> list:
+    """The report's paragraphs on what limits its numbers (each followed by an empty line): the measured scan's
+    missing points and window."""
+    paragraphs = [_scan_sentence(result)]
+    return [line for paragraph in paragraphs if paragraph for line in (paragraph, "")]
+
+
+def _scan_sentence(result: StudyResult) -> str:
+    """How the measured scan's missing points were handled and how it was windowed ("" for a synthetic patch or
+    a complete scan used whole), from the patch's record (``roughcontact.study.scene.measured_topography``)."""
+    if result.plan.topography is None:
+        return ""
+    record, text = result.plan.topography.metadata, []
+    if "missing_points" in record and record.get("missing") == "harmonic":
+        fraction = record["filled_fraction"]
+        text.append(f"**Missing data**: {record['missing_points']} heights of the scan ({100 * fraction:.1f} %) were "
+                    "undefined and are filled by harmonic interpolation (`missing = \"harmonic\"`): invented "
+                    "heights that the solves take for measured ones"
+                    + (f", above the {100 * FILL_WARNING_FRACTION:.0f} % at which the reader warns; `missing = "
+                       "\"crop\"` keeps the largest fully measured rectangle instead." if fraction >
+                       FILL_WARNING_FRACTION else "."))
+    elif "missing_points" in record:
+        (i0, i1), (j0, j1) = record["measured_window"]
+        text.append(f"**Missing data**: {record['missing_points']} heights of the scan were undefined; the patch is "
+                    f"its largest fully measured rectangle (`missing = \"crop\"`), pixels {i0}:{i1} × {j0}:{j1}: "
+                    f"{100 * (1 - record['kept_fraction']):.1f} % of the scan cropped away.")
+    if "crop" in record:
+        text.append(f"The scan is cropped to `crop = {record['crop']}` ({record.get('crop_by', 'pixels')}).")
+    if "resample" in record:
+        text.append(f"It is resampled to {record['resample'][0]} × {record['resample'][1]} pixels.")
+    return " ".join(text)
+
+
 def _run_sentence(result: StudyResult, seconds: float | None) -> str:
     """The report's first paragraph: version, preset, patch, tolerance, convergence, instabilities, run time."""
     scene, converged = result.scene, result.array("converged")
@@ -106,7 +141,7 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
     slope = result.summary("gap_slope")[0]
     errors = assumption_errors(result)
     text = ["# Multiscale fingerpad study", "",
-            _run_sentence(result, seconds), "",
+            _run_sentence(result, seconds), "", *_caveats(result),
             describe(preset, scene.study.preset) + applicability(scene) if not scene.roughness.topography else
             "The presets' measured errors (`docs/guide/presets.md`) are those of synthetic patches on the preset's "
             "grid and do not apply here: the measured patch is solved on the scan's own pixels, so its resolution "
@@ -313,7 +348,7 @@ def sweep_report_text(result: StudyResult, nc_written: bool, seconds: float | No
     field_equivalent_gap = realisation_samples(result, "field_equivalent_gap")
     contact = realisation_samples(result, "contact_fraction")
     text = ["# Multiscale fingerpad study: drive-frequency sweep", "",
-            _run_sentence(result, seconds), "",
+            _run_sentence(result, seconds), "", *_caveats(result),
             describe(preset, scene.study.preset) + applicability(scene), "",
             "The drive (`[screen] frequency`, `docs/guide/ac_drive.md`): each voltage is the RMS value of a "
             "sinusoid at each frequency (0 Hz: DC), the stratum corneum conducts with σ_sc = "
