@@ -132,21 +132,25 @@ def realisation_count(scene: Scene) -> int:
     return scene.preset.realisations if scene.roughness.enabled or pores else 1
 
 
-def ridge_area_fraction(contact: np.ndarray, spacing: float, length: float, periodic=(True, True)) -> float:
+def ridge_area_fraction(contact: np.ndarray, spacing, length: float, periodic=(True, True)) -> float:
     """A_R/A0 of a contact mask: the fraction covered after a morphological closing (dilation, then erosion)
-    with a disc of diameter ``length`` [m] on pixels of ``spacing`` [m]; micro-contacts closer than ``length``
-    merge into one ridge contact. A disc under one pixel radius leaves the mask as it is. Periodic convolutions
-    by FFT (counts rounded), so the cost does not grow with the disc; a non-periodic axis (``periodic``) is
-    padded with a disc's width of no contact first, so that contacts at opposite edges do not merge."""
+    with a disc of diameter ``length`` [m] on pixels of ``spacing`` [m] (dx, or (dx, dy) for non-square pixels:
+    the disc is an ellipse of semi-axes ``length``/(2 dx) and ``length``/(2 dy) pixels); micro-contacts closer
+    than ``length`` merge into one ridge contact. A disc that holds one pixel only leaves the mask as it is.
+    Periodic convolutions by FFT (counts rounded), so the cost does not grow with the disc; a non-periodic axis
+    (``periodic``) is padded with a disc's width of no contact first, so that contacts at opposite edges do not
+    merge."""
     contact = np.asarray(contact, dtype=float)
-    radius = 0.5 * length / spacing
-    if radius < 1:
+    dx, dy = (spacing, spacing) if np.ndim(spacing) == 0 else spacing
+    radius = 0.5 * length / dx                           # in pixels of dx; dy/dx stretches the other axis
+    aspect = dy / dx
+    if radius < min(1.0, aspect):
         return float(np.mean(contact))
     window = tuple(slice(0, n) for n in contact.shape)
-    pad = int(np.ceil(radius)) + 1
-    contact = np.pad(contact, [(0, 0 if wraps else 2 * pad) for wraps in periodic])
+    pads = [int(np.ceil(radius / step)) + 1 for step in (1.0, aspect)]
+    contact = np.pad(contact, [(0, 0 if wraps else 2 * pad) for wraps, pad in zip(periodic, pads)])
     rows, columns = (np.fft.fftfreq(n, 1 / n) for n in contact.shape)     # signed pixel offsets, wrapped
-    disc = (rows[:, None] ** 2 + columns[None, :] ** 2 <= radius ** 2).astype(float)
+    disc = (rows[:, None] ** 2 + (aspect * columns[None, :]) ** 2 <= radius ** 2).astype(float)
     kernel = scipy.fft.rfft2(disc)
 
     def covered(mask):

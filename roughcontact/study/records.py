@@ -114,7 +114,7 @@ def patch_record(stack, field, voltage, results, lengths, spacing, solves, secon
     gaps = np.stack([np.asarray(res.gap, dtype=np.float64) for res in results])
     d_eq = stack.equivalent_gap(gaps)
     periodic = results[0].grid.periodic
-    fractions = tuple(float(np.mean([ridge_area_fraction(np.asarray(res.contact), spacing[0], length, periodic)
+    fractions = tuple(float(np.mean([ridge_area_fraction(np.asarray(res.contact), spacing, length, periodic)
                                      for res in results])) for length in lengths)
     offset = stack.eps_a * stack.dielectric_offset
     attraction = float(np.mean([unit_attraction(stack, field, res, voltage, frequency)   # rings: equal area
