@@ -32,6 +32,7 @@ _LAZY = {
     "patch_grid": "patch",
     "patch_surface": "patch",
     "ridge_area_fraction": "patch",
+    "PatchScaleWarning": "patch",
     "PatchRecord": "records",
     "PointResult": "records",
     "confidence_interval": "records",

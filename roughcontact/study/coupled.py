@@ -343,7 +343,7 @@ def ridge_chain(plan, law: InterfaceLaw, threads: int | None = None, grid=None, 
         d_field = stack.equivalent_gap(np.array([point.field_equivalent_gap for point in points]))
         fractions = tuple(float(np.mean(column)) for column in zip(*(p.ridge_area_fractions for p in points)))
         records.append(PatchRecord(
-            equivalent_gap=d_eq, field_equivalent_gap=d_field,
+            equivalent_gap=d_eq, field_equivalent_gap=max(d_field, 0.0),       # (records.patch_record: ≥ 0)
             ridge_equivalent_gap=ridge_equivalent_gap(stack, d_field, fractions[0]),
             mean_gap=float(np.mean([p.mean_gap for p in points])),
             contact_fraction=float(np.mean([p.contact_fraction for p in points])), ridge_area_fractions=fractions,

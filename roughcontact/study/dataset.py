@@ -11,7 +11,7 @@ from .._version import __version__
 from .friction import friction_computed
 from .records import CONFIDENCE
 from .run import StudyResult
-from .tables import FIELDS, friction_rows, input_value
+from .tables import FIELDS, FLAG_DESCRIPTIONS, friction_rows, input_value, point_flags
 
 #: Modules that writing results.nc needs (the ``io`` dependencies).
 NETCDF_MODULES = ("xarray", "h5netcdf", "h5py")
@@ -47,6 +47,9 @@ def dataset(result: StudyResult, friction: bool = True):
                                         {"units": "1", "long_name": "A_R / A0 after closing at coarse_graining"})
     variables["apparent_area"] = (("normal_force",), result.array("apparent_area")[:, 0], {"units": "m2"})
     variables["solve_seconds"] = (("normal_force", "voltage"), result.array("seconds"), {"units": "s"})
+    for name, values in point_flags(result).items():     # points that say nothing about the topography
+        variables[name] = (("normal_force", "voltage"), values.astype(np.int8) if values.dtype == bool else values,
+                           {"units": "1", "long_name": FLAG_DESCRIPTIONS[name]})
     friction = friction_rows(result) if friction and friction_computed(result) else []
     for key, unit in (("bottom_up_tangential_force_N", "N"), ("bottom_up_tangential_force_ci95_N", "N"),
                       ("seed_tangential_force_N", "N"), ("bottom_up_friction_coefficient", "1"),

@@ -12,7 +12,7 @@ from .friction import bottom_up_friction, friction_computed, friction_realisatio
 from .records import confidence_interval, positive_interval
 from .sensitivity import OUTPUTS
 from .run import StudyResult
-from .tables import MICRO, MM2, bars_note, realisation_samples, sweep_crossover, sweep_samples
+from .tables import MICRO, MM2, bars_note, point_flags, realisation_samples, sweep_crossover, sweep_samples
 
 #: Fields bounded by 1 (fractions of A0): their intervals are taken on the log-odds scale.
 FRACTIONS = ("ridge_area_fractions", "contact_fraction")
@@ -28,6 +28,13 @@ def _bars(result: StudyResult, name: str, scale: float = 1.0) -> tuple:
     return mean * scale, np.stack([below, above]) * scale
 
 
+def _ring(axis, x, y, flagged) -> None:
+    """Open rings around the points ``(x, y)`` that ``flagged`` marks: in full contact or with F_el ≥ 10 F_N
+    (:func:`~.tables.point_flags`), whose numbers say nothing about the topography."""
+    x, y = np.broadcast_to(x, np.shape(flagged)), np.asarray(y)
+    axis.plot(x[flagged], y[flagged], "o", ms=13, mfc="none", mec="k", ls="none")
+
+
 def _figures(result: StudyResult, out, provenance) -> list:
     """The figures of a loads × voltages study: ``equivalent_gap.png``, ``voltage_dependence.png``,
     ``field_ratio.png`` and, where the friction law is computed, ``friction.png``."""
@@ -41,6 +48,10 @@ def _figures(result: StudyResult, out, provenance) -> list:
     c_mean, c_bars = _bars(result, "contact_fraction", 100.0)
     gap_mean = result.summary("mean_gap")[0]
     note = bars_note(result)
+    flags = point_flags(result)
+    flagged = flags["full_contact"] | flags["attraction_dominates"]
+    if flagged.any():
+        note += "; ringed: full contact or F_el ≥ 10 F_N, the numbers say nothing about the topography (report.md)"
     written = []
     line = np.linspace(forces[0], forces[-1], 50)
 
@@ -74,6 +85,7 @@ def _figures(result: StudyResult, out, provenance) -> list:
                        label=f"A_R/A0, {force:g} N")
         right.errorbar(voltages, c_mean[i], yerr=c_bars[:, i], marker="s", ls="--", capsize=3, color=f"C{i}",
                        label=f"real contact, {force:g} N")
+        _ring(left, voltages, d_mean[i], flagged[i])
     left.set(xlabel="voltage U [V]", ylabel="d_eq (Eq. 25) [µm]", title="voltage dependence of d_eq")
     right.set(xlabel="voltage U [V]", ylabel="fraction of A0 [%]",
               title="ridge (solid) and real (dashed) contact vs voltage")
@@ -115,6 +127,7 @@ def _figures(result: StudyResult, out, provenance) -> list:
                 low, high = positive_interval(samples[name][:, j])
                 bars = np.nan_to_num(np.maximum(np.stack([value - low, high - value]), 0.0))
                 axis.errorbar(forces, value, yerr=bars, marker="o", capsize=3, color=colour, label=f"{voltage:g} V")
+                _ring(axis, forces, value, flagged[:, j])
                 axis.plot(line, getattr(theirs, name), "--", color=colour)
         axes[0].set(xlabel="F_N [N]", ylabel="ridge area A_R0 [mm²]", title="A_R (solid) vs seed Eq. 9 (dashed)")
         axes[1].set(xlabel="F_N [N]", ylabel="F_T [N]", title="friction force (dashed: seed Table 1)")

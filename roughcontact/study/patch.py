@@ -160,6 +160,41 @@ def ridge_area_fraction(contact: np.ndarray, spacing, length: float, periodic=(T
     return float(np.mean((covered(dilated) > disc.sum() - 0.5)[window]))
 
 
+class PatchScaleWarning(UserWarning):
+    """A patch narrower than the A_R closing length or the ridge period (:func:`patch_scale_message`)."""
+
+
+def surface_window(scene: Scene, grid) -> tuple:
+    """``(Lx, Ly)`` [m] of the surface a patch on ``grid`` holds: for a mirrored measured scan the scan's, half
+    the patch's along each mirrored axis (both, for a map; ``surfaces.HeightField.mirrored``), else the patch's."""
+    if scene.roughness.topography and scene.roughness.boundary == "mirrored":
+        return tuple(0.5 * length for length in grid.lengths)
+    return tuple(grid.lengths)
+
+
+def patch_scale_message(scene: Scene, grid) -> str:
+    """Why the patch on ``grid`` cannot give ridge-scale numbers, "" when it can: its surface
+    (:func:`surface_window`) is narrower than the A_R closing length ℓ (contacts closer than ℓ merge, so the
+    closing covers the whole patch once a contact sits in each stretch of ℓ: A_R/A0 tends to 100 %) or than the
+    ridge period (no ridge pattern: d_eq, d_field and A_R describe a part of one ridge, and the friction law fed
+    with them is not the fingerpad's)."""
+    (lx, ly), length, period = surface_window(scene, grid), scene.ridge_area.coarse_graining, scene.ridges.period
+    side, scales, effects = min(lx, ly), [], []
+    if side < length:
+        scales.append(f"the A_R closing length ridge_area.coarse_graining = {length * 1e6:g} µm")
+        effects.append("A_R/A0 closes over the whole patch (it tends to 100 %)")
+    if side < period:
+        scales.append(f"the ridge period ridges.period = {period * 1e6:g} µm")
+        effects.append("it holds no ridge pattern")
+    if not scales:
+        return ""
+    mirrored = " (the scan; the patch is its mirror images)" if (lx, ly) != tuple(grid.lengths) else ""
+    return (f"the patch's surface, {lx * 1e6:.3g} x {ly * 1e6:.3g} µm{mirrored}, is narrower than "
+            f"{' and than '.join(scales)}: {', '.join(effects)}, so d_eq, d_field and A_R describe a part of one "
+            "ridge, not the ridge scale, and the friction law fed with them is not the fingerpad's; scan at least "
+            "one ridge period, or lower ridge_area.coarse_graining below the patch for the contact on a ridge top")
+
+
 def gap_slope(gap, weights, spacing, periodic=(True, True)) -> float:
     """rms gap slope |∇g| weighted by ``weights`` (central differences, periodic or second-order one-sided at
     a non-periodic edge)."""

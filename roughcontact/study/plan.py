@@ -27,6 +27,7 @@ from __future__ import annotations
 import dataclasses
 import hashlib
 import json
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -35,7 +36,8 @@ from surfaces import Grid, HeightField
 
 from .._version import __version__
 from .apparent import ring_count
-from .patch import closing_lengths, patch_body, patch_grid, patch_surface, realisation_count, resolved_short_cutoff
+from .patch import (PatchScaleWarning, closing_lengths, patch_body, patch_grid, patch_scale_message, patch_surface,
+                    realisation_count, resolved_short_cutoff)
 from .scene import Scene, measured_topography
 
 
@@ -192,6 +194,8 @@ def plan_study(scene: Scene, topography: HeightField | None = None) -> StudyPlan
     else:
         grid = patch_grid(scene)
         cutoff = resolved_short_cutoff(scene, grid) if scene.roughness.enabled else float("nan")
+    if message := patch_scale_message(scene, grid):
+        warnings.warn(message, PatchScaleWarning, stacklevel=2)
     plan = StudyPlan(scene=scene, grid=grid, closing_lengths=closing_lengths(scene), short_cutoff=cutoff,
                      realisations=realisation_count(scene), normal_forces=tuple(scene.loads.normal_forces),
                      voltages=tuple(scene.loads.voltages), frequencies=tuple(scene.screen.frequency or ()),

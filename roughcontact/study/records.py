@@ -78,7 +78,8 @@ def field_ratio(stack, field_equivalent_gap: float, equivalent_gap: float) -> fl
 class PatchRecord:
     """One realisation's patch at one (F_N, U), averaged over the rings: ``equivalent_gap`` d_eq (seed Eq. 25
     of the solved gap), ``field_equivalent_gap`` d_field (the uniform gap whose Eq. 21 attraction is the solve's
-    mean attraction; at 0 V that of the hard-wall gap's field in the small-voltage limit), ``ridge_equivalent_gap``
+    mean attraction; at 0 V that of the hard-wall gap's field in the small-voltage limit; 0 where that attraction
+    reaches the one of uniform contact, which no gap ≥ 0 exceeds), ``ridge_equivalent_gap``
     d_eq,R (the uniform gap whose Eq. 21 attraction over A_R is the solve's F_el), ``mean_gap`` [m];
     ``contact_fraction``; ``ridge_area_fractions`` A_R/A0 per coarse-graining length; ``electrostatic_attraction``
     σ̄_el [Pa] of the solve's field, ``pixel_law_attraction`` [Pa] of Eq. 21 per pixel on the same solved gap and
@@ -121,15 +122,20 @@ def patch_record(stack, field, voltage, results, lengths, spacing, solves, secon
                                 for res in results]))
     # no attraction left (a leak across the interface at DC): no finite uniform gap attracts that little
     d_field = stack.gap_for_attraction(attraction, 1.0) if attraction > 0 else math.inf
+    ratio = field_ratio(stack, d_field, d_eq)
+    # above the attraction of uniform contact, σ_el(0) of Eq. 21 (the layered field's mean can exceed it near full
+    # contact), Eq. 21 inverted gives a gap below zero, which no surface has: d_field = 0 there, the bound it
+    # reaches; the report names those results (tables.point_flags)
+    d_field = max(d_field, 0.0)
     return PatchRecord(
         equivalent_gap=float(d_eq), field_equivalent_gap=d_field,
-        ridge_equivalent_gap=ridge_equivalent_gap(stack, max(d_field, 0.0), fractions[0]) if d_field < math.inf
+        ridge_equivalent_gap=ridge_equivalent_gap(stack, d_field, fractions[0]) if d_field < math.inf
         else math.inf,
         mean_gap=float(gaps.mean()),
         contact_fraction=float(np.mean([res.contact_fraction for res in results])), ridge_area_fractions=fractions,
         electrostatic_attraction=attraction * voltage ** 2,
         pixel_law_attraction=float(np.mean(stack.attraction(gaps, voltage))),
-        field_ratio=field_ratio(stack, d_field, d_eq),
+        field_ratio=ratio,
         gap_slope=float(np.mean([gap_slope(g, (offset + g) ** -2.0, spacing, periodic) for g in gaps])),
         converged=all(bool(res.converged) for res in results), iterations=int(sum(res.iterations for res in results)),
         unstable_steps=int(sum(res.unstable_steps for res in results)), solves=solves, seconds=seconds)

@@ -21,13 +21,14 @@ from ..macro import LinearGap, PowerLawGap
 from .dataset import write_dataset, write_variant_dataset
 from .figures import write_figures, write_sensitivity_figure
 from .friction import FRICTION_MIN_LOADS, HOLDS_WITHIN, assumption_errors, friction_computed, friction_realisations
+from .patch import patch_scale_message
 from .presets import applicability, describe
 from .records import confidence_interval, positive_interval
 from .run import StudyResult
 from .scene import LEAK_KEYS
 from .sensitivity import OUTPUTS
-from .tables import (MICRO, bars_note, friction_rows, realisation_samples, sweep_crossover, sweep_samples,
-                     write_tables, write_variant_tables)
+from .tables import (ATTRACTION_DOMINATES, FULL_CONTACT, MICRO, bars_note, friction_rows, point_flags,
+                     realisation_samples, sweep_crossover, sweep_samples, write_tables, write_variant_tables)
 from .variant_run import VariantStudyResult
 
 def _number(value, digits) -> str:
@@ -48,8 +49,9 @@ def _table(result, samples, scale=1.0, digits=2, unit="", upper=np.inf) -> list:
     ``samples`` (… , realisations)."""
     header = "| F_N [N] | " + " | ".join(f"{v:g} V" for v in result.voltages) + " |"
     lines = [header, "|---" * (len(result.voltages) + 1) + "|"]
+    mark = np.where(_marked(result), " †", "")
     for i, force in enumerate(result.normal_forces):
-        lines.append(f"| {force:g} | " + " | ".join(_cell(samples[i, j], scale, digits, upper)
+        lines.append(f"| {force:g} | " + " | ".join(_cell(samples[i, j], scale, digits, upper) + mark[i, j]
                                                    for j in range(len(result.voltages))) + " |")
     note = f"\n({unit}; realisation mean [{bars_note(result).removeprefix('bars: ')}])"
     return lines + ([note] if unit else [])
@@ -84,9 +86,57 @@ def _patch_sentence(result: StudyResult, realisations: int) -> str:
 
 def _caveats(result: StudyResult) -> list:
     """The report's paragraphs on what limits its numbers (each followed by an empty line): the measured scan's
-    missing points and window."""
-    paragraphs = [_scan_sentence(result)]
+    missing points and window, a patch narrower than the length scales it is measured with, the points that say
+    nothing about the topography, the field-equivalent gaps at their bound 0."""
+    scale = patch_scale_message(result.scene, result.plan.grid)
+    paragraphs = [_scan_sentence(result), f"**Patch too small**: {scale}." if scale else "", _flag_sentence(result),
+                  _clipped_field_gap(result)]
     return [line for paragraph in paragraphs if paragraph for line in (paragraph, "")]
+
+
+def _marked(result: StudyResult) -> np.ndarray:
+    """Per (load, voltage), any frequency: the point is in full contact or its attraction dominates the load
+    (:func:`point_flags`), marked † in the report's tables."""
+    flags = point_flags(result)
+    marked = flags["full_contact"] | flags["attraction_dominates"]
+    return marked.reshape(*marked.shape[:2], -1).any(axis=-1)
+
+
+def _flag_sentence(result: StudyResult) -> str:
+    """The points whose numbers say nothing about the topography, and why ("" if none)."""
+    flags, marked = point_flags(result), _marked(result)
+    if not marked.any():
+        return ""
+
+    def points(mask):
+        mask = mask.reshape(*mask.shape[:2], -1).any(axis=-1)
+        return ", ".join(f"{force:g} N at {voltage:g} V" for i, force in enumerate(result.normal_forces)
+                         for j, voltage in enumerate(result.voltages) if mask[i, j])
+
+    reasons = []
+    if flags["full_contact"].any():
+        reasons.append(f"in full contact (a realisation's real contact ≥ {100 * FULL_CONTACT:g} %) at "
+                       f"{points(flags['full_contact'])}")
+    if flags["attraction_dominates"].any():
+        reasons.append(f"pressed by an attraction F_el ≥ {ATTRACTION_DOMINATES:g} F_N (up to "
+                       f"{np.nanmax(flags['electrostatic_to_normal_force']):.0f} F_N) at "
+                       f"{points(flags['attraction_dominates'])}")
+    return (f"**Points that say nothing about the topography** (marked † in the tables): the patch is "
+            f"{'; and '.join(reasons)}. There the field presses the skin onto the screen, so d_eq, A_R and the "
+            "friction law's μ follow from the stack, not from the roughness: read them as bounds, not as predictions "
+            "(`full_contact`, `attraction_dominates`, `electrostatic_to_normal_force` in `points.csv` and "
+            "`results.nc`).")
+
+
+def _clipped_field_gap(result: StudyResult) -> str:
+    """A note where d_field is the bound 0 (the mean attraction reached that of uniform contact), "" if nowhere."""
+    clipped = point_flags(result)["field_gap_clipped"]
+    if not clipped.any():
+        return ""
+    return (f"**d_field = 0** at {int(clipped.sum())} of {clipped.size} points: a realisation's mean attraction "
+            "there reaches the attraction of uniform contact, σ_el(0) of Eq. 21 (the layered field's mean can exceed "
+            "it near full contact), and Eq. 21 inverted would give a gap below zero, which no surface has; d_field "
+            "is reported at its bound, 0 (`field_gap_clipped` in `points.csv` and `results.nc`).")
 
 
 def _scan_sentence(result: StudyResult) -> str:
@@ -270,10 +320,10 @@ def _friction_section(result: StudyResult) -> list:
 def _friction_table(result: StudyResult, rows: list, cell) -> list:
     """A loads × voltages table of the friction ``rows`` (:func:`friction_rows`, in their order), each entry
     ``cell(i, j, row)``."""
-    count = len(result.voltages)
+    count, mark = len(result.voltages), np.where(_marked(result), " †", "")
     return (["| F_N [N] | " + " | ".join(f"{v:g} V" for v in result.voltages) + " |", "|---" * (count + 1) + "|"]
-            + [f"| {force:g} | " + " | ".join(cell(i, j, rows[i * count + j]) for j in range(count)) + " |"
-               for i, force in enumerate(result.normal_forces)])
+            + [f"| {force:g} | " + " | ".join(cell(i, j, rows[i * count + j]) + mark[i, j] for j in range(count))
+               + " |" for i, force in enumerate(result.normal_forces)])
 
 
 def _per_pixel_section(result: StudyResult) -> list:

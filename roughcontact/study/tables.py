@@ -28,6 +28,41 @@ def realisation_samples(result: StudyResult, name: str) -> np.ndarray:
     return np.where(result.array("converged").astype(bool), values, np.nan)
 
 
+#: The real contact fraction from which a patch counts as in full contact: its gap statistics rest on the last
+#: 1 % of its pixels, and its numbers on the stack rather than on the topography.
+FULL_CONTACT = 0.99
+#: F_el/F_N from which the attraction dominates the load: the patch is pressed by the field, so its numbers (and
+#: the friction law's μ = μ0 (1 + F_el/F_N) alike) follow from the stack rather than from the topography.
+ATTRACTION_DOMINATES = 10.0
+
+
+#: What each of :func:`point_flags` says (the long names in results.nc).
+FLAG_DESCRIPTIONS = {
+    "full_contact": f"a realisation in full contact (real contact fraction >= {FULL_CONTACT:g}): the numbers "
+                    "say nothing about the topography",
+    "attraction_dominates": f"F_el >= {ATTRACTION_DOMINATES:g} F_N: the field presses the patch, the numbers say "
+                            "nothing about the topography",
+    "electrostatic_to_normal_force": "F_el / F_N (F_el = mean sigma_el x apparent area)",
+    "field_gap_clipped": "mean attraction at or above that of uniform contact: field_equivalent_gap is the bound 0"}
+
+
+def point_flags(result: StudyResult) -> dict:
+    """Per point (shape loads × voltages [× frequencies]) what makes its numbers say nothing about the topography:
+    ``full_contact`` (a converged realisation at a real contact fraction ≥ :data:`FULL_CONTACT`),
+    ``attraction_dominates`` (F_el = σ̄_el A0, the realisation mean, ≥ :data:`ATTRACTION_DOMINATES` F_N), with
+    ``electrostatic_to_normal_force`` F_el/F_N; and ``field_gap_clipped`` (a realisation whose mean attraction
+    reaches that of uniform contact, so its field-equivalent gap is the bound 0: ``records.patch_record``)."""
+    converged = result.array("converged").astype(bool)
+    contact = np.where(converged, result.array("contact_fraction"), np.nan)
+    field_gap = np.where(converged, result.array("field_equivalent_gap"), np.nan)
+    force = result.summary("electrostatic_attraction")[0] * result.array("apparent_area")
+    ratio = force / result.normal_forces.reshape(-1, *[1] * (force.ndim - 1))
+    with np.errstate(invalid="ignore"):
+        return {"full_contact": np.any(contact >= FULL_CONTACT, axis=-1),
+                "attraction_dominates": ratio >= ATTRACTION_DOMINATES, "electrostatic_to_normal_force": ratio,
+                "field_gap_clipped": np.any(field_gap == 0, axis=-1)}
+
+
 def friction_rows(result: StudyResult) -> list:
     """The rows of ``friction.csv``, one per (F_N, U): the ridge-area recipe's gap, A_R0, F_T and μ (with
     their 95 % half-widths over the realisations) beside the seed's fitted model, μ without the tangential
@@ -81,6 +116,7 @@ def _point_rows(result: StudyResult) -> list:
     rows = []
     ridge_mean, ridge_half = result.summary("ridge_area_fractions")
     means = {name: result.summary(name) for name, *_ in FIELDS}
+    flags = point_flags(result)                 # the points whose numbers say nothing about the topography
     for i, force in enumerate(result.normal_forces):
         for j, voltage in enumerate(result.voltages):
             point = result.points[i][j]
@@ -98,6 +134,7 @@ def _point_rows(result: StudyResult) -> list:
                 row[f"{column}_ci95_N"] = means[name][1][i, j] * point.apparent_area
             row["converged"] = all(point.converged)
             row["solve_seconds"] = point.seconds
+            row.update({name: values[i, j].item() for name, values in flags.items()})
             rows.append(row)
     return rows
 
