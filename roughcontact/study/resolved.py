@@ -12,15 +12,15 @@ from .records import patch_record
 
 
 def solve_chain(plan, realisation: int, voltage_index: int, threads: int | None = None,
-                apparent: tuple | None = None, frequency_index: int | None = None) -> tuple:
+                apparent: tuple | None = None, frequency_index: int | None = None, progress=None) -> tuple:
     """One task of the study: the patch of ``realisation`` at voltage ``loads.voltages[voltage_index]`` (under
     the drive at ``screen.frequency[frequency_index]`` where the scene sets a frequency) under every load of the
     scene in order, each ring's solve warm-started from its result at the previous load (cold with the preset's
     ``warm_start`` false; a warm start that fails is repeated cold). ``plan``: the study's
     :class:`~.plan.StudyPlan`, or a Scene (planned here). ``threads`` FFT threads (default:
     ``roughcontact.fft.default_threads``); ``apparent``, the scene's :func:`apparent_scale` (computed when not
-    given). Returns one :class:`PatchRecord` per load; deterministic, so the records do not depend on where the
-    task runs."""
+    given); ``progress``, called with no argument after each load (:class:`~.progress.LoadProgress`). Returns one
+    :class:`PatchRecord` per load; deterministic, so the records do not depend on where the task runs."""
     plan = as_plan(plan)
     scene = plan.scene
     stack = scene.screen.stack()
@@ -46,4 +46,6 @@ def solve_chain(plan, realisation: int, voltage_index: int, threads: int | None 
             latest[k] = result
         records.append(patch_record(stack, scene.screen.field, voltage, latest, lengths, spacing, solves,
                                      time.perf_counter() - start, frequency))
+        if progress is not None:
+            progress()
     return tuple(records)

@@ -48,6 +48,8 @@ included) is solved again; a different scene in the same results directory is re
 from __future__ import annotations
 
 import dataclasses
+import functools
+import sys
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
 from pathlib import Path
@@ -60,8 +62,10 @@ from surfaces.validation import check_integer
 from ..io.provenance import output_directory
 from .apparent import apparent_scale
 from .coupled import coupled_chain
+from .cost import run_estimate
 from .execution import PATCH_FILE, InProcess, ResultsDirectory, TaskStore, check_executor, make_executor
 from .plan import StudyPlan, plan_study
+from .progress import LoadProgress
 from .records import PER_REALISATION, PointResult, confidence_interval, point_result
 from .resolved import solve_chain
 from .scene import Scene, load_scene
@@ -202,15 +206,21 @@ def solve_plans(plans, store: TaskStore | None, workers: int | None = None, dask
         records = {key: done for key, (plan, task, _) in jobs.items() if (done := store.load(plan, task)) is not None}
     todo = [job for key, job in jobs.items() if key not in records]
     executor = make_executor(workers, dask, len(todo)) if todo else InProcess()
-    bar = None
+    bar, loads = None, LoadProgress(None)
     try:
         with executor:
             if progress and todo:                   # (once the executor runs: a refused one shows no bar)
                 from tqdm import tqdm
+                _tell(run_estimate([(plan, task) for plan, task, _ in todo],    # what the tasks will cost
+                                   getattr(executor, "workers", 1) if dask is None else None))
                 bar = tqdm(total=sum(_points(plan) for plan, _, _ in todo), desc="roughcontact run", unit="point",
                            bar_format="{l_bar}{bar}| {n:.4g}/{total:.4g} [{elapsed}<{remaining}]")
+            # reported per load: from a local pool's workers through a queue, in this process directly
+            loads = LoadProgress(bar, pooled=dask is None and not isinstance(executor, InProcess),
+                                 local=isinstance(executor, InProcess)).start()
             # the highest voltages first: their solves take the longest, so the workers finish together
-            futures = {executor.submit(coupled_chain if plan.scene.preset.scales == "coupled" else solve_chain,
+            futures = {executor.submit(_reporting(plan, loads.reporter(task.key, len(plan.normal_forces),
+                                                                       1 / plan.realisations)),
                                        plan, *task.index[:2], executor.threads, apparent, *task.index[2:]):
                        (plan, task) for plan, task, apparent in
                        sorted(todo, key=lambda job: -abs(job[0].voltages[job[1].voltage_index]))}
@@ -219,8 +229,7 @@ def solve_plans(plans, store: TaskStore | None, workers: int | None = None, dask
                 records[task.key] = future.result()
                 if store is not None:
                     store.save(plan, task, records[task.key])
-                if bar is not None:
-                    bar.update(_points(plan))
+                loads.finished(task.key)
     except BrokenProcessPool as error:
         raise RuntimeError("a worker of the study's process pool ended abruptly: killed (e.g. out of memory), or, "
                            "in a script, the pool was started without the 'if __name__ == \"__main__\":' guard "
@@ -228,6 +237,7 @@ def solve_plans(plans, store: TaskStore | None, workers: int | None = None, dask
                            "in this process with workers=1. Finished tasks are kept in the results "
                            "directory") from error
     finally:
+        loads.close()                               # after the pool: a worker may still unpickle a reporter
         if bar is not None:
             bar.close()
     return records, {task.key for _, task, _ in todo}
@@ -236,6 +246,25 @@ def solve_plans(plans, store: TaskStore | None, workers: int | None = None, dask
 def _points(plan: StudyPlan) -> float:
     """The points a task of ``plan`` finishes: its loads, shared by the realisations."""
     return len(plan.normal_forces) / plan.realisations
+
+
+def _points(plan: StudyPlan) -> float:
+    """The points a task of ``plan`` finishes: its loads, shared by the realisations."""
+    return len(plan.normal_forces) / plan.realisations
+
+
+def _reporting(plan: StudyPlan, reporter):
+    """The chain of ``plan``'s tasks, reporting each load to ``reporter`` (:class:`~.progress.LoadProgress`; the
+    resolved chain only: the coupled path's tasks count when they end)."""
+    if plan.scene.preset.scales == "coupled":
+        return coupled_chain
+    return solve_chain if reporter is None else functools.partial(solve_chain, progress=reporter)
+
+
+def _tell(lines) -> None:
+    """Print the lines of the run's estimate (:func:`~.cost.run_estimate`) where the progress bar goes."""
+    for line in lines:
+        print(f"roughcontact run: {line}", file=sys.stderr, flush=True)
 
 
 def assemble_study_result(plan: StudyPlan, records: dict, apparent, todo) -> StudyResult:
