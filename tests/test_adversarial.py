@@ -930,6 +930,115 @@ ROWS += [
 ]
 
 
+# ---------------------------------------------------------------------------------------------- issue 36 (the study)
+# Measured scans in a scene: the reader's arguments as [roughness] keys, missing data visible, A_R on non-square
+# pixels, a patch narrower than its length scales, no field-equivalent gap below zero, the run's estimate.
+
+def _scan_scene(tmp, keys="", scan="s.txt", content=MATRIX):
+    """The scene of the scan ``scan`` (written with ``content``: text, or a HeightField saved as .npz) with the
+    [roughness] ``keys``."""
+    if isinstance(content, HeightField):
+        content.save(tmp / scan)
+    else:
+        write(tmp / scan, content)
+    return load_scene(write(tmp / "scan.toml", f'[ridges]\nenabled = false\n[roughness]\ntopography = "{scan}"\n'
+                                                 f"{keys}"), preset="draft")
+
+
+def _holes():
+    """A 10 x 10 height matrix (rows along y, as SurfaceTopography reads text) with its height at x = y = 0
+    undefined (1 %)."""
+    return "nan" + " 1" * 9 + "\n" + "".join(" ".join(str(i + j) for j in range(10)) + "\n" for i in range(9))
+
+
+def _study_patch(scene):
+    from roughcontact.study.patch import patch_surface
+    return patch_surface(scene, 0)
+
+
+def _stripes_fraction(spacing):
+    """A_R of two contact stripes along x, 30 µm apart along y (a 20 µm gap) on 4 x 10 µm pixels, closed with a
+    12 µm disc: they stay apart (2/8 of the rows); a disc of 1.5 pixels of dx on both axes bridges them (4/8)."""
+    from roughcontact.study.patch import ridge_area_fraction
+    contact = np.zeros((8, 8))
+    contact[:, 1] = contact[:, 4] = 1.0
+    return ridge_area_fraction(contact, spacing, 12e-6)
+
+
+def _clipped_record():
+    """patch_record of a patch whose mean attraction is 2 % above that of uniform contact."""
+    from types import SimpleNamespace
+    from roughcontact.study.records import patch_record
+    stack = load_scene().screen.stack()
+    contact = np.zeros((8, 8), bool)
+    contact[:, :6] = True
+    result = SimpleNamespace(gap=np.where(contact, 0.0, 1e-8), contact=contact, grid=Grid((8, 8), (8e-6, 8e-6)),
+                             contact_fraction=0.75, converged=True, iterations=1, unstable_steps=0,
+                             electrostatic_force=1.02 * float(stack.attraction(0.0, 200.0)) * 64e-12)
+    return patch_record(stack, "layered", 200.0, [result], (2e-6,), (1e-6, 1e-6), 1, 0.0)
+
+
+def _small_scan_plan(tmp):
+    from roughcontact.study.plan import plan_study
+    field = self_affine(Grid((16, 16), (1e-5, 1e-5), periodic=False), hurst=0.8, rms_height=1e-7, rng=1)
+    return plan_study(_scan_scene(tmp, scan="afm.npz", content=field))
+
+
+def _scan_file(tmp, keys):
+    """A scene file whose scan is surface16 saved as .npz, with the [roughness] ``keys``."""
+    surface16().save(tmp / "s.npz")
+    return write(tmp / "scan.toml", f'[ridges]\nenabled = false\n[roughness]\ntopography = "s.npz"\n{keys}')
+
+
+def _patch_scale_warning():
+    from roughcontact.study.patch import PatchScaleWarning
+    return PatchScaleWarning
+
+
+ROWS += [
+    # --- [roughness] keys of a scan: validated at the scene, the reader's errors in the scene's keys
+    ("scene-scan-key-without-scan", lambda: load_scene(text="[roughness]\nunit = \"um\"\n"),
+     refused(ValueError, "roughness.unit", "topography is empty")),
+    ("scene-scan-unit-bogus", in_tmp(lambda tmp: _scan_scene(tmp, 'unit = "furlong"\n')),
+     refused(ValueError, "roughness.unit", "'furlong'", '"um"')),
+    ("scene-scan-two-sizes", in_tmp(lambda tmp: _scan_scene(tmp, "lengths = [1e-4, 1e-4]\npixel_size = 1e-6\n")),
+     refused(ValueError, "roughness.pixel_size", "roughness.lengths", "once")),
+    ("scene-scan-crop-half-pixel", in_tmp(lambda tmp: _scan_scene(tmp, "crop = [0, 2.5, 0, 4]\n")),
+     refused(ValueError, "roughness.crop", "2.5", "pixel indices", 'crop_by = "metres"')),
+    ("scene-scan-resample-one", in_tmp(lambda tmp: _scan_scene(tmp, "resample = [1, 16]\n")),
+     refused(ValueError, "roughness.resample[0]", "[8, 4096]")),
+    ("scene-scan-text-no-unit", _st(in_tmp(lambda tmp: _scan_scene(tmp, "pixel_size = 1e-6\n"))),
+     refused(ValueError, "s.txt", "set roughness.unit")),
+    ("scene-scan-text-no-size", _st(in_tmp(lambda tmp: _scan_scene(tmp, 'unit = "um"\n'))),
+     refused(ValueError, "s.txt", "roughness.lengths", "roughness.pixel_size")),
+    ("scene-scan-npz-pixel-size", in_tmp(lambda tmp: _scan_scene(tmp, "pixel_size = 1e-6\n", "s.npz", surface16())),
+     refused(ValueError, "s.npz", "saved heightfield", "leave roughness.pixel_size out")),
+    ("scene-scan-crop-beyond", in_tmp(lambda tmp: _scan_scene(tmp, "crop = [0, 17, 0, 4]\nboundary = \"free\"\n",
+                                                              "s.npz", surface16())),
+     refused(ValueError, "roughness.crop", "[0, 17, 0, 4]", "does not fit", "16 x 16 pixels")),
+    ("scene-scan-missing-refused", _st(in_tmp(lambda tmp: _scan_scene(tmp, 'unit = "um"\npixel_size = 1e-6\n',
+                                                                      content=_holes()))),
+     refused(ValueError, "s.txt", "1 missing heights", 'roughness.missing = "crop"')),
+    ("scene-scan-missing-crop-right", _st(in_tmp(lambda tmp: _scan_scene(
+        tmp, 'unit = "um"\npixel_size = 1e-6\nmissing = "crop"\nboundary = "free"\n', content=_holes()))),
+     right(lambda scene: _study_patch(scene).shape == (9, 10))),                  # the x = 0 column cut
+    ("scene-scan-missing-harmonic-right", _st(in_tmp(lambda tmp: _scan_scene(
+        tmp, 'unit = "um"\npixel_size = 1e-6\nmissing = "harmonic"\n', content=_holes()))),
+     right(lambda scene: np.isfinite(_study_patch(scene)).all())),                  # 1 % filled: no warning
+    ("scene-scan-crop-metres-right", in_tmp(lambda tmp: _scan_scene(
+        tmp, 'crop = [0.0, 5e-5, 2.5e-5, 1e-4]\ncrop_by = "metres"\nboundary = "free"\n', "s.npz", surface16())),
+     right(lambda scene: _study_patch(scene).shape == (8, 12))),
+
+    # --- A_R on non-square pixels, the field-equivalent gap, the patch's length scales
+    ("ridge-area-anisotropic-right", lambda: _stripes_fraction((4e-6, 10e-6)), right(lambda a: a == 0.25)),
+    ("ridge-area-disc-in-dx-pixels", lambda: _stripes_fraction(4e-6), right(lambda a: a == 0.5)),
+    ("field-gap-above-contact-right", _clipped_record,
+     right(lambda r: r.field_equivalent_gap == 0.0 and r.field_ratio > 1.0)),
+    ("plan-scan-narrower-than-scales", in_tmp(_small_scan_plan),
+     right(lambda plan: plan.grid.shape == (32, 32), warns=_patch_scale_warning())),
+]
+
+
 # ---------------------------------------------------------------------------------------------- helpers of rows
 
 #: The tiny scene of the study tests (32² patches, two loads, 0 and 150 V; under a second to run).
@@ -1111,6 +1220,12 @@ CLI_ROWS = [
     ("scene-not-utf8", lambda tmp: ["scene", write(tmp / "b.toml", b"\xff\xfe\x00")]),
     ("figures-output-is-file", lambda tmp: ["figures", "--output", write(tmp / "f", "x")]),
     ("figures-output-parent-missing", lambda tmp: ["figures", "--output", tmp / "a" / "b"]),
+]
+CLI_ROWS += [        # issue 36 (the study): a scene's scan keys, one line naming the key
+    ("scene-scan-key-without-scan", lambda tmp: ["scene", write(tmp / "s.toml", "[roughness]\ncrop = [0, 4, 0, 4]\n")]),
+    ("run-scan-crop-beyond", lambda tmp: ["run", _scan_file(tmp, "crop = [0, 17, 0, 4]\n"), "--preset", "draft",
+                                          "--out", tmp / "o"]),
+    ("run-scan-npz-with-unit", lambda tmp: ["run", _scan_file(tmp, 'unit = "um"\n'), "--out", tmp / "o"]),
 ]
 
 
