@@ -16,7 +16,8 @@ The checks: each module has a layer; no import goes to a higher layer; the impor
 and package ``__init__`` files as nodes); an import inside a function is of a third-party (optional or heavy)
 module only, never of roughcontact or surfaces; no private name (``_x``, not a dunder) is imported from another
 module, in roughcontact or in surfaces (a name two modules share is public, or it moves to the one that uses it).
-A new module or package gets its layer in :data:`LAYERS`.
+A new module or package gets its layer in :data:`LAYERS`. And no function is longer than
+:data:`LONGEST_FUNCTION` lines.
 """
 import ast
 from pathlib import Path
@@ -212,3 +213,32 @@ def test_checks_fail_on_each_fault(bad_package):
     assert len(private.splitlines()) == 2 and "__version__" not in private          # a dunder is not private
     unassigned = problems(bad_package, layers={k: v for k, v in LAYERS.items() if k != "roughcontact.io"})
     assert "roughcontact.io.results has no layer" in unassigned
+
+
+#: The longest a function may be, in lines from its ``def`` to its last line (docstring included): a longer one
+#: does several jobs and splits into named steps.
+LONGEST_FUNCTION = 120
+
+
+def long_functions(*roots, limit: int = LONGEST_FUNCTION) -> list:
+    """``path:line name (n lines)`` of every function or method under ``roots`` longer than ``limit`` lines."""
+    found = []
+    for root in roots:
+        for path in sorted(root.rglob("*.py")):
+            for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+                if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                    length = node.end_lineno - node.lineno + 1
+                    if length > limit:
+                        found.append(f"{path.relative_to(root.parent)}:{node.lineno} {node.name} ({length} lines)")
+    return found
+
+
+def test_no_function_is_longer_than_the_limit():
+    assert not long_functions(PACKAGE, SURFACES), "\n".join(long_functions(PACKAGE, SURFACES))
+
+
+def test_the_length_check_finds_a_long_function(tmp_path):
+    root = tmp_path / "roughcontact"
+    root.mkdir()
+    (root / "long.py").write_text("def short():\n    pass\n\n\ndef long():\n" + "    x = 1\n" * LONGEST_FUNCTION)
+    assert long_functions(root) == [f"roughcontact/long.py:5 long ({LONGEST_FUNCTION + 1} lines)"]
