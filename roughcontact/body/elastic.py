@@ -50,6 +50,16 @@ def apply_multiplier(spectrum, multiplier):
 
 
 @njit(cache=True)
+def apply_foundation_multiplier(spectrum, multiplier, scaled_stiffness):
+    """spectrum ← spectrum · Φ/(1 + κΦ) in place: the body on a foundation of stiffness κ per unit area
+    (``scaled_stiffness`` = κ times the transform's size, which Φ holds divided out)."""
+    for i in range(spectrum.shape[0]):
+        for j in range(spectrum.shape[1]):
+            compliance = multiplier[i, j]
+            spectrum[i, j] *= compliance / (1.0 + scaled_stiffness * compliance)
+
+
+@njit(cache=True)
 def apply_inverse_multiplier(spectrum, multiplier, scale, zero_mode_stiffness):
     """spectrum ← spectrum / (scale · Φ) in place, and · ``zero_mode_stiffness`` where Φ = 0 (no stored 1/Φ)."""
     for i in range(spectrum.shape[0]):
@@ -370,6 +380,15 @@ class ElasticHalfSpace:
         apply_multiplier(self._fft.spectrum, self._multiplier)
         return self._backward_into(out)
 
+    def _foundation_displacement_into(self, pressure, out, stiffness):
+        """The displacement [m] of the body resting on a foundation of stiffness ``stiffness`` κ [Pa/m] per unit area
+        under ``pressure`` [Pa] into ``out``: the multiplier Φ/(1 + κΦ). A solver's preconditioner (the hard wall
+        on the gap, :mod:`roughcontact.solvers.projected_cg_gap`: the points held at the wall pin the surface);
+        unchecked, as :meth:`_displacement_into`."""
+        self._forward(pressure)
+        apply_foundation_multiplier(self._fft.spectrum, self._multiplier, stiffness * self._transform_size)
+        return self._backward_into(out)
+
     def stiffness_into(self, displacement: np.ndarray, out: np.ndarray) -> np.ndarray:
         """Write the pressure [Pa] that the inverse multiplier 1/Φ assigns to ``displacement`` [m] into ``out``.
 
@@ -488,6 +507,15 @@ class PaddedOperator:
         self._body._pending = False
         fft.forward(pressure)
         apply_multiplier(fft.spectrum, self._body._multiplier)
+        fft.backward(out)
+        return out
+
+    def _foundation_displacement_into(self, pressure, out, stiffness):
+        """:meth:`ElasticHalfSpace._foundation_displacement_into` on the transform grid: Φ_T/(1 + κΦ_T)."""
+        fft = self._body._fft
+        self._body._pending = False
+        fft.forward(pressure)
+        apply_foundation_multiplier(fft.spectrum, self._body._multiplier, stiffness * self._size)
         fft.backward(out)
         return out
 
