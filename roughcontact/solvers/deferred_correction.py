@@ -50,7 +50,7 @@ from ..electrostatics.field import StackField
 from ..interactions import ElectrostaticInteraction
 from ..io.results import ConvergenceWarning
 from .inputs import Control
-from .projected_cg_gap import FIELD_TOL_FLOOR, solve_smooth
+from .projected_cg_gap import FIELD_TOL_FLOOR, solve_hard_wall_handing_over, solve_smooth
 from .result import ContactResult
 from .starts import hard_wall_start
 
@@ -164,7 +164,7 @@ def _start(problem, control, heights):
     start (:func:`~.starts.hard_wall_start`: ``x0``, else the hard-wall solution at the same control where one
     exists), solved here once since its gap also matches ε_eff; else None and the rigid gap of the float64
     ``heights`` (the energy solve starts itself)."""
-    begin, kind, pairs = hard_wall_start(problem, control)
+    begin, kind, pairs = hard_wall_start(problem, control, solve_hard_wall_handing_over)
     if begin is None:
         h_max = float(heights.max())
         flat_position = h_max if control.penetration is None else h_max - control.penetration

@@ -17,9 +17,8 @@ from .deferred_correction import METHOD as DEFERRED_CORRECTION
 from .deferred_correction import driven, solve_driven
 from .polonsky_keer import COLD_STARTS
 from .polonsky_keer import METHOD as POLONSKY_KEER
-from .polonsky_keer import solve_hard_wall
 from .projected_cg_gap import METHOD as PROJECTED_CG_GAP
-from .projected_cg_gap import solve_smooth
+from .projected_cg_gap import solve_hard_wall_handing_over, solve_smooth
 
 
 class OptionWarning(UserWarning):
@@ -29,33 +28,37 @@ class OptionWarning(UserWarning):
 @dataclass(frozen=True)
 class Method:
     """A contact method: its ``name``, whether it solves the ``smooth`` laws (else the hard wall and laws that
-    vanish), its ``solve(problem, control, **options)`` function and the ``options`` it takes beyond the
-    :class:`~roughcontact.solvers.inputs.Control`."""
+    vanish), its ``solve(problem, control, **options)`` function, the ``options`` it takes beyond the
+    :class:`~roughcontact.solvers.inputs.Control`, and whether a smooth method also solves the ``hard_wall`` when
+    chosen by name."""
 
     name: str
     smooth: bool
     solve: Callable
     options: tuple = ()
+    hard_wall: bool = False
 
 
-#: The contact methods by name.
-METHODS = {POLONSKY_KEER: Method(POLONSKY_KEER, False, solve_hard_wall, ("cold_start", "preconditioned")),
-           PROJECTED_CG_GAP: Method(PROJECTED_CG_GAP, True, solve_smooth),
+#: The contact methods by name (Polonsky–Keer's solve continued on the gap where it is slow:
+#: :func:`~roughcontact.solvers.projected_cg_gap.solve_hard_wall_handing_over`).
+METHODS = {POLONSKY_KEER: Method(POLONSKY_KEER, False, solve_hard_wall_handing_over, ("cold_start", "preconditioned")),
+           PROJECTED_CG_GAP: Method(PROJECTED_CG_GAP, True, solve_smooth, hard_wall=True),
            DEFERRED_CORRECTION: Method(DEFERRED_CORRECTION, True, solve_driven)}
 
 
 def method_for(interaction: Interaction, method=None) -> Method:
     """The method that solves ``interaction``: ``method`` by name (checked against the law), or by default the
     one for the law (Polonsky–Keer for the hard wall and a law that vanishes, e.g. at 0 V; the energy method
-    for a smooth law; the deferred correction for an AC drive through a leaky stratum corneum)."""
+    for a smooth law, and for the hard wall by name; the deferred correction for an AC drive through a leaky
+    stratum corneum)."""
     smooth = interaction.smooth and not interaction.vanishes
     needed = METHODS[(DEFERRED_CORRECTION if driven(interaction) else PROJECTED_CG_GAP) if smooth else POLONSKY_KEER]
     if method is None:
         return needed
     chosen = METHODS[check_choice("method", method, tuple(METHODS))]
-    if chosen is not needed:
+    if chosen is not needed and not (chosen.hard_wall and not smooth):
         solves = {POLONSKY_KEER: "the hard wall (or a law that vanishes)",
-                  PROJECTED_CG_GAP: "a smooth law that attracts",
+                  PROJECTED_CG_GAP: "a smooth law that attracts, or the hard wall",
                   DEFERRED_CORRECTION: "an AC drive through a leaky stratum corneum"}[chosen.name]
         raise ValueError(f"method = {method!r} solves {solves}; the interaction {type(interaction).__name__} needs "
                          f"method = {needed.name!r}")

@@ -163,7 +163,8 @@ def checked_control(body: ElasticHalfSpace, interaction: Interaction, *, mean_pr
 
 def _checked_start(x0, interaction: Interaction, shape: tuple):
     """The warm start ``x0`` checked for the method that solves ``interaction``: a smooth law's takes a ContactResult
-    (its gap), Polonsky–Keer a ContactResult's or an array's pressure [Pa] (returned as that array)."""
+    (its gap), the hard wall's a ContactResult (its pressure for Polonsky–Keer, its gap on the gap) or an array's
+    pressure [Pa] (returned as that array)."""
     if x0 is None:
         return None
     if interaction.smooth and not interaction.vanishes:
@@ -173,7 +174,12 @@ def _checked_start(x0, interaction: Interaction, shape: tuple):
         if x0.gap.shape != shape:
             raise ValueError(f"x0 has shape {x0.gap.shape}, but the grid has shape {shape}")
         return x0
-    pressure = check_finite_array("x0", x0.pressure if isinstance(x0, ContactResult) else x0, nonnegative=True)
+    if isinstance(x0, ContactResult):
+        pressure = check_finite_array("x0", x0.pressure, nonnegative=True)
+        if pressure.shape != shape:
+            raise ValueError(f"x0 has shape {pressure.shape}, but the grid has shape {shape}")
+        return x0
+    pressure = check_finite_array("x0", x0, nonnegative=True)
     if pressure.shape != shape:
         raise ValueError(f"x0 has shape {pressure.shape}, but the grid has shape {shape}")
     return pressure

@@ -18,7 +18,12 @@ criterion, with ``gap_scale`` the rms height of h:
 
     sqrt(<(g − ḡ_c)²>_{I_c}) ≤ tol · gap_scale   and   max(−g outside I_c) ≤ tol · gap_scale,
 
-the load constraint being satisfied exactly by construction. See ``docs/guide/solver.md``.
+the load constraint being satisfied exactly by construction. Where the CG is slow — under displacement control on
+a periodic body with ⟨u⟩ = 0 near full contact, where a uniform pressure on the contact set hardly moves the
+surface, and on a layered body whose long wavelengths are far more compliant than its pixels — a solve with
+``slow_exit`` stops where its residual gains less than a decade in ``SLOW_STEPS`` steps, and
+:func:`~roughcontact.solvers.projected_cg_gap.solve_hard_wall_handing_over` continues it on the gap. See
+``docs/guide/solver.md``.
 """
 from __future__ import annotations
 
@@ -40,9 +45,11 @@ _REFRESH = 50          # exact recomputation of u at least every _REFRESH CG ste
 COLD_STARTS = ("nested", "pk")
 NESTED_TOL = 1e-3      # tolerance of the nested start's coarse solves (their answer is only the fine guess)
 NESTED_MIN = 64        # the nested start coarsens while the coarse grid keeps this many pixels per axis
+NESTED_STEPS = 100     # steps of each coarse solve at most (a guess; 8–19 on the benchmark surface)
 STALL_STEPS = 20       # steps without a new smallest residual after which every entry restarts the CG
 STALL_LIMIT = 200      # steps without a new smallest residual, restarting on every entry, that end the solve
 CYCLE_ABOVE_ROUND_OFF = 1e3   # a stall whose smallest residual is above this times the dtype's epsilon is a cycle
+SLOW_STEPS = 20        # with slow_exit, a solve whose residual gains less than a decade in this many steps stops
 
 
 # -- fused pointwise kernels (flat contiguous views; accumulators in float64) --------------------------------
@@ -207,9 +214,10 @@ def _finalise_gap(u, h, p, shift, gap, contact):
 
 
 def _warm_pressure(x0):
-    """The warm-start pressure [Pa] ``x0`` (the checked control's pressure field); None without ``x0`` or when it
-    is zero everywhere (no information: the cold start applies)."""
-    return x0 if x0 is not None and x0.any() else None
+    """The warm-start pressure [Pa] of ``x0`` (the checked control's pressure field, or a result's); None without
+    ``x0`` or when it is zero everywhere (no information: the cold start applies)."""
+    pressure = x0.pressure if isinstance(x0, ContactResult) else x0
+    return pressure if pressure is not None and pressure.any() else None
 
 
 def _pk_pressure(heights, body, mean_pressure, flat_position):
@@ -222,13 +230,15 @@ def _pk_pressure(heights, body, mean_pressure, flat_position):
     return (overlap * (body.E_star / contact_size)).astype(body.dtype)
 
 
-def _nested_start(problem, control, flat_position, preconditioned):
+def _nested_start(problem, control, flat_position, preconditioned, slow_exit):
     """Cold-start pressure [Pa]: the same problem solved on the grid coarsened 2 × 2 (itself started the same
     way, down to ``NESTED_MIN`` pixels per axis) to tol max(tol, ``NESTED_TOL``), whose pressure, each coarse
     pixel's on the fine pixels it covers (:func:`_repeat_into`), is the fine guess — cascade multi-resolution
     (Bemporad & Paggi 2015, Int. J. Solids Struct. 69:94). Returns the coarse pressure (None where the grid does
     not halve or the flat misses the coarse surface) and the coarse solves' iterations, coarsest first. The
-    coarse body is built here and dropped, so the fine solve's peak memory is unchanged."""
+    coarse body is built here and dropped, so the fine solve's peak memory is unchanged. Each coarse solve takes at
+    most ``NESTED_STEPS`` steps (on a layered body they took up to 3710), and under displacement control it stops
+    where slow as the fine one does (``slow_exit``)."""
     grid = problem.body.grid
     if any(n % 2 or n // 2 < NESTED_MIN for n in grid.shape[:1 if grid.is_profile else 2]):
         return None, []
@@ -239,8 +249,10 @@ def _nested_start(problem, control, flat_position, preconditioned):
         target = {"penetration": float(coarse.surface.heights.max()) - flat_position}
         if target["penetration"] <= 0:
             return None, []
-    result = solve_hard_wall(coarse, control.at(**target, tol=max(control.tol, NESTED_TOL), x0=None, callback=None,
-                                                warn=False), preconditioned=preconditioned)
+    coarse_control = control.at(**target, tol=max(control.tol, NESTED_TOL), maxiter=min(control.maxiter, NESTED_STEPS),
+                                x0=None, callback=None, warn=False)
+    result = solve_hard_wall(coarse, coarse_control, preconditioned=preconditioned,
+                             slow_exit=slow_exit and control.mean_pressure is None)
     if not result.pressure.any():
         return None, []
     return result.pressure, result.solver.details["nested_iterations"] + [result.iterations]
@@ -275,11 +287,14 @@ def _full_contact(h, body, mean_pressure, pressure, displacement):
     return h_mean - body.uniform_compliance * mean_pressure
 
 
-def solve_hard_wall(problem, control: Control, *, cold_start="nested", preconditioned=None) -> ContactResult:
+def solve_hard_wall(problem, control: Control, *, cold_start="nested", preconditioned=None,
+                    slow_exit=False) -> ContactResult:
     """Polonsky–Keer's solve (module docstring) of the checked ``problem`` (a
     :class:`~roughcontact.solvers.problem.ContactProblem`: the hard wall, or a law that vanishes, 0 V) at the
     checked ``control``, from its ``x0`` or the ``cold_start``; ``preconditioned`` by default on 2-D grids
-    (:func:`~roughcontact.solvers.problem.solve_contact`)."""
+    (:func:`~roughcontact.solvers.problem.solve_contact`). ``slow_exit``: stop, unconverged, where the residual gains
+    less than a decade in ``SLOW_STEPS`` steps (``details["slow_exit_at"]``), unless it is within
+    ``CYCLE_ABOVE_ROUND_OFF`` times the dtype's epsilon (round-off, which the stall rules handle)."""
     start = time.perf_counter()
     body, interaction, heights = problem.body, problem.interaction, problem.heights
     tol, maxiter, callback, warn = control.tol, control.maxiter, control.callback, control.warn
@@ -324,7 +339,7 @@ def solve_hard_wall(problem, control: Control, *, cold_start="nested", precondit
     coarse_pressure = None
     if warm is None and cold_start == "nested":             # solved first, before the fine work arrays exist
         coarse_pressure, settings["details"]["nested_iterations"] = _nested_start(
-            problem, control, flat_position, preconditioned)
+            problem, control, flat_position, preconditioned, slow_exit)
         settings["start"] = "pk" if coarse_pressure is None else "nested"
     # grid-sized work arrays (aligned: the periodic FFT uses them in place); t and z_in stay 0 outside I_c
     p, u, t, r = (body.empty().reshape(-1) for _ in range(4))
@@ -347,7 +362,7 @@ def solve_hard_wall(problem, control: Control, *, cold_start="nested", precondit
         del coarse_pressure                                 # (a quarter grid array, not kept through the solve)
     solver = _PolonskyKeer(body, heights, (p, u, t, r, z_in), index, mean_pressure, flat_position, preconditioned,
                            settings["details"])
-    iterations, residuals, converged, message, stalled = solver.iterate(tol, maxiter, callback)
+    iterations, residuals, converged, message, stalled = solver.iterate(tol, maxiter, callback, slow_exit)
     cycled = stalled and min(residuals) > CYCLE_ABOVE_ROUND_OFF * np.finfo(body.dtype).eps
     if stalled and (warm_started or (preconditioned and cycled)):
         # a warm start can lead PK into a cycle that the cold start avoids: solve again from it; a cold start that
@@ -355,7 +370,7 @@ def solve_hard_wall(problem, control: Control, *, cold_start="nested", precondit
         # about one in ten) converges without it: solve again unpreconditioned
         del p, u, t, r, z_in, index, solver
         retry = solve_hard_wall(problem, dataclasses.replace(control, x0=None), cold_start=cold_start,
-                                preconditioned=preconditioned and warm_started)
+                                preconditioned=preconditioned and warm_started, slow_exit=slow_exit)
         key = "warm_start_stalled_at" if warm_started else "preconditioned_stalled_at"
         details = {**retry.solver.details, key: iterations}
         return dataclasses.replace(retry, solver=dataclasses.replace(retry.solver, details=details))
@@ -392,6 +407,7 @@ class _PolonskyKeer:
             if self.load_control else flat_position
         self.beta_allowed, self.previous_squared, self.tau, self.kept_t, self.z_mean = False, 1.0, 0.0, 0.0, 0.0
         self.restart_every_entry = False
+        self.round_off = CYCLE_ABOVE_ROUND_OFF * float(np.finfo(body.dtype).eps)   # no slow exit below this residual
 
     def field(self, array):
         """The 2-D view that the elastic operator takes."""
@@ -403,11 +419,11 @@ class _PolonskyKeer:
         self.transforms += 2
         self.exact, self.since_exact = True, 0
 
-    def iterate(self, tol, maxiter, callback):
-        """Steps until converged, stalled, halted or ``maxiter``: (iterations, residuals, converged, message,
-        stalled)."""
+    def iterate(self, tol, maxiter, callback, slow_exit=False):
+        """Steps until converged, stalled, halted, slow (``slow_exit``) or ``maxiter``: (iterations, residuals,
+        converged, message, stalled)."""
         residuals, iterations, reported = [], 0, 0
-        smallest_residual, smallest_at = math.inf, 0
+        smallest_residual, smallest_at, earlier_best = math.inf, 0, math.inf
         while True:
             squared, residual = self.residual()
             if callback is not None and iterations > reported:
@@ -429,6 +445,12 @@ class _PolonskyKeer:
                 return (iterations, residuals, True, f"converged: relative rms gap error {residual:.3g} <= tol {tol:g}",
                         False)
             residuals.append(residual)
+            if slow_exit and iterations >= SLOW_STEPS:      # the best of the last SLOW_STEPS against the one before
+                earlier_best = min(earlier_best, residuals[-SLOW_STEPS - 1])
+                if min(residuals[-SLOW_STEPS:]) > max(0.1 * earlier_best, self.round_off):
+                    self.details["slow_exit_at"] = iterations
+                    return iterations, residuals, False, (f"slow: less than a decade in {SLOW_STEPS} steps (relative "
+                                                          f"rms gap error {residual:.3g})"), False
             if residual < smallest_residual:
                 smallest_residual, smallest_at = residual, iterations
             elif not self.restart_every_entry and iterations - smallest_at >= STALL_STEPS:

@@ -1,4 +1,5 @@
-"""Contact with a smooth interaction law and the impenetrable flat: the minimum of the total energy over the gap.
+"""Contact with a smooth interaction law (or none: the hard wall) and the impenetrable flat: the minimum of the total
+energy over the gap.
 
 Unknown: the gap g ≥ 0 [m] on a periodic grid (``docs/guide/interactions.md``); a free surface is solved as the
 periodic body of its zero-padded grid, the law and the wall acting on the window only
@@ -27,6 +28,17 @@ pointwise work is in fused numba passes (a law's kernel compiled into them,
 term) crosses an instability and is counted on the result (``unstable_steps``). After such a step the next
 one skips the model and its K⁻¹ d: it tries twice the last length with the trial's exact p_el, and its own
 curvature is that along the step taken, ⟨Δg, Δp_el⟩ − ⟨k Δg²⟩ (a snap-in step: two FFT pairs, not three).
+
+The hard wall (V = 0; :func:`solve_hard_wall_handing_over`, where Polonsky–Keer is slow, and the method by name):
+the energy is quadratic and no step is capped, and the preconditioner is the compliance of the body resting on a
+foundation of stiffness κ per unit area, Φ/(1 + κΦ) (one FFT pair, as K): the points held at the wall pin the
+surface, so the open points cannot follow wavelengths longer than the open regions. With κ = (e/f)/K_ii, f the
+open points of the window and e those beside a point at the wall, f/e pixels is the open regions' mean width and
+1/κ the compliance of a region that wide; the mean mode gets 1/(1/Φ_max + κ). The solve starts from
+Polonsky–Keer's (which may finish it: it stops where slow) and ends with it, from the wall's reaction max(G, 0) on
+the points at the wall, so that its result meets PK's criterion (this one bounds the rms of the residual
+traction's displacement, which leaves single points √N times that).
+
 Convergence criterion, with ``gap_scale`` the rms height of h (the law's length on a flat surface):
 
     sqrt(⟨(K r)²⟩_F) ≤ tol · gap_scale,   r = G on F,
@@ -53,6 +65,7 @@ from ..electrostatics.field import FieldLaw, FieldSolveStalled
 from ..interactions import ElectrostaticInteraction
 from ..io.results import ConvergenceWarning
 from .inputs import Control
+from .polonsky_keer import solve_hard_wall
 from .result import ContactResult, SolverReport, SolverState
 from .starts import hard_wall_start
 
@@ -66,6 +79,7 @@ FIELD_TOL_FLOOR = 1e-12  # but no tighter than this
 FIELD_TOL_CEILING = 1e-4 # and no looser (the start's, whose residual is not known yet)
 _REFRESH = 50             # exact recomputation of p_el at least every _REFRESH incremental steps
 RETRACT_HALVINGS = 10     # halvings of a cold tensile solve's retract step before its branch is said to end
+POLISH_STEPS = 100        # Polonsky–Keer's steps from the hard wall's answer on the gap, at most (4–14 measured)
 
 
 def _law_at(kernel, gap):
@@ -108,7 +122,9 @@ _evaluate_user_law = njit(_evaluate_law.py_func)
 def _evaluate(law, kernel, g, window, h_f, pel, traction, stiffness) -> tuple:
     """The law's traction and stiffness at g in the window into the two arrays (0 outside; in numba through its
     ``kernel`` where it has one); returns Σ g, Σ (g + h_f) p_el, Σ p_el and Σ V (the sums of Π/A,
-    :meth:`_Energy.value`)."""
+    :meth:`_Energy.value`). No law (the hard wall, a law that vanishes): its traction and stiffness stay 0."""
+    if not law.smooth or law.vanishes:
+        return _work_terms(g, h_f, pel) + (0.0,)
     if kernel is not None:
         cached = type(kernel).__module__.startswith("roughcontact.")
         return (_evaluate_law if cached else _evaluate_user_law)(kernel, g, window, h_f, pel, traction, stiffness)
@@ -326,6 +342,27 @@ def _restore_mean(g, target):
         g[i] = max(g[i] + c, 0.0)
 
 
+@njit(cache=True)
+def _pinning_edge(g, nx, ny, periodic):
+    """The open points of the window g[:nx, :ny] (g > 0) and those among them with a 4-neighbour at the wall
+    (neighbours across the window's edges only where ``periodic``): (beside the wall, open)."""
+    edge, n_open = 0, 0
+    for i in range(nx):
+        for j in range(ny):
+            if g[i, j] <= 0:
+                continue
+            n_open += 1
+            for a, b in ((i - 1, j), (i + 1, j), (i, j - 1), (i, j + 1)):
+                if periodic:
+                    a, b = a % nx, b % ny
+                elif a < 0 or a >= nx or b < 0 or b >= ny:
+                    continue
+                if g[a, b] <= 0:
+                    edge += 1
+                    break
+    return edge, n_open
+
+
 class _Energy:
     """Π/A for one control (module docstring): the load term and the elastic traction of a gap field."""
 
@@ -367,18 +404,88 @@ class _Energy:
 
 
 def solve_smooth(problem, control: Control) -> ContactResult:
-    """Solve the checked ``problem`` (a :class:`~roughcontact.solvers.problem.ContactProblem` with a smooth law) at
-    the checked ``control`` (module docstring): an external load of any sign, or a penetration δ = max(h) − s [m]
-    of any sign; ``control.x0``, a previous result, starts the solve from its gap.
+    """Solve the checked ``problem`` (a :class:`~roughcontact.solvers.problem.ContactProblem` with a smooth law, or
+    the hard wall: :func:`solve_wall`) at the checked ``control`` (module docstring): an external load of any sign,
+    or a penetration δ = max(h) − s [m] of any sign; ``control.x0``, a previous result, starts the solve from its
+    gap.
     """
+    law, load = problem.interaction, control.mean_pressure
+    if not law.smooth or law.vanishes:
+        return solve_wall(problem, control)
     start = time.perf_counter()
+    if control.x0 is None and load is not None and load < 0 and not (law.strength is not None and -load > law.strength):
+        return _retract_to(problem, control, start)
+    return _minimise(problem, control, *hard_wall_start(problem, control, solve_hard_wall_handing_over), start)
+
+
+def solve_hard_wall_handing_over(problem, control: Control, *, cold_start="nested", preconditioned=None
+                                 ) -> ContactResult:
+    """Polonsky–Keer's solve of the hard wall (or a law that vanishes), continued on the gap where it is slow: the
+    registry's ``"polonsky-keer"``. Under displacement control on a periodic body with ⟨u⟩ = 0 a uniform pressure
+    on a contact set that covers most of the grid hardly moves the surface, and PK's CG crawls along that mode
+    near full contact; on a layered periodic body whose long wavelengths are far more compliant than its pixels (a
+    stiff skin layer on a soft substrate) its contact set also cycles under load control. So on a periodic body
+    (under load control a 2-D grid), preconditioned (the plain CG gains only about a decade in ten steps), PK
+    runs with ``slow_exit`` and, where it stops so, :func:`solve_wall` continues from its result. Arguments as
+    :func:`~roughcontact.solvers.polonsky_keer.solve_hard_wall`'s."""
+    body = problem.body
+    profile = body.grid.is_profile
+    slow_mode = body.periodic and (not profile if preconditioned is None else preconditioned) and \
+        (not profile if control.mean_pressure is not None else body.uniform_compliance == 0.0)
+    first = solve_hard_wall(problem, dataclasses.replace(control, warn=False), cold_start=cold_start,
+                            preconditioned=preconditioned, slow_exit=slow_mode)
+    if "slow_exit_at" in first.solver.details:
+        return solve_wall(problem, control, first)
+    if not first.converged and control.warn:
+        warnings.warn(first.message, ConvergenceWarning, stacklevel=3)
+    return first
+
+
+def solve_wall(problem, control: Control, first=None) -> ContactResult:
+    """The hard wall (or a law that vanishes) on the gap (module docstring): from ``first`` (Polonsky–Keer's result,
+    slow), else from ``control.x0`` where it is a result (its gap), else from Polonsky–Keer's solve with
+    ``slow_exit`` (from ``x0``'s pressure field, or cold; returned where it converges), then Polonsky–Keer's polish
+    (at most ``POLISH_STEPS`` steps; none where the gap did not converge) from the wall's reaction. The result's ``details`` are the polish's, with
+    ``gap_iterations``, ``polish_iterations`` and, after a slow start, ``handed_over_at`` (PK's step) and the
+    start's ``nested_iterations``; its ``iterations``, ``fft_pairs`` and ``residuals`` count every phase."""
+    start = time.perf_counter()
+    if first is None and not isinstance(control.x0, ContactResult):
+        first = solve_hard_wall(problem, dataclasses.replace(control, warn=False), slow_exit=True)
+        if "slow_exit_at" not in first.solver.details:
+            if not first.converged and control.warn:
+                warnings.warn(first.message, ConvergenceWarning, stacklevel=3)
+            return first
+    begin = control.x0 if first is None else first
+    kind = "x0" if first is None else f"polonsky-keer from {first.solver.start}, slow at step {first.iterations}"
+    gap = _minimise(problem, dataclasses.replace(control, warn=False), begin, kind,
+                    0.0 if first is None else first.solver.fft_pairs, start)
+    reaction = np.where(gap.contact, np.maximum(gap.pressure, 0.0), 0.0).astype(problem.body.dtype)
+    polish = solve_hard_wall(problem, dataclasses.replace(        # (none where the gap stopped unconverged)
+        control, x0=reaction if reaction.any() else None, callback=None, warn=False,
+        maxiter=min(control.maxiter, POLISH_STEPS) if gap.converged else 0))
+    converged = gap.converged and polish.converged
+    steps = gap.iterations + polish.iterations + (0 if first is None else first.iterations)
+    details = {**polish.solver.details, "gap_iterations": gap.iterations, "polish_iterations": polish.iterations}
+    if first is not None:
+        details |= {"handed_over_at": first.iterations, "nested_iterations": first.solver.details["nested_iterations"]}
+    report = dataclasses.replace(
+        polish.solver, method=METHOD, start=kind, converged=converged,
+        message=polish.message if gap.converged else gap.message, iterations=steps,
+        residuals=np.concatenate([gap.solver.residuals, polish.solver.residuals]),
+        fft_pairs=gap.solver.fft_pairs + polish.solver.fft_pairs, wall_time=time.perf_counter() - start,
+        details=details)
+    if not converged and control.warn:
+        warnings.warn(report.message, ConvergenceWarning, stacklevel=3)
+    return dataclasses.replace(polish, solver=report)
+
+
+def _minimise(problem, control, begin, start_kind, start_pairs, start) -> ContactResult:
+    """The minimisation from ``begin`` (a result, or None: the undeformed surface), named ``start_kind`` and costing
+    ``start_pairs`` FFT pairs, the solve's clock started at ``start``."""
     body, law, heights = problem.body, problem.interaction, problem.heights
     grid = body.grid
     load, requested = control.mean_pressure, control.value
-    if control.x0 is None and load is not None and load < 0 and not (law.strength is not None and -load > law.strength):
-        return _retract_to(problem, control, start)
     flat_position = None if load is not None else float(heights.max()) - requested
-    begin, start_kind, start_pairs = hard_wall_start(problem, control)
     nx, ny = grid.shape
     if body.periodic:                                       # the grid itself
         operator, h = body, heights.reshape(-1)
@@ -475,6 +582,9 @@ class _Solver:
         self.energy, self.law, self.operator, self.gap_scale = energy, law, operator, gap_scale
         self.window, self.largest_compliance, self.scale_to_operator = window, largest_compliance, scale_to_operator
         self.kernel = law.kernel
+        self.wall = not law.smooth or law.vanishes             # the hard wall: pinned preconditioner, no step cap
+        self.approach = math.inf if self.wall else APPROACH
+        self.periodic, self.grid_shape = bool(window.all()), grid.shape
         n, dtype = g.size, operator.dtype
         self.n = n
         self.g, self.trial = g, np.empty(n, dtype)
@@ -541,10 +651,9 @@ class _Solver:
                 n_free, sum_r, at_wall, largest_pull = _residual(g, pel, traction, load, self.window, r, free)
                 # preconditioned residual z = K r on F (+ the largest compliance for the mean mode); zero mean on F
                 # under the ⟨g⟩ constraint
-                z = operator._displacement_into(r.reshape(self.z_field.shape), self.z_field).reshape(-1)
+                z, mean_compliance = self.precondition(r)
                 self.transforms += 2
-                sum_z, zz, rz, prz = _mask_shift(z, free, (self.largest_compliance - energy.uniform) * sum_r / n, r,
-                                                 self.r_prev)
+                sum_z, zz, rz, prz = _mask_shift(z, free, mean_compliance * sum_r / n, r, self.r_prev)
                 if energy.constrained and n_free:           # centred on F, and the moments of the centred z
                     _, zz, rz, prz = _mask_shift(z, free, -sum_z / n_free, r, self.r_prev)
                 residual = math.sqrt(zz / n) / self.gap_scale
@@ -627,6 +736,20 @@ class _Solver:
         return self.result(pel, interaction, body, heights, control, requested, iterations, residuals, converged,
                            message, start, start_kind, tol, maxiter, detached, history)
 
+    def precondition(self, r):
+        """z = K r on the operator's grid, and the compliance its mean mode gets beyond the multiplier's: the
+        largest; for the hard wall the compliance on the pinning foundation, Φ/(1 + κΦ) and 1/(1/Φ_max + κ)
+        (module docstring)."""
+        operator, field = self.operator, self.z_field
+        if not self.wall:
+            z = operator._displacement_into(r.reshape(field.shape), field).reshape(-1)
+            return z, self.largest_compliance - self.energy.uniform
+        beside_wall, n_open = _pinning_edge(self.g.reshape(field.shape), *self.grid_shape, self.periodic)
+        foundation = beside_wall / max(n_open, 1) / self.pixel_compliance            # κ [Pa/m]
+        z = operator._foundation_displacement_into(r.reshape(field.shape), field, foundation).reshape(-1)
+        uniform = self.energy.uniform / (1.0 + foundation * self.energy.uniform)
+        return z, 1.0 / (1.0 / self.largest_compliance + foundation) - uniform
+
     def detachment(self, at_wall, largest_pull, start_kind) -> str:
         """Why a tensile load P̄ < 0 has no equilibrium here ("" while it may have one): P̄ beyond the law's
         ``strength`` σ_max (the mean traction ⟨p_int⟩ + ⟨contact pressure⟩ ≥ −σ_max can never balance it: none at
@@ -657,7 +780,7 @@ class _Solver:
         stiffness, length = self.law_now[1], float(self.law.length)
         rejected = math.inf                                 # the snap-in try's length, if Armijo rejected it
         if self.snapping:
-            first = min(2 * tau, _cap(g, d, stiffness, self.window, length, self.pixel_compliance, APPROACH))
+            first = min(2 * tau, _cap(g, d, stiffness, self.window, length, self.pixel_compliance, self.approach))
             trial = self.trial_step(first, None, pel, value, magnitude, since_exact)
             if trial is not None:                           # concave along the step taken: the next one snaps too
                 curvature, total = _step_curvature(g, self.trial, pel, trial[0], stiffness)
@@ -670,7 +793,8 @@ class _Solver:
         _centred_into(d, d_mean, self.work.reshape(-1))
         w = operator.stiffness_into(self.work, self.w_field).reshape(-1)        # K⁻¹ d_f
         self.transforms += 2
-        dw, kdd, cap = _curvature_and_cap(g, d, w, stiffness, self.window, length, self.pixel_compliance, APPROACH)
+        dw, kdd, cap = _curvature_and_cap(g, d, w, stiffness, self.window, length, self.pixel_compliance,
+                                          self.approach)
         curvature = self.curvature((dw - kdd) / n, d_mean)
         concave = curvature <= 0
         if not concave:

@@ -6,6 +6,7 @@ import numpy as np
 
 from surfaces.validation import check_choice
 
+from .projected_cg_gap import METHOD as PROJECTED_CG_GAP
 from .result import ContactResult
 
 
@@ -58,7 +59,9 @@ def _load_steps(problem, mean_pressures, warm_start, starts, progress, predictor
     """The generator behind :func:`load_steps` (its arguments checked before the first step)."""
     from tqdm.auto import tqdm
 
-    smooth = problem.interaction.smooth                     # (its warm start is the last gap)
+    # a smooth law's warm start is the last result (its gap), as is the hard wall's on the gap, which sweeps faster on
+    # a layered periodic body (docs/guide/solver.md, "Slow solves continue on the gap")
+    smooth = problem.interaction.smooth or solver_options.get("method") == PROJECTED_CG_GAP
     previous = starts[-1] if starts else None
     before = starts[0] if len(starts) == 2 else None
     steps = tqdm(mean_pressures, desc="load path", unit="step", disable=not progress)

@@ -51,8 +51,8 @@ def test_an_option_the_method_does_not_take_raises():
     np.testing.assert_array_equal(ignored.gap, solve_contact(surface, body, mean_pressure=0.1, interaction=law).gap)
     with pytest.raises(ValueError, match="method = 'polonsky-keer' solves the hard wall"):
         solve_contact(surface, body, mean_pressure=0.1, interaction=law, method="polonsky-keer")
-    with pytest.raises(ValueError, match="method = 'projected-cg-gap' solves a smooth law"):
-        solve_contact(surface, body, mean_pressure=0.1, method="projected-cg-gap")
+    with pytest.raises(ValueError, match="method = 'deferred-correction' solves an AC drive"):
+        solve_contact(surface, body, mean_pressure=0.1, method="deferred-correction")
     with pytest.raises(ValueError, match="method"):
         solve_contact(surface, body, mean_pressure=0.1, method="newton")
     # a 0 V law is the hard wall: Polonsky–Keer's options apply
