@@ -5,8 +5,7 @@ path separates them (``docs/findings/equivalent_gap.md``, "Scale coupling"):
 
 1. **Micro scale** (:func:`interface_law`). A periodic patch of the micro-roughness alone on the same skin is
    brought to a sequence of mean separations ū (from far to near, each solve started from the last, with the
-   electrostatic attraction at the voltage U; displacement control, and at 0 V load control at the mean pressure
-   that puts the flat at ū). Each gives the mean traction p(ū) [Pa]
+   electrostatic attraction at the voltage U; displacement control). Each gives the mean traction p(ū) [Pa]
    that the interface transmits (contact minus attraction, positive compressive), its Eq. 25 gap e(ū) [m], its
    field-equivalent gap f(ū) [m] (the uniform gap whose Eq. 21 attraction is the patch's mean attraction in the
    scene's field model), its real contact fraction φ(ū), the fraction a_ℓ(ū) of its real contact closed with
@@ -27,7 +26,6 @@ field between ridge-scale pixels (the layered field acts within each micro patch
 """
 from __future__ import annotations
 
-import dataclasses
 import time
 from dataclasses import dataclass, field
 
@@ -46,8 +44,6 @@ from .records import PatchRecord, field_ratio, unit_attraction
 RIDGE_PIXELS_PER_PERIOD = 64
 #: Mean separations tabulated by :func:`interface_law` in :func:`coupled_chain`.
 LAW_NODES = 23
-#: Load-controlled solves of one hard-wall node before it is said not to converge (:func:`_hard_wall_at_separation`)
-SEPARATION_SOLVES = 40
 
 
 @dataclass(frozen=True)
@@ -175,11 +171,8 @@ def interface_law(heights, body, stack, voltage: float, nodes: int = LAW_NODES, 
     spacing, offset = body.grid.spacing, stack.eps_a * stack.dielectric_offset
     rows, previous, converged = [], None, True
     for separation in separations[::-1]:
-        if law is None:
-            result = _hard_wall_at_separation(heights, body, separation, tol, previous, rms)
-        else:
-            result = solve_contact(heights, body, penetration=top - mean - separation, interaction=law, tol=tol,
-                                   x0=previous, warn=False)
+        result = solve_contact(heights, body, penetration=top - mean - separation, interaction=law, tol=tol,
+                               x0=previous, warn=False)
         gap, contact = np.asarray(result.gap), np.asarray(result.contact)
         rows.append((result.mean_pressure, stack.equivalent_gap(gap), result.contact_fraction,
                      gap_slope(gap, (offset + gap) ** -2.0, spacing) ** 2,
@@ -192,54 +185,6 @@ def interface_law(heights, body, stack, voltage: float, nodes: int = LAW_NODES, 
                         field_equivalent_gaps=columns[4], stack=stack, voltage=float(voltage), length=float(rms),
                         coarse_graining=tuple(float(v) for v in coarse_graining),
                         ridge_area_fractions=tuple(columns[5:]), converged=converged)
-
-
-def _hard_wall_at_separation(heights, body, separation: float, tol: float, x0, rms: float):
-    """The hard-wall solve of ``heights`` [m] at the mean separation ū = s − ⟨h⟩ [m], by load control: the mean
-    pressure P̄ found by regula falsi (Illinois) on the flat position s(P̄), in log P̄, to |s − ⟨h⟩ − ū| ≤ ``tol``
-    ``rms``, each solve started from the closest one before (``x0``: a solve at a wider separation).
-
-    Displacement control fixes s directly, but on a periodic body (⟨u⟩ = 0) near full contact a uniform pressure
-    on the contact set hardly moves the surface: its Polonsky–Keer iteration crawls along that mode (16 425 steps
-    at 87 % contact on the default scene's micro patch, where load control at the same P̄ takes 147;
-    ``docs/dev/roadmap.md``). Load control removes it. A result that reaches no converged bracket is returned
-    as not converged."""
-    mean, top = float(heights.mean()), float(heights.max())
-    if separation >= top - mean:                       # the flat does not reach the surface
-        return solve_contact(heights, body, penetration=top - mean - separation, tol=tol, x0=x0, warn=False)
-    target, allowed = mean + separation, tol * rms
-
-    def solve_at_load(pressure, start):
-        return solve_contact(heights, body, mean_pressure=pressure, tol=tol, x0=start, warn=False)
-
-    def excess(result):                                # s(P̄) − s*: decreasing in P̄
-        return result.flat_position - target
-
-    pressure = x0.mean_pressure if x0 is not None and x0.mean_pressure > 0 else \
-        (top - mean - separation) / body.pixel_compliance / heights.size
-    result = solve_at_load(pressure, x0)
-    low = high = last = None                           # [log P̄, s − s*, result] on either side of the target
-    for _ in range(SEPARATION_SOLVES):
-        miss = excess(result)
-        if abs(miss) <= allowed or not result.converged:
-            return result
-        point, side = [np.log(result.mean_pressure), miss, result], "low" if miss > 0 else "high"
-        if side == "low":
-            low = point
-        else:
-            high = point
-        if low is None or high is None:                # expand until the target is bracketed
-            result = solve_at_load(np.exp(point[0] + (2.0 if high is None else -2.0)), result)
-            continue
-        if side == last:                               # Illinois: an end kept twice running has its value halved
-            (high if side == "low" else low)[1] *= 0.5
-        last = side
-        log_pressure = low[0] - low[1] * (high[0] - low[0]) / (high[1] - low[1])
-        result = solve_at_load(np.exp(log_pressure), min(low, high, key=lambda item: abs(item[1]))[2])
-    return dataclasses.replace(result, solver=dataclasses.replace(
-        result.solver, converged=False,
-        message=f"no flat position within {allowed:.3g} m of the mean separation {separation:.6g} m after "
-                f"{SEPARATION_SOLVES} load-controlled solves (last: {excess(result):.3g} m)"))
 
 
 @dataclass(frozen=True)
