@@ -15,12 +15,14 @@ from .polonsky_keer import solve_hard_wall
 START_TOL = 1e-2          # tolerance of the hard-wall solve that starts a cold solve (a guess, not the answer)
 
 
-def hard_wall_start(problem, control: Control, solve=solve_hard_wall) -> tuple:
+def hard_wall_start(problem, control: Control, solve_at_position=solve_hard_wall) -> tuple:
     """What a smooth law's solve of the checked ``problem`` at ``control`` starts from: ``control.x0`` (a
     ContactResult), else the hard-wall solution at the same control where it exists (a compressive load, or a
-    flat that reaches the surface) solved to tol max(tol, :data:`START_TOL`) by ``solve`` (Polonsky–Keer's, or
-    the energy method's hand-over where it is slow, which this module cannot import), else None (the undeformed
-    surface). Returns (the start's result or None, its name "x0", "hard wall" or "rigid", its FFT pairs)."""
+    flat that reaches the surface) solved to tol max(tol, :data:`START_TOL`), else None (the undeformed surface).
+    Under load control Polonsky–Keer solves it (the studies' equilibria, which depend on the start where a solve
+    crosses instabilities, were measured from it); under displacement control ``solve_at_position`` does (the
+    energy method's hand-over to the gap where Polonsky–Keer crawls, which this module cannot import). Returns
+    (the start's result or None, its name "x0", "hard wall" or "rigid", its FFT pairs)."""
     if control.x0 is not None:
         return control.x0, "x0", 0.0
     heights = problem.heights
@@ -36,5 +38,6 @@ def hard_wall_start(problem, control: Control, solve=solve_hard_wall) -> tuple:
         start = control.at(penetration=h_max - flat_position, **options)
     else:
         return None, "rigid", 0.0
+    solve = solve_hard_wall if load is not None else solve_at_position
     result = solve(problem.with_heights(heights, HardWall()), start, preconditioned=True)
     return result, "hard wall", result.solver.fft_pairs
