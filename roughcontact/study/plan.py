@@ -9,7 +9,8 @@ so nothing of the patch is worked out again per task, and a measured patch trave
 (they need not see the scan's file).
 
 **Content keys.** A task's key (:attr:`Task.key`) is the SHA-256 of :meth:`StudyPlan.inputs`, exactly the inputs
-its records depend on: the library version; the voltage U_j and drive frequency f_k (and σ_sc under a drive);
+its records depend on: the library version; the voltage U_j and drive frequency f_k (and under a drive σ_sc and
+the keys of a leak across the interface that are set);
 every normal force (a task solves them in order, each warm-started from the last); the apparent scale's keys of
 the fingerpad model in use (and the rings of a fingertip); the skin; the dielectric stack and its field model;
 the patch — its grid, the ridges (pores only where there are any), the micro-roughness with its cut-off in use and
@@ -38,7 +39,7 @@ from .._version import __version__
 from .apparent import ring_count
 from .patch import (PatchScaleWarning, closing_lengths, patch_body, patch_grid, patch_scale_message, patch_surface,
                     realisation_count, resolved_short_cutoff)
-from .scene import Scene, measured_topography
+from .scene import LEAK_KEYS, Scene, measured_topography
 
 
 @dataclass(frozen=True)
@@ -123,6 +124,8 @@ class StudyPlan:
         screen = {key: getattr(scene.screen, key) for key in ("d_sc", "eps_sc", "d_i", "eps_i", "eps_a", "field")}
         if frequency is not None:
             screen["sigma_sc"] = scene.screen.sigma_sc
+            screen.update({key: getattr(scene.screen, key) for key, absent in LEAK_KEYS.items()
+                           if getattr(scene.screen, key) != absent})          # the leak's keys that are set
         solver = {"tolerance": preset.tolerance, "dtype": preset.dtype, "warm_start": preset.warm_start,
                   "scales": preset.scales}
         if preset.scales == "coupled":

@@ -148,6 +148,25 @@ def test_a_key_changes_with_every_input_of_its_records(tiny):
         "loads.voltages", "study.seed", "preset.realisations", "preset.rings"]
 
 
+def test_a_key_changes_with_every_key_of_a_leak():
+    # under a drive each key of a leak across the interface changes what the records hold, so it changes the key
+    # (two scenes that differ in the leak alone once shared their tasks in one task directory, and the second read
+    # the first's records); a drive without a leak keys as before the leak's keys existed
+    drive = load_scene(text=TINY.replace("voltages = [0.0, 150.0]", "voltages = [150.0]")
+                       + "[screen]\nfrequency = [300.0]\n", preset="draft")
+    keys = {task.key for task in plan_study(drive).tasks}
+    for leak in ({"gap_conductance": 0.061}, {"gap_conductivity": 1.5e-8}, {"gap_cpe": 1e-3},
+                 {"gap_cpe_exponent": 0.7}, {"contact_transfer": True},
+                 {"surface_conductance": 1e-8, "contact_transfer": True}):
+        leaky = dataclasses.replace(drive, screen=dataclasses.replace(drive.screen, **leak))
+        assert not keys & {task.key for task in plan_study(leaky).tasks}, leak
+    leaky = dataclasses.replace(drive, screen=dataclasses.replace(drive.screen, gap_conductivity=1.5e-8))
+    records = [untimed(solve_chain(plan_study(scene), 0, 0, 1, frequency_index=0)) for scene in (drive, leaky)]
+    assert records[0] != records[1]                    # what the key now tells apart, the records do
+    inputs = plan_study(drive).inputs(0, 0, 0)["screen"]
+    assert set(inputs) == {"d_sc", "eps_sc", "d_i", "eps_i", "eps_a", "field", "sigma_sc"}
+
+
 def test_a_key_changes_with_every_input_of_a_fingertip_with_pores():
     # a fingertip cap (rings) over ridges with sweat pores and no roughness: the pores make the seed an input, the
     # unused power law's keys are not, and the rings are
