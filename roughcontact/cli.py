@@ -130,9 +130,6 @@ def _cmd_run(args, provenance) -> int:
         print(f"roughcontact run: error: {error}", file=sys.stderr)        # a worker was killed
         return 1
     written = study.write_results(result, output, provenance, time.perf_counter() - start)
-    if not written["netcdf"]:
-        print("roughcontact run: results.nc not written: xarray and h5netcdf are not installed "
-              "(pip install 'roughcontact[io]'); the CSV tables hold the results", file=sys.stderr)
     print(f"{result.computed} points computed ({result.solves} contact solves), "
           f"{result.array('seconds').size - result.computed} resumed; "
           f"{written['seconds']:.0f} s")
@@ -143,9 +140,6 @@ def _cmd_run(args, provenance) -> int:
 def _report_variants(result, output, provenance, start) -> int:
     """Write a parameter study's results and say what was solved."""
     written = study.write_results(result, output, provenance, time.perf_counter() - start)
-    if not written["netcdf"]:
-        print("roughcontact run: results.nc not written: xarray and h5netcdf are not installed "
-              "(pip install 'roughcontact[io]'); the CSV tables hold the results", file=sys.stderr)
     print(f"{len(result.variants)} variants ({result.design}): {result.computed} of {result.tasks} distinct tasks "
           f"solved ({result.solves} contact solves), {result.tasks - result.computed} read back; "
           f"{written['seconds']:.0f} s")

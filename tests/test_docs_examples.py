@@ -35,7 +35,6 @@ def python_blocks(page):
 
 def write_tiny_results(directory):
     """``directory/roughcontact-results/results.nc`` of the tiny study (what ``roughcontact run`` writes)."""
-    pytest.importorskip("h5netcdf", reason="results.nc needs the io extra (xarray, h5netcdf)")
     from roughcontact.study.dataset import dataset
     from roughcontact.study.run import run_study
     from roughcontact.study.scene import load_scene

@@ -1,9 +1,7 @@
-"""A fingerpad study as an ``xarray.Dataset``, written as ``results.nc`` (xarray + h5netcdf, the ``io``
-dependencies; skipped when missing): every field per load, voltage (frequency) and realisation in SI units, the
-friction variables, and the scene, preset, seed and version in the attributes."""
+"""A fingerpad study as an ``xarray.Dataset``, written as ``results.nc`` (xarray + h5netcdf): every field per
+load, voltage (frequency) and realisation in SI units, the friction variables, and the scene, preset, seed and
+version in the attributes. xarray is imported where a dataset is built, not with :mod:`roughcontact.study`."""
 from __future__ import annotations
-
-import importlib.util
 
 import numpy as np
 
@@ -12,9 +10,6 @@ from .friction import friction_computed
 from .records import CONFIDENCE
 from .run import StudyResult
 from .tables import FIELDS, FLAG_DESCRIPTIONS, friction_rows, input_value, point_flags
-
-#: Modules that writing results.nc needs (the ``io`` dependencies).
-NETCDF_MODULES = ("xarray", "h5netcdf", "h5py")
 
 
 def dataset(result: StudyResult, friction: bool = True):
@@ -70,10 +65,7 @@ def dataset(result: StudyResult, friction: bool = True):
 
 
 def write_dataset(result: StudyResult, out, provenance):
-    """Write ``results.nc`` of ``result`` into the directory ``out`` with its provenance; its path, or None when
-    xarray or h5netcdf is not installed."""
-    if not all(importlib.util.find_spec(name) is not None for name in NETCDF_MODULES):
-        return None
+    """Write ``results.nc`` of ``result`` into the directory ``out`` with its provenance; its path."""
     data = dataset(result)
     data.attrs["provenance"] = provenance.line
     data.to_netcdf(out / "results.nc", engine="h5netcdf")
@@ -109,9 +101,7 @@ def variant_dataset(result):
 
 
 def write_variant_dataset(result, out, provenance):
-    """Write ``results.nc`` of a parameter study into ``out``; its path, or None without xarray and h5netcdf."""
-    if not all(importlib.util.find_spec(name) is not None for name in NETCDF_MODULES):
-        return None
+    """Write ``results.nc`` of a parameter study into ``out`` with its provenance; its path."""
     data = variant_dataset(result)
     data.attrs["provenance"] = provenance.line
     data.to_netcdf(out / "results.nc", engine="h5netcdf")

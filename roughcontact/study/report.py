@@ -1,11 +1,10 @@
 """Results of a fingerpad study on disk: netCDF, CSV, PNG and report.md, with the seed's friction law fed
 bottom-up (:mod:`roughcontact.study.friction`).
 
-:func:`write_results` writes ``results.nc`` (:mod:`.dataset`: xarray + h5netcdf, the ``io`` dependencies;
-skipped with a message when missing), the CSV tables (:mod:`.tables`), the PNG figures (:mod:`.figures`) and
-``report.md`` (this module: :func:`report_text`) into a results directory; for a drive-frequency sweep
-(``[screen] frequency``) the tables gain a frequency column, ``results.nc`` a frequency dimension, and the
-figure and report show the sweep (:func:`sweep_report_text`).
+:func:`write_results` writes ``results.nc`` (:mod:`.dataset`: xarray + h5netcdf), the CSV tables
+(:mod:`.tables`), the PNG figures (:mod:`.figures`) and ``report.md`` (this module: :func:`report_text`) into a
+results directory; for a drive-frequency sweep (``[screen] frequency``) the tables gain a frequency column,
+``results.nc`` a frequency dimension, and the figure and report show the sweep (:func:`sweep_report_text`).
 """
 from __future__ import annotations
 
@@ -178,7 +177,7 @@ def _run_sentence(result: StudyResult, seconds: float | None) -> str:
                f"{result.array('seconds').size - result.computed} read back)." if seconds is not None else ""))
 
 
-def report_text(result: StudyResult, nc_written: bool, seconds: float | None = None) -> str:
+def report_text(result: StudyResult, seconds: float | None = None) -> str:
     """The Markdown report: what was computed, tables with intervals, and where the equivalent-gap
     assumption holds and where it fails, with numbers."""
     scene, preset = result.scene, result.scene.preset
@@ -198,8 +197,7 @@ def report_text(result: StudyResult, nc_written: bool, seconds: float | None = N
             "is the instrument's.", "",
             f"Figures: `equivalent_gap.png`, `voltage_dependence.png`, `field_ratio.png`{friction_figure}. Tables: "
             f"`points.csv`, `realisations.csv`, `ridge_area_sensitivity.csv`{friction_table}"
-            + (", all of it in `results.nc`." if nc_written else
-               "; `results.nc` was not written (xarray/h5netcdf missing: `pip install 'roughcontact[io]'`)."), "",
+            ", all of it in `results.nc`.", "",
             f"Definitions: the attraction is solved with the `{scene.screen.field}` field of the stack (`[screen] "
             "field`; `docs/guide/electrostatics.md`). d_eq by seed Eq. 25 of the solved gap over the apparent area A0 "
             "(contact points included): the seed's definition, the gap at which Eq. 21 gives the mean of Eq. 21 "
@@ -389,7 +387,7 @@ def _leak_phrase(screen) -> str:
     return f", the skin–screen interface leaks ({keys}; \"A leak across the interface\")"
 
 
-def sweep_report_text(result: StudyResult, nc_written: bool, seconds: float | None = None) -> str:
+def sweep_report_text(result: StudyResult, seconds: float | None = None) -> str:
     """The Markdown report of a drive-frequency sweep: what was solved, and F_el, d_eq, d_field and A_R/A0
     against frequency per load and voltage with the circuit's crossover."""
     scene, preset = result.scene, result.scene.preset
@@ -413,8 +411,7 @@ def sweep_report_text(result: StudyResult, nc_written: bool, seconds: float | No
             "frequency.", "",
             "Figure: `frequency_sweep.png`. Tables: `points.csv`, `realisations.csv`, `ridge_area_sensitivity.csv`, "
             "each with a `frequency_Hz` column"
-            + (", all of it in `results.nc` (dimension `frequency`)." if nc_written else
-               "; `results.nc` was not written (xarray/h5netcdf missing: `pip install 'roughcontact[io]'`)."), "",
+            ", all of it in `results.nc` (dimension `frequency`).", "",
             "Not produced for a frequency sweep: the figures and sections against load and voltage and the "
             "friction step (the seed's friction law has no drive frequency); every per-point number is in the "
             "tables above, and `StudyResult.at_frequency(k)` gives the loads × voltages study at one frequency.",
@@ -442,7 +439,7 @@ def sweep_report_text(result: StudyResult, nc_written: bool, seconds: float | No
     return "\n".join(text) + "\n"
 
 
-def variant_report_text(result: VariantStudyResult, nc_written: bool, seconds: float | None = None) -> str:
+def variant_report_text(result: VariantStudyResult, seconds: float | None = None) -> str:
     """The Markdown report of a parameter study: what was solved, the inputs with their ranges and sources, the
     sensitivity at the report point and every variant's d_eq, d_field, F_el, A_R/A0 and μ."""
     study, sensitivity = result.study, result.sensitivity
@@ -475,8 +472,7 @@ def variant_report_text(result: VariantStudyResult, nc_written: bool, seconds: f
         text.append(f"| `{name}` | " + " | ".join(cells) + " |")
     text += ["", "## Variants", "", "Realisation means; μ the bottom-up friction coefficient (ridge-area recipe). "
              "Tables: `variants.csv`, `sensitivity.csv`"
-             + (", all of it in `results.nc` (dimension `variant`, the inputs as its coordinates)." if nc_written
-                else "; `results.nc` was not written (xarray/h5netcdf missing: `pip install 'roughcontact[io]'`)."),
+             ", all of it in `results.nc` (dimension `variant`, the inputs as its coordinates).",
              "", "| variant | F_N [N] | U [V] | d_eq [µm] | d_field [µm] | F_el [N] | A_R/A0 [%] | μ |",
              "|---" * 8 + "|"]
     for variant in result.variants:
@@ -522,27 +518,22 @@ def _measure_cell(sensitivity, output: str, n: int, force: float, voltage: float
 
 
 def write_results(result: StudyResult | VariantStudyResult, out, provenance, seconds: float | None = None) -> dict:
-    """Write ``results.nc`` (when xarray and h5netcdf are installed), the CSV tables, the figures and
-    ``report.md`` into the directory ``out``; ``seconds`` the run time so far (the study's). Returns
-    ``{"netcdf": written?, "files": [paths], "seconds": the run time the report states}``, the writing
-    included, so that a command can print the report's number. A parameter study (a
+    """Write ``results.nc``, the CSV tables, the figures and ``report.md`` into the directory ``out``; ``seconds``
+    the run time so far (the study's). Returns ``{"files": [paths], "seconds": the run time the report states}``,
+    the writing included, so that a command can print the report's number. A parameter study (a
     :class:`~.variant_run.VariantStudyResult`) gets ``variants.csv``, ``sensitivity.csv``, ``sensitivity.png``,
     ``results.nc`` with a variant dimension and its report (:func:`variant_report_text`)."""
     start = time.perf_counter()
     if isinstance(result, VariantStudyResult):
-        files = write_variant_tables(result, out, provenance) + write_sensitivity_figure(result, out, provenance)
-        netcdf = write_variant_dataset(result, out, provenance)
-        files += [netcdf] if netcdf is not None else []
+        files = (write_variant_tables(result, out, provenance) + write_sensitivity_figure(result, out, provenance)
+                 + [write_variant_dataset(result, out, provenance)])
         seconds = None if seconds is None else seconds + time.perf_counter() - start
-        (out / "report.md").write_text(variant_report_text(result, netcdf is not None, seconds))
-        return {"netcdf": netcdf is not None, "files": files + [out / "report.md"], "seconds": seconds}
-    files = write_tables(result, out, provenance) + write_figures(result, out, provenance)
-    netcdf = write_dataset(result, out, provenance)
-    if netcdf is not None:
-        files.append(netcdf)
+        (out / "report.md").write_text(variant_report_text(result, seconds))
+        return {"files": files + [out / "report.md"], "seconds": seconds}
+    files = (write_tables(result, out, provenance) + write_figures(result, out, provenance)
+             + [write_dataset(result, out, provenance)])
     report = out / "report.md"
     if seconds is not None:
         seconds += time.perf_counter() - start
-    report.write_text((sweep_report_text if result.frequencies else report_text)(result, netcdf is not None,
-                                                                                    seconds))
-    return {"netcdf": netcdf is not None, "files": files + [report], "seconds": seconds}
+    report.write_text((sweep_report_text if result.frequencies else report_text)(result, seconds))
+    return {"files": files + [report], "seconds": seconds}

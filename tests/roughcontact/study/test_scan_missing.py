@@ -6,6 +6,7 @@ import warnings
 
 import numpy as np
 import pytest
+import xarray
 
 import surfaces
 from roughcontact.cli import main
@@ -65,15 +66,14 @@ def test_the_filled_fraction_reaches_the_command_line_report_and_results(tmp_pat
                 "above the 5 % at which the reader warns")
     assert sentence in (out / "report.md").read_text()
     (tmp_path / "holes.txt").unlink()                  # the results stand without the scan: patch.npz holds the record
-    assert sentence in report_text(open_results(out), nc_written=True)
-    xarray = pytest.importorskip("xarray")
+    assert sentence in report_text(open_results(out))
     with xarray.open_dataset(out / "results.nc", engine="h5netcdf") as data:
         assert (data.attrs["scan_missing_points"], data.attrs["scan_filled_fraction"]) == (30, 30 / 480)
 
 
 def test_a_crop_states_what_it_cut_away(tmp_path, holes):
     scene = load_scene(scene_file(tmp_path, "crop", "normal_forces = [0.5]\nvoltages = [0.0]"), preset="draft")
-    text = report_text(run_study(scene, workers=1), nc_written=False)
+    text = report_text(run_study(scene, workers=1))
     # the hole spans columns 0..4: columns 5..19 are kept, 25 % cut away
     assert ("**Missing data**: 30 heights of the scan were undefined; the patch is its largest fully measured "
             "rectangle (`missing = \"crop\"`), pixels 0:24 × 5:20: 25.0 % of the scan cropped away.") in text

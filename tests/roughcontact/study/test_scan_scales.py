@@ -7,6 +7,7 @@ from types import SimpleNamespace
 
 import numpy as np
 import pytest
+import xarray
 
 import surfaces
 from roughcontact.cli import main
@@ -121,7 +122,6 @@ def test_a_patch_pressed_by_the_field_is_flagged_and_no_gap_is_negative(afm, tmp
     assert "(up to 219 F_N)" in report
     row = next(row for row in read_csv(out / "friction.csv") if row["voltage_V"] == "200.0")
     assert round(float(row["bottom_up_c2_0_friction_coefficient"])) == 57
-    xarray = pytest.importorskip("xarray")
     with xarray.open_dataset(out / "results.nc", engine="h5netcdf") as data:
         assert data["attraction_dominates"].values.tolist() == [[0, 1], [0, 1]]
         assert float(data["field_equivalent_gap"].min()) >= 0 and not math.isnan(float(data["full_contact"].sum()))

@@ -6,6 +6,7 @@ import re
 
 import numpy as np
 import pytest
+import xarray
 
 import roughcontact.study.apparent as apparent
 import roughcontact.study.resolved as resolved
@@ -42,8 +43,8 @@ def test_zero_volt_study_is_the_hard_wall_chain():
             assert result.points[i][0].equivalent_gap[r] == stack.equivalent_gap(previous.gap)
             assert result.points[i][0].contact_fraction[r] == previous.contact_fraction
             assert result.points[i][0].electrostatic_attraction[r] == 0.0
-    assert "One voltage (0 V) in the scene: its dependence on the voltage is not tested" in report_text(result, False)
-    assert "No solve crossed an instability." in report_text(result, False)
+    assert "One voltage (0 V) in the scene: its dependence on the voltage is not tested" in report_text(result)
+    assert "No solve crossed an instability." in report_text(result)
 
 
 def test_records_count_the_unstable_steps_of_their_solves(tiny, tiny_result):
@@ -67,7 +68,7 @@ def test_records_count_the_unstable_steps_of_their_solves(tiny, tiny_result):
             assert point.pixel_law_attraction[r] == pytest.approx(float(np.mean(stack.attraction(previous.gap, 150.0))),
                                                                 rel=1e-12)
     assert "4 of 8 patch results came from solves that crossed an instability (concave steps, from 150 V on)" \
-        in report_text(tiny_result, False)
+        in report_text(tiny_result)
 
 
 def test_field_gaps_and_ratio_carry_the_solved_attraction(tiny, tiny_result):
@@ -389,8 +390,6 @@ def test_run_command_end_to_end(tmp_path, capsys):
     report = (out / "report.md").read_text()
     assert "Where the equivalent-gap assumption holds and where it fails" in report
     assert "## How wrong is the per-pixel field assumption" in report and "`layered` field" in report
-    xarray = pytest.importorskip("xarray")
-    pytest.importorskip("h5netcdf")
     with xarray.open_dataset(out / "results.nc", engine="h5netcdf") as data:
         assert data["equivalent_gap"].attrs["units"] == "m" and data.attrs["preset"] == "draft"
         assert data.attrs["scene.presets.draft.grid"] == 32 and "roughcontact_version" in data.attrs
@@ -486,7 +485,7 @@ def test_positive_interval_is_the_log_scale_student_t_interval():
 
 def test_report_sentences_do_not_degenerate(tiny_result):
     assert _range(np.array([0.3712, 0.3749]), ".2f") == "0.37" and _range(np.array([0.2, 0.5]), ".1f") == "0.2 to 0.5"
-    report = report_text(tiny_result, False)
+    report = report_text(tiny_result)
     assert "at no voltage" not in report and " 0.37 to 0.37" not in report
     assert ("at every voltage above 0 V it is off by more than 10 % at some load" in report
             or "it stays within 10 % at every load for 150 V" in report)

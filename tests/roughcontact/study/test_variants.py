@@ -10,6 +10,7 @@ import sys
 
 import numpy as np
 import pytest
+import xarray
 
 import roughcontact.study
 import surfaces
@@ -267,8 +268,7 @@ def test_the_command_runs_resumes_and_reopens_a_parameter_study(varied, tmp_path
     assert report.count("| 3: screen.eps_sc = 1000 |") == 4                       # 2 loads x 2 voltages
     for name in ("variants.csv", "sensitivity.csv", "sensitivity.png", "results.nc"):
         assert (tmp_path / "out" / name).is_file(), name
-    xr = pytest.importorskip("xarray")
-    with xr.open_dataset(tmp_path / "out" / "results.nc", engine="h5netcdf") as data:
+    with xarray.open_dataset(tmp_path / "out" / "results.nc", engine="h5netcdf") as data:
         assert data.sizes["variant"] == 5 and list(data["screen.eps_sc"].values) == [3e3, 3e3, 3e3, 1e3, 1e4]
         np.testing.assert_array_equal(data["sensitivity_swing"].values, result.sensitivity.measures["swing"])
         assert data.attrs["design"] == "one-at-a-time" and "[vary]" in data.attrs["scene_toml"]
