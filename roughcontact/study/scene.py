@@ -427,7 +427,8 @@ class Preset(_Section):
     """Accuracy against cost (``docs/guide/presets.md``): ``grid`` pixels per side of a patch of ``periods`` ridge
     periods, ``realisations``, solver ``tolerance``, ``rings`` over the apparent area (fingertip),
     ``pixels_per_cutoff`` at the short cut-off, ``dtype`` of the solves, ``warm_start`` (continuation along
-    load, else cold solves) and ``scales`` ("resolved" in one grid or "coupled" through an interface law)."""
+    load, else cold solves) and ``scales`` ("resolved" in one grid, or "coupled" through an interface law: an
+    experimental research check of the equivalent-gap assumption, ``docs/guide/study.md``)."""
     section = "presets.*"
     grid: int = _field(_Integer(8, 4096))
     periods: int = _field(_Integer(1, 64))
