@@ -22,6 +22,8 @@ Each writes ``fe_fingertip_<check>.csv`` with its provenance.
 from __future__ import annotations
 
 import argparse
+import time
+from concurrent.futures import ProcessPoolExecutor
 from dataclasses import replace
 
 import numpy as np
@@ -29,10 +31,14 @@ import numpy as np
 from roughcontact.fe.analysis import fit_eq34
 from roughcontact.fe.geometry import FingerSection, MeshResolution
 from roughcontact.fe.materials import FingerMaterials, OgdenMaterial
-from roughcontact.fe.model import FingertipModel
+from roughcontact.fe.model import FingertipModel, default_travel_step
 from roughcontact.fe.study import run_fingertip_study
 from roughcontact.io.provenance import output_directory, parse_arguments, write_csv
 
+#: Processes of the checks' pools (the machine's two cores).
+WORKERS = 2
+#: The friction law's μ0: the FE's contact at 0 V.
+MU0 = 0.26
 #: The sensitivity runs' mesh: the coarse one (a fifth of the default's cost); the convergence check measures
 #: its error.
 SENSITIVITY_MESH = MeshResolution.coarse()
@@ -64,23 +70,42 @@ def hertz_rows():
     return rows
 
 
-def _run_row(label, model, force=200.0):
-    run = model.slide(force)
+def _run_row(label, model, force=200.0, travel_step=None):
+    start = time.process_time()
+    run = model.slide(force, travel_step=travel_step)
     fit = fit_eq34(run.tangential_force, run.length)
-    return {"case": label, "normal_force_N_per_m": force, "initial_length_m": run.initial_length,
+    return {"case": label, "normal_force_N_per_m": force, "friction": model.friction,
+            "initial_length_m": run.initial_length,
             "sliding_length_m": run.sliding_length, "relative_reduction": run.relative_reduction,
             "xi_m3_per_N2": -fit.slope, "xi_error_m3_per_N2": fit.slope_error,
             "coulomb_ratio_minus_1": run.tangential_force[-1] / (run.friction * force) - 1,
-            "full_slip": run.full_slip, "increments": len(run.travel) - 1, "seconds": round(run.seconds, 1)}
+            "full_slip": run.full_slip, "increments": len(run.travel) - 1, "seconds": round(run.seconds, 1),
+            "cpu_seconds": round(time.process_time() - start, 1)}
+
+
+def _in_parallel(cases):
+    """The rows of ``cases`` (argument tuples of :func:`_run_row`) on a process pool, in their order."""
+    with ProcessPoolExecutor(WORKERS) as pool:
+        return list(pool.map(_run_row, *zip(*cases)))
+
+
+#: The meshes of the convergence check, each against its x1.5 refinement.
+CANDIDATE_MESHES = {"coarse": MeshResolution.coarse(),
+                    "medium": MeshResolution(around=112, subcutaneous=7, skin=2, contact_refinement=0.2),
+                    "default": MeshResolution()}
 
 
 def convergence_rows():
-    default = FingertipModel()
-    return [_run_row("mesh coarse", replace(default, resolution=MeshResolution.coarse())),
-            _run_row("default", default),
-            _run_row("mesh x1.5", replace(default, resolution=MeshResolution().refined(1.5))),
-            _run_row("penalty x0.3", replace(default, penalty=300.0)),
-            _run_row("penalty x3", replace(default, penalty=3000.0))]
+    default = FingertipModel(friction=MU0)
+    cases = []
+    for name, mesh in CANDIDATE_MESHES.items():
+        for label, resolution in ((name, mesh), (f"{name} x1.5", mesh.refined(1.5))):
+            cases += [(f"mesh {label}", replace(default, resolution=resolution), 200.0),
+                      (f"mesh {label}", replace(default, resolution=resolution, friction=2.0), 50.0)]
+    cases += [("travel step x0.5", default, 200.0, default_travel_step(200.0, MU0) / 2),
+              ("penalty x0.3", replace(default, penalty=300.0), 200.0),
+              ("penalty x3", replace(default, penalty=3000.0), 200.0)]
+    return _in_parallel(cases)
 
 
 def _scaled(material: OgdenMaterial, factor: float) -> OgdenMaterial:
