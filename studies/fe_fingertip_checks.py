@@ -1,7 +1,8 @@
-"""The FE fingertip's validation and sensitivity runs for docs/fe_fingertip.md (a script; needs roughcontact[fe]).
+"""The FE fingertip's validation and sensitivity runs (a script; needs roughcontact[fe]; see
+docs/guide/fe_fingertip.md and docs/findings/fe_fingertip.md).
 
     python studies/fe_fingertip_checks.py hertz --output out          # 2-D Hertz check, mesh series
-    python studies/fe_fingertip_checks.py convergence --output out    # mesh and penalty at f_N = 200 N/m
+    python studies/fe_fingertip_checks.py convergence --output out    # mesh, travel step, penalty
     python studies/fe_fingertip_checks.py sensitivity --output out    # L0, ξ and the exponent vs parameters
 
 ``hertz``: a round section (R = 10 mm, concentric rigid core of 3 mm) of one neo-Hookean solid (μ = 10 kPa,
@@ -9,13 +10,14 @@
 2a = 2√(4PR/(πE*)) on three meshes refined by 1, 2 and 3 in every direction, and the half-width from the
 second moment of the contact force, 2√⟨x²⟩ (a for the Hertz pressure), independent of the edge estimate.
 
-``convergence``: press-and-slide at f_N = 200 N/m on the coarse, default and 1.5× refined meshes and with the
-contact penalty ×0.3 and ×3; L0, L at full slip, ξ.
+``convergence``: press-and-slide at f_N = 200 N/m, μ = 0.26 and at 50 N/m, μ = 2 on each candidate mesh and
+its ×1.5 refinement, and on the default mesh with half the travel step and the contact penalty ×0.3 and ×3;
+L0, L at full slip, ξ (runs on a pool of two processes).
 
-``sensitivity``: a sweep over f_N = 50, 100, 200 N/m on the coarse mesh (``SENSITIVITY_MESH``, travel step
-0.15 mm) for the default parameters and one parameter changed at a time (tissue moduli ×½ and ×2, the
-subcutaneous exponent α, the skin thickness, the local friction coefficient); L0, ξ at 100 N/m and the exponent
-of ξ(f_N).
+``sensitivity``: a sweep over the finger's 0.5, 1 and 2 N (f_N = F_N/w = 53, 92, 163 N/m) at μ0 = 0.26 on the
+coarse mesh (``SENSITIVITY_MESH``) for the default parameters and one parameter changed at a time (tissue moduli
+×½ and ×2, the subcutaneous exponent α, the skin thickness, the seed's μ = 0.35); L0 and ξ at 1 N, the
+reductions at full slip and their growth from 1 to 2 N (Sirin et al. 2019b: 8 % → 15 %), the exponent of ξ(f_N).
 
 Each writes ``fe_fingertip_<check>.csv`` with its provenance.
 """
@@ -29,6 +31,7 @@ from dataclasses import replace
 import numpy as np
 
 from roughcontact.fe.analysis import fit_eq34
+from roughcontact.fe.feed import FEAreaReduction
 from roughcontact.fe.geometry import FingerSection, MeshResolution
 from roughcontact.fe.materials import FingerMaterials, OgdenMaterial
 from roughcontact.fe.model import FingertipModel, default_travel_step
@@ -90,8 +93,7 @@ def _in_parallel(cases):
 
 
 #: The meshes of the convergence check, each against its x1.5 refinement.
-CANDIDATE_MESHES = {"coarse": MeshResolution.coarse(),
-                    "medium": MeshResolution(around=112, subcutaneous=7, skin=2, contact_refinement=0.2),
+CANDIDATE_MESHES = {"medium": MeshResolution(around=112, subcutaneous=7, skin=2, contact_refinement=0.2),
                     "default": MeshResolution()}
 
 
@@ -116,8 +118,12 @@ def _tissue(model: FingertipModel, **materials) -> FingertipModel:
     return replace(model, materials=replace(model.materials, **materials))
 
 
+#: The finger's 0.5, 1 and 2 N as forces per unit width of the section, F_N/w (``roughcontact.fe.feed``) [N/m].
+SENSITIVITY_FORCES = tuple(float(FEAreaReduction.from_summary().line_load(f)) for f in (0.5, 1.0, 2.0))
+
+
 def sensitivity_rows():
-    base = FingertipModel(resolution=SENSITIVITY_MESH)
+    base = FingertipModel(resolution=SENSITIVITY_MESH, friction=MU0)
     skin, pulp = base.materials.skin, base.materials.subcutaneous
     cases = {"default": base,
              "skin mu x0.5": _tissue(base, skin=_scaled(skin, 0.5)),
@@ -127,19 +133,21 @@ def sensitivity_rows():
              "subcutaneous alpha 4": _tissue(base, subcutaneous=replace(pulp, alpha=(4.0,))),
              "skin 0.7 mm": replace(base, section=replace(base.section, skin_thickness=0.7e-3)),
              "skin 1.3 mm": replace(base, section=replace(base.section, skin_thickness=1.3e-3)),
-             "friction 0.26": replace(base, friction=0.26)}
+             "friction 0.35 (the seed's FE)": replace(base, friction=0.35)}
     rows = []
     for label, model in cases.items():
-        study = run_fingertip_study(model, (50.0, 100.0, 200.0), travel_step=0.15e-3)
+        study = run_fingertip_study(model, SENSITIVITY_FORCES, workers=WORKERS)
         fits = study.eq34_fits()
         exponent = study.exponent()
-        rows.append({"case": label, "initial_length_100_m": study.runs[1].initial_length,
-                     "reduction_100": study.runs[1].relative_reduction,
-                     "reduction_200": study.runs[2].relative_reduction,
-                     "xi_100_m3_per_N2": -fits[1].slope, "exponent": exponent.slope,
-                     "exponent_error": exponent.slope_error,
+        low, one, two = study.runs
+        rows.append({"case": label, "initial_length_1N_m": one.initial_length,
+                     "reduction_0.5N": low.relative_reduction, "reduction_1N": one.relative_reduction,
+                     "reduction_2N": two.relative_reduction,
+                     "reduction_ratio_2N_over_1N": two.relative_reduction / one.relative_reduction,
+                     "xi_1N_m3_per_N2": -fits[1].slope, "exponent_xi": exponent.slope,
+                     "exponent_xi_error": exponent.slope_error,
                      "full_slip": all(run.full_slip for run in study.runs),
-                     "seconds": round(sum(run.seconds for run in study.runs))})
+                     "cpu_seconds": round(sum(run.cpu_seconds for run in study.runs))})
         print(rows[-1], flush=True)
     return rows
 

@@ -121,7 +121,8 @@ class SlidingRun:
     edges) and ``length_gap`` (gap zero crossings) [m], ``slipping`` the fraction of contact nodes that slide.
     ``full_slip`` whether the last increment is the onset of full slip; ``snapshots`` the contact at every
     increment; ``points`` (the deformed mesh, [m]) at the pressed state and at the last increment; ``cells``,
-    ``material`` of the mesh; ``friction`` μ; ``seconds`` the wall time; ``converged`` False if a Newton solve
+    ``material`` of the mesh; ``friction`` μ; ``seconds`` the wall time, ``cpu_seconds`` the processor time of the
+    run's process; ``converged`` False if a Newton solve
     failed before full slip (warned).
     """
 
@@ -142,6 +143,7 @@ class SlidingRun:
     cells: np.ndarray = field(repr=False)
     material: np.ndarray = field(repr=False)
     seconds: float = 0.0
+    cpu_seconds: float = 0.0
 
     @property
     def initial_length(self) -> float:
@@ -187,7 +189,7 @@ class FingertipModel:
     elastic_slip: float = 0.01
     tie: float = 100.0
     tolerance: float = 1e-6
-    approach_step: float = 0.02
+    approach_step: float = 0.05
 
     def __post_init__(self):
         for name, kind in (("section", FingerSection), ("materials", FingerMaterials),
@@ -320,7 +322,7 @@ class FingertipModel:
         if travel_step is None:
             travel_step = default_travel_step(normal_force, self.friction)
         check_real("travel_step", travel_step, low=max_travel / MAX_INCREMENTS, high=MAX_TRAVEL_STEP)
-        start = time.perf_counter()
+        start, cpu = time.perf_counter(), time.process_time()
         model = self._build(friction=self.friction)
         if not self._press(model, normal_force):
             raise FEConvergenceError(f"normal_force = {normal_force:g} N/m: the press did not converge "
@@ -364,4 +366,5 @@ class FingertipModel:
             full_slip=full_slip, converged=converged, friction=self.friction, snapshots=tuple(snapshots),
             pressed_points=pressed_points[:len(mesh.points)],
             final_points=((model["points"] + model["displacement"].values) * _MM)[:len(mesh.points)],
-            cells=mesh.cells, material=mesh.material, seconds=time.perf_counter() - start)
+            cells=mesh.cells, material=mesh.material, seconds=time.perf_counter() - start,
+            cpu_seconds=time.process_time() - cpu)

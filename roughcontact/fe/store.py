@@ -54,7 +54,7 @@ def _arrays(run: SlidingRun) -> dict:
     arrays["snapshot_sizes"] = np.array([len(s.x) for s in run.snapshots], dtype=np.int64)
     for name in _SNAPSHOT_ARRAYS:
         arrays[f"snapshot_{name}"] = np.concatenate([getattr(s, name) for s in run.snapshots])
-    arrays["scalars"] = np.array([run.normal_force, run.friction, run.seconds], dtype=float)
+    arrays["scalars"] = np.array([run.normal_force, run.friction, run.seconds, run.cpu_seconds], dtype=float)
     arrays["flags"] = np.array([run.full_slip, run.converged], dtype=bool)
     return arrays
 
@@ -63,9 +63,10 @@ def _run(arrays: dict) -> SlidingRun:
     bounds = np.concatenate([[0], np.cumsum(arrays["snapshot_sizes"])])
     snapshots = tuple(ContactSnapshot(**{name: arrays[f"snapshot_{name}"][a:b] for name in _SNAPSHOT_ARRAYS})
                       for a, b in zip(bounds[:-1], bounds[1:]))
-    normal_force, friction, seconds = (float(v) for v in arrays["scalars"])
+    normal_force, friction, seconds, cpu_seconds = (float(v) for v in arrays["scalars"])
     full_slip, converged = (bool(v) for v in arrays["flags"])
-    return SlidingRun(normal_force=normal_force, friction=friction, seconds=seconds, full_slip=full_slip,
+    return SlidingRun(normal_force=normal_force, friction=friction, seconds=seconds, cpu_seconds=cpu_seconds,
+                      full_slip=full_slip,
                       converged=converged, snapshots=snapshots, **{name: arrays[name] for name in _RUN_ARRAYS})
 
 

@@ -7,7 +7,9 @@ from __future__ import annotations
 
 import multiprocessing
 import os
+import signal
 import sys
+import threading
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -86,7 +88,8 @@ class FingertipStudy:
                 "coulomb_ratio_minus_1": run.tangential_force[-1] / (run.friction * run.normal_force) - 1,
                 "bone_force_ratio_minus_1": run.bone_tangential_force[-1] / (run.friction * run.normal_force) - 1,
                 "travel_full_slip_m": run.travel[-1], "full_slip": run.full_slip,
-                "increments": len(run.travel) - 1, "seconds": round(run.seconds, 1)})
+                "increments": len(run.travel) - 1, "seconds": round(run.seconds, 1),
+                "cpu_seconds": round(run.cpu_seconds, 1)})
         return rows
 
 
@@ -186,7 +189,9 @@ def _finished(models: dict, keys: list, travel_step, max_travel: float, workers:
         return
     methods = multiprocessing.get_all_start_methods()
     context = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
-    executor = ProcessPoolExecutor(min(workers, len(keys)), mp_context=context)
+    lifeline = context.Pipe(duplex=False)          # (reading, writing): only this process holds the writing end
+    executor = ProcessPoolExecutor(min(workers, len(keys)), mp_context=context, initializer=_start_worker,
+                                   initargs=(lifeline[0],))
     try:
         futures = {executor.submit(_slide, models[mu], force, travel_step, max_travel): (mu, force)
                    for mu, force in keys}
@@ -198,7 +203,27 @@ def _finished(models: dict, keys: list, travel_step, max_travel: float, workers:
         for process in processes:
             process.terminate()
         raise
-    executor.shutdown()
+    else:
+        executor.shutdown()
+    finally:
+        for end in lifeline:
+            end.close()
+
+
+def _start_worker(client) -> None:
+    """Pool worker start: Ctrl-C is the client's to handle; the worker ends with the client process, even when
+    that is killed (``client`` is the reading end of a pipe whose writing end only the client holds, so it reads
+    end-of-file once the client is gone)."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    threading.Thread(target=_end_with, args=(client,), daemon=True).start()
+
+
+def _end_with(client) -> None:
+    try:
+        client.recv_bytes()                        # nothing is ever sent: returns at the client's end
+    except (EOFError, OSError):
+        pass
+    os._exit(1)
 
 
 def _progress(total: int, done: int):
