@@ -10,10 +10,15 @@ from roughcontact.study.run import run_study
 from roughcontact.study.scene import load_scene
 
 
+@pytest.fixture(scope="module")
+def default_scene():
+    return run_study(load_scene(preset="draft"))
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("isotropic", [False, True])
-def test_default_scene_never_asks_the_fe_beyond_its_full_slip(isotropic):
-    result = run_study(load_scene(preset="draft"))
+def test_default_scene_never_asks_the_fe_beyond_its_full_slip(default_scene, isotropic):
+    result = default_scene
     model = bottom_up_friction(result)
     table = FEAreaReduction.from_summary(PACKAGED_SUMMARY, isotropic=isotropic)
     forces, voltages = result.normal_forces[:, None], result.voltages[None, :]
