@@ -31,7 +31,7 @@ from dataclasses import replace
 import numpy as np
 
 from roughcontact.fe.analysis import fit_eq34
-from roughcontact.fe.feed import FEAreaReduction
+from roughcontact.fe.feed import line_load
 from roughcontact.fe.geometry import FingerSection, MeshResolution
 from roughcontact.fe.materials import FingerMaterials, OgdenMaterial
 from roughcontact.fe.model import FingertipModel, default_travel_step
@@ -119,7 +119,7 @@ def _tissue(model: FingertipModel, **materials) -> FingertipModel:
 
 
 #: The finger's 0.5, 1 and 2 N as forces per unit width of the section, F_N/w (``roughcontact.fe.feed``) [N/m].
-SENSITIVITY_FORCES = tuple(float(FEAreaReduction.from_summary().line_load(f)) for f in (0.5, 1.0, 2.0))
+SENSITIVITY_FORCES = tuple(float(line_load(f)) for f in (0.5, 1.0, 2.0))
 
 
 def sensitivity_rows():

@@ -60,6 +60,19 @@ def effective_friction(mu0, electrostatic_force, normal_force) -> np.ndarray:
     return mu0 * (1 + check_finite_array("electrostatic_force", electrostatic_force, nonnegative=True) / force)
 
 
+def footprint_width(normal_force, apparent: PowerLawContact = PowerLawContact.dzidek_apparent()) -> np.ndarray:
+    """The footprint's width across the section, w = 2 √(A_app(F_N)/π) [m], at F_N [N] (``apparent``: the
+    footprint law, default Dzidek et al.'s, seed Eq. 27)."""
+    return 2 * np.sqrt(apparent.nonadhesive_area(normal_force) / np.pi)
+
+
+def line_load(normal_force, apparent: PowerLawContact = PowerLawContact.dzidek_apparent()) -> np.ndarray:
+    """The finger's F_N [N] as the section's force per unit width f_N = F_N/w [N/m] (:func:`footprint_width`)."""
+    force = check_finite_array("normal_force", normal_force, nonnegative=True)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(force > 0, force / footprint_width(force, apparent), 0.0)
+
+
 @dataclass(frozen=True)
 class FEAreaReduction:
     """Eq. 34 per unit width from the FE runs: ``normal_forces`` f_N [N/m] (n, ascending), ``frictions`` μ
@@ -115,13 +128,11 @@ class FEAreaReduction:
 
     def width(self, normal_force) -> np.ndarray:
         """Footprint width across the section, w = 2 √(A_app(F_N)/π) [m]."""
-        return 2 * np.sqrt(self.apparent.nonadhesive_area(normal_force) / np.pi)
+        return footprint_width(normal_force, self.apparent)
 
     def line_load(self, normal_force) -> np.ndarray:
         """f_N = F_N / w [N/m]."""
-        force = check_finite_array("normal_force", normal_force, nonnegative=True)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            return np.where(force > 0, force / self.width(force), 0.0)
+        return line_load(normal_force, self.apparent)
 
     def eq34(self, line_load, friction) -> tuple:
         """(L0 [m], ξ [m³/N²], L at full slip [m]) at f_N [N/m] and μ: piecewise power laws in f_N through the

@@ -15,7 +15,8 @@ tangentially while keeping the normal force constant until the whole contact len
 
 1. approach: the bone moves down by ``contact_depth`` × the half-height into first contact;
 2. press: a point load on the bone raises the normal force to f_N exactly, by at most ``press_growth`` per
-   substep (bone x held; monotonic, as the seed presses);
+   substep (bone x held; monotonic, as the seed presses; frictionless, so that L0 depends on f_N alone and the
+   stick reference of each contact node is its pressed place);
 3. slide: the bone's x is displacement-controlled (so the path can pass a maximum of f_T) while the point load
    keeps f_N; stopped at the first increment in which every node in contact slips (the onset of full slip).
 
@@ -325,9 +326,11 @@ class FingertipModel:
         check_real("travel_step", travel_step, low=max_travel / MAX_INCREMENTS, high=MAX_TRAVEL_STEP)
         start, cpu = time.perf_counter(), time.process_time()
         model = self._build(friction=self.friction)
+        model["contact"].friction = 0.0          # a frictionless press: L0 depends on f_N alone
         if not self._press(model, normal_force):
             raise FEConvergenceError(f"normal_force = {normal_force:g} N/m: the press did not converge "
                                      f"({model.get('error')})")
+        model["contact"].friction = self.friction  # the stick reference of every contact node: its pressed place
         pressed_points = (model["points"] + model["displacement"].values) * _MM
         snapshots, travel, bone_force = [self._snapshot(model)], [0.0], [0.0]
 

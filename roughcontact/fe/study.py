@@ -10,6 +10,7 @@ import os
 import signal
 import sys
 import threading
+import warnings
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -19,11 +20,12 @@ import numpy as np
 from surfaces.validation import check_integer, check_real
 
 from ..io.provenance import Provenance, save_figure, write_csv
+from ..io.results import ConvergenceWarning
 from ..macro.friction import SlidingFrictionModel
 from .analysis import LinearFit, fit_eq34, power_law_fit
 from .geometry import MATERIAL_NAMES
-from .model import (MAX_INCREMENTS, MAX_TRAVEL_STEP, FingertipModel, SlidingRun, check_normal_force,
-                    default_travel_step)
+from .model import (MAX_INCREMENTS, MAX_TRAVEL_STEP, FEConvergenceError, FingertipModel, SlidingRun,
+                    check_normal_force, default_travel_step)
 from .store import run_fingerprint
 
 #: Normal forces per unit width of the default sweep [N/m].
@@ -126,9 +128,12 @@ def exponent_rows(summary: list) -> tuple:
     return rows, notes
 
 
-def _slide(model: FingertipModel, normal_force: float, travel_step, max_travel: float) -> SlidingRun:
-    """One run (a task of the pool: a module-level function)."""
-    return model.slide(normal_force, travel_step=travel_step, max_travel=max_travel)
+def _slide(model: FingertipModel, normal_force: float, travel_step, max_travel: float) -> SlidingRun | str:
+    """One run (a task of the pool: a module-level function), or the message of its failed press."""
+    try:
+        return model.slide(normal_force, travel_step=travel_step, max_travel=max_travel)
+    except FEConvergenceError as error:
+        return str(error)
 
 
 def _solver_version() -> str:
@@ -163,9 +168,13 @@ def run_fingertip_study(model: FingertipModel = FingertipModel(), normal_forces=
     keys = [(mu, force) for mu in models for force in forces]
     prints = {key: run_fingerprint(models[key[0]], key[1], travel_step, max_travel, version) for key in keys}
     runs = {key: store.load(prints[key], key[1], key[0]) for key in keys} if store is not None else {}
-    missing = [key for key in keys if runs.get(key) is None]
+    missing, failed = [key for key in keys if runs.get(key) is None], []
     bar = _progress(len(keys), len(keys) - len(missing)) if progress else None
     for key, run in _finished(models, missing, travel_step, max_travel, workers):
+        if isinstance(run, str):                           # a failed press: the sweep goes on without it
+            warnings.warn(f"mu = {key[0]:g}: {run}; the run is left out", ConvergenceWarning, stacklevel=2)
+            failed.append(run)
+            continue
         runs[key] = run
         if store is not None:
             store.save(prints[key], run)
@@ -175,7 +184,9 @@ def run_fingertip_study(model: FingertipModel = FingertipModel(), normal_forces=
             bar.update()
     if bar is not None:
         bar.close()
-    return FingertipStudy(model=model, runs=tuple(runs[key] for key in keys))
+    if not any(runs.get(key) for key in keys):
+        raise FEConvergenceError("; ".join(failed))
+    return FingertipStudy(model=model, runs=tuple(runs[key] for key in keys if runs.get(key) is not None))
 
 
 def _finished(models: dict, keys: list, travel_step, max_travel: float, workers: int):
