@@ -41,7 +41,8 @@ from ..io.provenance import read_csv
 from ..macro.friction import SlidingFrictionModel, SlidingState
 from ..macro.power_law import PowerLawContact
 
-#: The FE sweep's summary over f_N and μ, written by ``roughcontact fingertip-fe`` (docs/guide/fe_fingertip.md).
+#: The FE runs' summary over f_N and μ on the default mesh, written by ``python studies/fe_friction_table.py`` (the
+#: format of ``roughcontact fingertip-fe``'s summary; docs/findings/fe_fingertip.md).
 PACKAGED_SUMMARY = Path(__file__).with_name("fingertip_fe_summary.csv")
 #: Relative slack of the no-extrapolation check f_T <= μ_eff f_N (round-off of the friction law's root).
 SLIP_TOLERANCE = 1e-9

@@ -13,10 +13,10 @@ contact is node-to-plane with a penalty λ_n = ``penalty`` × μ_skin and Coulom
 Protocol (seed: "pressed ... by a normal force per unit width applied to the inner bone layer ... then moved
 tangentially while keeping the normal force constant until the whole contact length is slipping"):
 
-1. approach: the bone moves down by ``contact_depth`` × the half-height into first contact;
-2. press: a point load on the bone raises the normal force to f_N exactly, by at most ``press_growth`` per
-   substep (bone x held; monotonic, as the seed presses; frictionless, so that L0 depends on f_N alone and the
-   stick reference of each contact node is its pressed place);
+1. approach: the bone moves down in steps of ``approach_step`` × the half-height until the plate carries f_N;
+2. press: a point load on the bone brings the normal force to f_N exactly (bone x held). The press is
+   frictionless: L0 depends on f_N alone, the path of the press does not matter (a frictionless hyperelastic
+   contact keeps no history), and the stick reference of each contact node is its pressed place;
 3. slide: the bone's x is displacement-controlled (so the path can pass a maximum of f_T) while the point load
    keeps f_N; stopped at the first increment in which every node in contact slips (the onset of full slip).
 
@@ -181,8 +181,7 @@ class FingertipModel:
     """The FE fingertip: ``section`` geometry, ``materials``, ``resolution`` of the mesh, Coulomb ``friction`` μ,
     contact ``penalty`` (λ_n / μ_skin, dimensionless), ``elastic_slip`` (γ / contact node spacing), ``tie``
     (bone-tie penalty / λ_n), Newton ``tolerance`` (residual norm relative to the normal force),
-    ``contact_depth`` (the bone's approach into first contact / the section's half-height), ``press_growth``
-    (the largest ratio of the normal force between substeps of the press)."""
+    ``approach_step`` (the bone's downward step while pressing / the section's half-height)."""
 
     section: FingerSection = field(default_factory=FingerSection)
     materials: FingerMaterials = field(default_factory=FingerMaterials)
@@ -192,8 +191,7 @@ class FingertipModel:
     elastic_slip: float = 0.01
     tie: float = 100.0
     tolerance: float = 1e-6
-    contact_depth: float = 0.03
-    press_growth: float = 2.0
+    approach_step: float = 0.05
 
     def __post_init__(self):
         for name, kind in (("section", FingerSection), ("materials", FingerMaterials),
@@ -205,8 +203,7 @@ class FingertipModel:
         check_real("elastic_slip", self.elastic_slip, low=0.0, low_open=True)
         check_real("tie", self.tie, low=0.0, low_open=True)
         check_real("tolerance", self.tolerance, low=0.0, low_open=True)
-        check_real("contact_depth", self.contact_depth, low=0.0, high=0.1, low_open=True)
-        check_real("press_growth", self.press_growth, low=1.0, high=10.0, low_open=True)
+        check_real("approach_step", self.approach_step, low=0.0, high=0.5, low_open=True)
 
     @property
     def mesh(self) -> SectionMesh:
@@ -286,21 +283,24 @@ class FingertipModel:
                                tangential=nodal[order, 0] * _N_PER_MM, gap=gap[order] * _MM, slip=slip[order])
 
     def _press(self, model, normal_force: float) -> bool:
-        """Approach and press to f_N [N/m] (steps 1–2 of the protocol): the bone moves down by ``contact_depth``
-        × the half-height into first contact, then a point load on it rises to f_N in substeps growing by at most
-        ``press_growth`` (monotonic, so friction leaves no trace of an overshoot)."""
+        """Approach and press to f_N [N/m] (steps 1–2 of the protocol): the bone moves down in steps of
+        ``approach_step`` × the half-height until the plate carries f_N, then a point load brings the force to
+        f_N exactly (frictionless, so the path does not matter)."""
         model["force"] = normal_force / _N_PER_MM
         b = model["boundaries"]
         items = [*model["bodies"], model["tie"], model["contact"]]
-        touch = self.contact_depth * self.section.half_height / _MM
-        if not self._run_step(model, items, {b["bone_y"]: np.array([0.0, -touch])}, b):
+        pulp = self.section.half_height - self.section.bone_half_height + self.section.bone_offset
+        depth = np.arange(0.0, 0.9 * pulp, self.approach_step * self.section.half_height) / _MM
+        carried = []
+
+        def record(model) -> bool:
+            carried.append(self._snapshot(model).normal.sum())
+            return carried[-1] >= normal_force
+
+        if not self._run_step(model, items, {b["bone_y"]: -depth}, b, record) or carried[-1] < normal_force:
+            model.setdefault("error", f"the plate carries {carried[-1]:.4g} N/m at 90 % of the pulp's depth")
             return False
-        carried = self._snapshot(model).normal.sum()
-        if carried <= 0:
-            model["error"] = f"no contact at {touch * _MM * 1e6:.3g} µm of approach"
-            return False
-        count = max(2, int(np.ceil(abs(np.log(normal_force / carried)) / np.log(self.press_growth))))
-        ramp = np.outer(np.geomspace(carried, normal_force, count + 1) / _N_PER_MM, [0.0, -1.0])
+        ramp = np.outer(np.linspace(carried[-1], normal_force, 3) / _N_PER_MM, [0.0, -1.0])
         return self._run_step(model, [*items, model["load"]], {model["load"]: ramp},
                               {"plate": b["plate"], "bone_x": b["bone_x"]})
 
