@@ -24,7 +24,7 @@ def add_arguments(parser) -> None:
     parser.add_argument("--mesh", choices=MESHES, default="default",
                         help="mesh: coarse (the tests' CI size), default, fine (x1.5 the default's element counts)")
     parser.add_argument("--forces", type=float, nargs="+", default=list(DEFAULT_NORMAL_FORCES), metavar="F_N",
-                        help="normal forces per unit width [N/m], 1 to 1000")
+                        help="normal forces per unit width [N/m], in (0, 1000]")
     parser.add_argument("--friction", type=float, nargs="+", default=list(DEFAULT_FRICTIONS), metavar="MU",
                         help="local Coulomb coefficients of the contact, (0, 3]: mu0 = 0.26 of the friction law, "
                              "and mu_eff = mu0 (1 + F_el/F_N) under electroadhesion (default: 0.26)")

@@ -43,9 +43,9 @@ _MPA = 1e6            # pascals per megapascal
 _N_PER_MM = 1e3       # N/m per N/mm
 #: Seed Sect. 4.3: the local Coulomb coefficient of the FE model.
 SEED_FRICTION = 0.35
-#: Valid normal forces per unit width [N/m]: the FE section presses to about 1000 N/m before its pulp is
-#: compressed to a tenth (the default sweep: 25–400 N/m; a finger's 0.1–5 N over its ~1 cm width).
-NORMAL_FORCE_RANGE = (1.0, 1000.0)
+#: Valid normal forces per unit width (low, high] [N/m]: the FE section presses to 1000 N/m at μ up to 2.5 (the
+#: default sweep: 25–400 N/m; a finger's 0.5–2 N is 53–163 N/m over its footprint's width).
+NORMAL_FORCE_RANGE = (0.0, 1000.0)
 #: Largest local friction coefficient accepted (μ_eff = μ0 (1 + F_el/F_N) of the default scene reaches 2.4).
 MAX_FRICTION = 3.0
 #: Largest bone travel per increment [m] (a fraction of the contact length, which is 4–10 mm).
@@ -89,7 +89,7 @@ class _Predictor:
 def check_normal_force(normal_force) -> float:
     """f_N [N/m] checked against :data:`NORMAL_FORCE_RANGE`."""
     low, high = NORMAL_FORCE_RANGE
-    return check_real("normal_force", normal_force, low=low, high=high)
+    return check_real("normal_force", normal_force, low=low, high=high, low_open=True)
 
 
 @dataclass(frozen=True)

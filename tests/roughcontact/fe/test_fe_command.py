@@ -35,8 +35,8 @@ def test_felupe_is_imported_only_inside_functions_of_roughcontact_fe():
 
 
 @pytest.mark.parametrize("arguments, named", [
-    (["--forces", "1e7"], "normal_force = 10000000.0 is out of range; valid range [1, 1000]"),
-    (["--forces", "50", "nan"], "normal_force must be finite, got nan; valid range [1, 1000]"),
+    (["--forces", "1e7"], "normal_force = 10000000.0 is out of range; valid range (0, 1000]"),
+    (["--forces", "50", "nan"], "normal_force must be finite, got nan; valid range (0, 1000]"),
     (["--travel-step", "1e-12"], "travel_step = 1e-12 is out of range; valid range [3e-06, 0.001]"),
     (["--travel-step", "0.02"], "travel_step = 0.02 is out of range; valid range [3e-06, 0.001]"),
     (["--friction", "0"], "friction = 0.0 is out of range; valid range (0, 3]"),

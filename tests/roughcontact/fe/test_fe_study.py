@@ -83,7 +83,7 @@ def test_stale_runs_are_named_and_run_again(counted, tmp_path):
 
 def test_sweep_values_are_checked_before_anything_runs(counted):
     _, calls = counted
-    for kwargs, match in (({"normal_forces": [1e7]}, r"normal_force = 10000000.0 is out of range; valid range \[1, 1000\]"),
+    for kwargs, match in (({"normal_forces": [1e7]}, r"normal_force = 10000000.0 is out of range; valid range \(0, 1000\]"),
                           ({"frictions": [-0.1]}, r"friction = -0.1 is out of range; valid range \(0, 3\]"),
                           ({"travel_step": 1e-12}, r"travel_step = 1e-12 is out of range; valid range \[3e-06, 0.001\]"),
                           ({"travel_step": 0.02}, r"travel_step = 0.02 is out of range"),
