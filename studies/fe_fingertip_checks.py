@@ -87,7 +87,9 @@ def _run_row(label, model, force=200.0, travel_step=None):
 
 
 def _in_parallel(cases):
-    """The rows of ``cases`` (argument tuples of :func:`_run_row`) on a process pool, in their order."""
+    """The rows of ``cases`` (argument tuples of :func:`_run_row`, the travel step optional) on a process pool,
+    in their order."""
+    cases = [(*case, *(None,) * (4 - len(case))) for case in cases]
     with ProcessPoolExecutor(WORKERS) as pool:
         return list(pool.map(_run_row, *zip(*cases)))
 
