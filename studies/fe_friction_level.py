@@ -73,6 +73,11 @@ def friction_for(table: FEAreaReduction, force: float, target: float, isotropic:
     return float(mus[above[0]]) if above.size else float("nan")
 
 
+def _needed(table, force, target, isotropic) -> str:
+    mu = friction_for(table, force, target, isotropic)
+    return f"<= {mu:.3g}" if mu == table.frictions[0] else f"{mu:.3g}"
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--output", default="out")
@@ -85,8 +90,7 @@ def main(argv=None):
     write_csv(output / "fe_friction_level_exponent.csv", exponent_rows(rows), provenance, echo=True)
     for (force, voltage), measured in SIRIN_2019B.items():
         print(f"F_N = {force:g} N, U = {voltage:g} V: Sirin 2019b {measured:.0%} needs mu_eff = "
-              f"{friction_for(table, force, measured, False):.3g} (linear), "
-              f"{friction_for(table, force, measured, True):.3g} (isotropic)")
+              f"{_needed(table, force, measured, False)} (linear), {_needed(table, force, measured, True)} (isotropic)")
 
 
 if __name__ == "__main__":
