@@ -190,7 +190,7 @@ def fe_reduced_state(model: SlidingFrictionModel, normal_force, voltage, reducti
     force, voltage = np.broadcast_arrays(np.asarray(normal_force, float), np.asarray(voltage, float))
     base = model.state(force, voltage)
     initial_area = base.initial_area
-    mu_eff = (model.mu0 * force + (model.tau0 + model.mu0 * base.pressure) * initial_area) / force
+    mu_eff = (model.mu0 * force + (model.tau0 + model.mu0 * base.attraction) * initial_area) / force
     width, line_load = reduction.width(force), reduction.line_load(force)
     initial, xi, _ = reduction.eq34(line_load, mu_eff)
     c2 = initial_area ** 2 * xi / (initial * width ** 2)
@@ -225,7 +225,7 @@ def _isotropic(model, state, reduction, mu_eff, width) -> SlidingState:
     """The law's solution with A_R/A_R0 = (L/L0)²: F_T = μ0 F_N + κ A_R0 (L(f_T)/L0)² by bisection between
     μ0 F_N and the linear mapping's F_T (the right side falls with F_T), as the state of the c₂ through it."""
     force, initial_area = float(state.normal_force), float(state.initial_area)
-    kappa = model.tau0 + model.mu0 * float(state.pressure)
+    kappa = model.tau0 + model.mu0 * float(state.attraction)
     residual = lambda f_t: (model.mu0 * force + kappa * initial_area   # noqa: E731
                             * reduction.area_ratio(force, f_t, mu_eff) - f_t)
     low, high = model.mu0 * force, float(state.tangential_force)

@@ -44,10 +44,10 @@ def test_friction_law_with_the_fe_reduction_gives_the_fe_area_ratio_at_mu_eff(is
     forces, voltages = np.array([[0.5], [1.0], [2.0]]), np.array([[0.0, 100.0, 200.0]])
     state, mu_eff = fe_reduced_state(model, forces, voltages, reduction)
     base = model.state(forces, voltages)
-    assert np.allclose(mu_eff, effective_friction(model.mu0, base.pressure * base.initial_area, forces), rtol=1e-14)
+    assert np.allclose(mu_eff, effective_friction(model.mu0, base.attraction * base.initial_area, forces), rtol=1e-14)
     expected = reduction.area_ratio(np.broadcast_to(forces, (3, 3)), state.tangential_force, mu_eff)
     assert np.allclose(state.area / state.initial_area, expected, rtol=1e-12)
-    assert np.allclose(state.tangential_force, model.mu0 * (forces + state.pressure * state.area), rtol=1e-12)
+    assert np.allclose(state.tangential_force, model.mu0 * (forces + state.attraction * state.area), rtol=1e-12)
     assert np.array_equal(state.tangential_force[:, 0], model.mu0 * forces[:, 0])   # U = 0: μ0 F_N
     assert np.array_equal(mu_eff[:, 0], np.full(3, model.mu0))                       # the FE at μ0
     assert (state.area < state.initial_area).all()
