@@ -204,8 +204,8 @@ def _finished(models: dict, keys: list, travel_step, max_travel: float, workers:
     executor = ProcessPoolExecutor(min(workers, len(keys)), mp_context=context, initializer=_start_worker,
                                    initargs=(lifeline[0],))
     try:
-        futures = {executor.submit(_slide, models[mu], force, travel_step, max_travel): (mu, force)
-                   for mu, force in keys}
+        futures = {executor.submit(_slide, models[mu], force, travel_step, max_travel): (mu, force)   # longest first
+                   for mu, force in sorted(keys, key=lambda key: key[0] * key[1], reverse=True)}
         for future in as_completed(futures):
             yield futures[future], future.result()
     except BaseException:
