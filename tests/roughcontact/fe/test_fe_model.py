@@ -27,7 +27,7 @@ def test_small_load_frictionless_press_matches_2d_hertz():
     load = np.pi * materials.skin.plane_strain_modulus * half_width ** 2 / (4 * radius)
     model = FingertipModel(section=FingerSection.circular(radius, 3e-3, 0.3e-3), materials=materials,
                            resolution=MeshResolution(around=120, subcutaneous=8, skin=3, contact_refinement=0.1,
-                                                     grading=2.0))
+                                                     grading=2.0), approach_step=0.01)   # 0.1 mm: as the check
     pressed = model.press(load)
     assert pressed.snapshot.normal.sum() == pytest.approx(load, rel=1e-6)     # the plate carries the load
     assert pressed.length == pytest.approx(2 * half_width, rel=0.03)
