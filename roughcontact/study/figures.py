@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..fe.feed import fe_friction_columns
 from ..io.provenance import save_figure
 from ..macro import LinearGap, PowerLawGap, SlidingFrictionModel
 from .friction import bottom_up_friction, friction_computed, friction_realisations
@@ -116,6 +117,8 @@ def _figures(result: StudyResult, out, provenance) -> list:
         model, seed = bottom_up_friction(result), SlidingFrictionModel.paper_table1()
         ours = model.state(forces[:, None], voltages[None, :])
         samples = friction_realisations(result)
+        fed = np.array([[fe_friction_columns(model, f, u)["bottom_up_fe_friction_coefficient"] for u in voltages]
+                        for f in forces])                     # the FE fingertip's reduction at μ_eff (roughcontact.fe)
         figure, axes = plt.subplots(1, 3, figsize=(14, 4))
         for j, voltage in enumerate(voltages):
             theirs = seed.state(line, voltage)
@@ -129,9 +132,10 @@ def _figures(result: StudyResult, out, provenance) -> list:
                 axis.errorbar(forces, value, yerr=bars, marker="o", capsize=3, color=colour, label=f"{voltage:g} V")
                 _ring(axis, forces, value, flagged[:, j])
                 axis.plot(line, getattr(theirs, name), "--", color=colour)
+            axes[2].plot(forces, fed[:, j], "^:", color=colour, mfc="none")
         axes[0].set(xlabel="F_N [N]", ylabel="ridge area A_R0 [mm²]", title="A_R (solid) vs seed Eq. 9 (dashed)")
         axes[1].set(xlabel="F_N [N]", ylabel="F_T [N]", title="friction force (dashed: seed Table 1)")
-        axes[2].set(xlabel="F_N [N]", ylabel="μ = F_T/F_N", title="friction coefficient (dashed: seed)")
+        axes[2].set(xlabel="F_N [N]", ylabel="μ = F_T/F_N", title="μ (dashed: seed; dotted △: FE-fed reduction)")
         for axis in axes:
             axis.legend(fontsize=7)
         finish(figure, "friction.png")
