@@ -1039,6 +1039,17 @@ ROWS += [
 ]
 
 
+# ---------------------------------------------------------------------------------------------- the second audit
+# An independent audit's findings: a crash, an answer silently wrong or an error that does not name its cause.
+
+ROWS += [
+    # a float32 preset below float32's round-off: no solve converged, then friction.csv raised on the NaN means
+    ("scene-float32-tolerance-below-floor", lambda: load_scene(text='[presets.draft]\ndtype = "float32"\n'
+                                                                    "tolerance = 1e-8\n"),
+     refused(ValueError, "presets.draft.tolerance", "1e-08", "[4.77e-07, 0.1]", 'dtype = "float64"')),
+]
+
+
 # ---------------------------------------------------------------------------------------------- helpers of rows
 
 #: The tiny scene of the study tests (32² patches, two loads, 0 and 150 V; under a second to run).
@@ -1226,6 +1237,10 @@ CLI_ROWS += [        # issue 36 (the study): a scene's scan keys, one line namin
     ("run-scan-crop-beyond", lambda tmp: ["run", _scan_file(tmp, "crop = [0, 17, 0, 4]\n"), "--preset", "draft",
                                           "--out", tmp / "o"]),
     ("run-scan-npz-with-unit", lambda tmp: ["run", _scan_file(tmp, 'unit = "um"\n'), "--out", tmp / "o"]),
+]
+CLI_ROWS += [        # the second audit: what the scene check refuses, and flags named as given
+    ("scene-float32-tolerance-below-floor", lambda tmp: ["scene", write(tmp / "s.toml", '[presets.draft]\n'
+                                                                        'dtype = "float32"\ntolerance = 1e-8\n')]),
 ]
 
 

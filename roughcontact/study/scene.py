@@ -36,6 +36,7 @@ from surfaces.validation import check_integer, check_real
 from ..electrostatics import DielectricStack, LeakyStack
 from ..electrostatics.stack import SIGMA_SC
 from ..interactions import FIELDS, ElectrostaticInteraction
+from ..solvers.inputs import FLOAT32_TOL_FLOOR
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -440,6 +441,15 @@ class Preset(_Section):
     warm_start: bool = _field(_BOOLEAN)
     scales: str = _field(_Choice(SCALES))
 
+    def __post_init__(self):
+        super().__post_init__()
+        if self.dtype == "float32" and self.tolerance < FLOAT32_TOL_FLOOR:
+            raise ValueError(f"tolerance = {self.tolerance!r} is below float32's round-off floor "
+                             f"{FLOAT32_TOL_FLOOR:.3g}, where a solve's residual stalls short of it (the point is "
+                             "left without a converged realisation); valid: "
+                             f"tolerance in [{FLOAT32_TOL_FLOOR:.3g}, 0.1] with dtype = \"float32\", or "
+                             "dtype = \"float64\"")
+
 
 #: The table of a parameter study (:mod:`roughcontact.study.variants`), read beside the sections.
 VARY = "vary"
@@ -697,7 +707,7 @@ def _build(cls, table, defaults: dict, given: dict, origin, text):
     try:
         return cls(**{**defaults, **given})
     except (TypeError, ValueError) as error:      # a relation between keys (e.g. the two cut-offs)
-        key = next((k for k in given if k in str(error)), None)
+        key = min((k for k in given if k in str(error)), key=str(error).index, default=None)   # the one named first
         raise _error(origin, text, table, key, str(error), None) from None
 
 
