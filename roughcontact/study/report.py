@@ -235,7 +235,8 @@ def report_text(result: StudyResult, seconds: float | None = None) -> str:
         worst = f"{100 * finite.max():.0f} %" if finite.size else "n/a (no converged point above 0 V)"
         held = [f"{v:g} V" for j, v in enumerate(voltages) if on[j] and _yes(HOLDS_WITHIN - np.abs(constant[:, j]))
                 == "yes"]
-        change = d_mean[:, -1] / d_mean[:, 0] - 1
+        with np.errstate(divide="ignore", invalid="ignore"):       # d_eq = 0 at both (a flat patch): no change
+            change = np.where(d_mean[:, -1] == d_mean[:, 0], 0.0, d_mean[:, -1] / d_mean[:, 0] - 1)
         within = f"{100 * HOLDS_WITHIN:.0f} %"
         text += [f"* **Voltage independence** (seed: d_eq depends on F_N only). From {low} to {voltages[-1]:g} V d_eq "
                  "changes by " + ", ".join((f"{100 * c:+.0f} %" if np.isfinite(c) else "n/a") + f" at {f:g} N"

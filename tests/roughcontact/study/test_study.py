@@ -279,6 +279,24 @@ def test_a_point_without_a_converged_realisation_is_reported_not_raised(tiny_res
     assert [row["equivalent_gap_um"] == "nan" for row in rows] == [(i, j) in failed for i in range(2) for j in range(2)]
 
 
+def test_a_flat_scan_changes_d_eq_by_zero_percent(tmp_path):
+    """A constant scan is flat after detrending: d_eq = 0 at both voltages, a change of 0 % (it read "+nan %",
+    with numpy's "invalid value encountered in divide" on the console)."""
+    import warnings
+    from roughcontact.study.patch import PatchScaleWarning
+    np.save(tmp_path / "flat.npy", np.full((16, 16), 3.0))
+    (tmp_path / "flat.toml").write_text('[loads]\nnormal_forces = [0.5]\nvoltages = [0.0, 150.0]\n[ridges]\n'
+                                        'enabled = false\n[roughness]\ntopography = "flat.npy"\nunit = "um"\n'
+                                        "pixel_size = 2e-6\n[ridge_area]\ncoarse_graining = 1e-5\n")
+    scene = load_scene(tmp_path / "flat.toml", preset="draft")
+    with pytest.warns(PatchScaleWarning):
+        result = run_study(scene, workers=1)
+    assert np.all(result.summary("equivalent_gap")[0] == 0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        assert "d_eq changes by +0 % at 0.5 N." in report_text(result)
+
+
 def test_tabulated_area_and_bottom_up_friction(tiny_result):
     table = TabulatedArea(np.array([1.0, 2.0]), np.array([[0.0, 1.0], [0.0, 2.0]]), np.array([[1.0, 3.0], [2.0, 4.0]]))
     assert table.area(1.0, 0.5) == pytest.approx(2.0) and table.area(1.5, 0.0) == pytest.approx(1.5)
