@@ -1047,7 +1047,16 @@ ROWS += [
     ("scene-float32-tolerance-below-floor", lambda: load_scene(text='[presets.draft]\ndtype = "float32"\n'
                                                                     "tolerance = 1e-8\n"),
      refused(ValueError, "presets.draft.tolerance", "1e-08", "[4.77e-07, 0.1]", 'dtype = "float64"')),
+    # the FE's area reduction is even in F_T: beyond full slip (|F_T| > mu F_N) NaN for either sign, not an
+    # extrapolation of Eq. 34 for a negative F_T (F_N = 1 N, mu = 1: full slip at |F_T| = 1 N)
+    ("fe-area-ratio-negative-ft-beyond-slip", lambda: _fe_reduction().area_ratio(1.0, np.array([-1.5, -0.9, 0.9]), 1.0),
+     right(lambda ratio: np.isnan(ratio[0]) and ratio[1] == ratio[2] and 0 < ratio[1] < 1)),
 ]
+
+
+def _fe_reduction():
+    from roughcontact.fe.feed import FEAreaReduction
+    return FEAreaReduction.from_summary()
 
 
 # ---------------------------------------------------------------------------------------------- helpers of rows

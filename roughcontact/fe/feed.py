@@ -165,9 +165,10 @@ class FEAreaReduction:
 
     def length_ratio(self, line_load, friction, line_tangential) -> np.ndarray:
         """L(f_T)/L0 = 1 − ξ f_T²/L0 (Eq. 34) at f_N, μ and f_T [N/m], clipped at 0; NaN outside the table and
-        where f_T exceeds the FE's full slip μ f_N (by more than :data:`SLIP_TOLERANCE`): no extrapolation."""
+        where |f_T| exceeds the FE's full slip μ f_N (by more than :data:`SLIP_TOLERANCE`): no extrapolation."""
         initial, xi, _ = self.eq34(line_load, friction)
-        beyond = np.asarray(line_tangential) > np.asarray(friction) * np.asarray(line_load) * (1 + SLIP_TOLERANCE)
+        beyond = (np.abs(np.asarray(line_tangential, float))
+                  > np.asarray(friction) * np.asarray(line_load) * (1 + SLIP_TOLERANCE))
         return np.where(beyond, np.nan, np.maximum(1 - xi * np.asarray(line_tangential, float) ** 2 / initial, 0.0))
 
     def area_ratio(self, normal_force, tangential_force, friction) -> np.ndarray:
