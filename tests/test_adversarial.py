@@ -1051,12 +1051,21 @@ ROWS += [
     # extrapolation of Eq. 34 for a negative F_T (F_N = 1 N, mu = 1: full slip at |F_T| = 1 N)
     ("fe-area-ratio-negative-ft-beyond-slip", lambda: _fe_reduction().area_ratio(1.0, np.array([-1.5, -0.9, 0.9]), 1.0),
      right(lambda ratio: np.isnan(ratio[0]) and ratio[1] == ratio[2] and 0 < ratio[1] < 1)),
+    ("fe-effective-friction-mu0-negative", lambda: _effective_friction(-1.0, 0.0, 1.0),
+     refused(ValueError, "mu0", "-1", "(0, inf)")),
+    ("fe-effective-friction-mu0-nan", lambda: _effective_friction(np.nan, 0.0, 1.0),
+     refused(ValueError, "mu0", "nan", "(0, inf)")),
 ]
 
 
 def _fe_reduction():
     from roughcontact.fe.feed import FEAreaReduction
     return FEAreaReduction.from_summary()
+
+
+def _effective_friction(*arguments):
+    from roughcontact.fe.feed import effective_friction
+    return effective_friction(*arguments)
 
 
 # ---------------------------------------------------------------------------------------------- helpers of rows

@@ -35,7 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
-from surfaces.validation import check_finite_array
+from surfaces.validation import check_finite_array, check_real
 
 from ..io.provenance import read_csv
 from ..macro.friction import SlidingFrictionModel, SlidingState
@@ -54,7 +54,9 @@ class FETableWarning(UserWarning):
 
 def effective_friction(mu0, electrostatic_force, normal_force) -> np.ndarray:
     """μ_eff = μ0 (1 + F_el/F_N): the local Coulomb coefficient of the FE contact whose capacity at full slip,
-    μ_eff F_N, is the interface's μ0 (F_N + F_el) (module docstring); F_el, F_N [N] (or per unit width), F_N > 0."""
+    μ_eff F_N, is the interface's μ0 (F_N + F_el) (module docstring); μ0 > 0, F_el, F_N [N] (or per unit width),
+    F_N > 0."""
+    mu0 = check_real("mu0", mu0, low=0.0, low_open=True)
     force = check_finite_array("normal_force", normal_force)
     if (force <= 0).any():
         raise ValueError(f"normal_force must be > 0, got {force.min()}")
