@@ -23,7 +23,7 @@ import numpy as np
 from .grid import Grid
 from .heightfield import MISSING, HeightField, missing_handled, physical_size
 from .io import LENGTH_UNITS, length_unit
-from .validation import check_choice, check_real
+from .validation import check_bool, check_choice, check_real
 
 
 def _surface_topography():
@@ -144,7 +144,7 @@ def read_topography(path, *, channel: int = 0, format: str | None = None, length
     info = channels[channel]
     options, factor = _unit_and_size(path, info, unit, lengths, pixel_size)
     if periodic is not None:
-        options["periodic"] = periodic
+        options["periodic"] = check_bool("periodic", periodic)          # as Grid: a truthy string is refused
     try:
         topography = reader.topography(channel_index=channel, **options)
     except (ReadFileError, ValueError) as error:

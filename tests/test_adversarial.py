@@ -1055,6 +1055,10 @@ ROWS += [
      refused(ValueError, "mu0", "-1", "(0, inf)")),
     ("fe-effective-friction-mu0-nan", lambda: _effective_friction(np.nan, 0.0, 1.0),
      refused(ValueError, "mu0", "nan", "(0, inf)")),
+    # periodic is checked as Grid checks it: "no" (a truthy string) made the grid periodic
+    ("topo-read-periodic-string", _st(in_tmp(lambda tmp: read_topography(write(tmp / "p.txt", MATRIX), unit="um",
+                                                                          pixel_size=1e-6, periodic="no"))),
+     refused(TypeError, "periodic", "'no'")),
 ]
 
 
