@@ -1059,6 +1059,16 @@ ROWS += [
     ("topo-read-periodic-string", _st(in_tmp(lambda tmp: read_topography(write(tmp / "p.txt", MATRIX), unit="um",
                                                                           pixel_size=1e-6, periodic="no"))),
      refused(TypeError, "periodic", "'no'")),
+    # an rms height beyond the range of a grid's lengths: numpy's OverflowError (1e300), or heights that
+    # underflowed to 0 (1e-300); at the range's ends the realisation has its rms exactly
+    ("sa-rms-huge", lambda: self_affine(G(), hurst=0.8, rms_height=1e300, rng=0),
+     refused(ValueError, "rms_height", "1e+300", "[1e-50, 1e+50]")),
+    ("sa-rms-tiny", lambda: self_affine(G(), hurst=0.8, rms_height=1e-300, rng=0),
+     refused(ValueError, "rms_height", "1e-300", "[1e-50, 1e+50]")),
+    ("sa-rms-range-ends-right", lambda: [self_affine(G(), hurst=0.8, rms_height=rms, rng=1).heights
+                                         for rms in (1e-50, 1e50)],
+     right(lambda pair: all(close(float(np.sqrt(np.mean((h - h.mean()) ** 2))), rms, 1e-9)
+                            for h, rms in zip(pair, (1e-50, 1e50))))),
 ]
 
 
