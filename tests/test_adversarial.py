@@ -1065,6 +1065,8 @@ ROWS += [
      refused(ValueError, "rms_height", "1e+300", "[1e-50, 1e+50]")),
     ("sa-rms-tiny", lambda: self_affine(G(), hurst=0.8, rms_height=1e-300, rng=0),
      refused(ValueError, "rms_height", "1e-300", "[1e-50, 1e+50]")),
+    ("study-tasks-is-file", in_tmp(lambda tmp: run_study(_tiny(), tasks=write(tmp / "f", "x"))),
+     refused(ValueError, "tasks path", "is a file")),
     ("sa-rms-range-ends-right", lambda: [self_affine(G(), hurst=0.8, rms_height=rms, rng=1).heights
                                          for rms in (1e-50, 1e50)],
      right(lambda pair: all(close(float(np.sqrt(np.mean((h - h.mean()) ** 2))), rms, 1e-9)
@@ -1274,6 +1276,14 @@ CLI_ROWS += [        # the second audit: what the scene check refuses, and flags
     ("scene-float32-tolerance-below-floor", lambda tmp: ["scene", write(tmp / "s.toml", '[presets.draft]\n'
                                                                         'dtype = "float32"\ntolerance = 1e-8\n')]),
 ]
+#: A bad task directory on the command line: named as --tasks, not as the output directory.
+TASKS_ROWS = [
+    ("run-tasks-parent-missing", lambda tmp: ["run", _tiny_file(tmp), "--preset", "draft", "--tasks", tmp / "a" / "b",
+                                              "--out", tmp / "o"]),
+    ("run-tasks-is-file", lambda tmp: ["run", _tiny_file(tmp), "--preset", "draft", "--tasks", write(tmp / "f", "x"),
+                                       "--out", tmp / "o"]),
+]
+CLI_ROWS += TASKS_ROWS
 
 
 def _check_one_line(code, err):
@@ -1324,6 +1334,13 @@ def test_command_line_interrupted(tmp_path, monkeypatch):
     code, _, err = _cli(["run", "--preset", "draft", "--out", tmp_path / "o"])
     _check_one_line(code, err)
     assert code == 130 and "interrupted" in err and str(tmp_path / "o") in err
+
+
+@pytest.mark.parametrize("argv", [pytest.param(argv, id=name) for name, argv in TASKS_ROWS])
+def test_command_line_names_the_tasks_flag(argv, tmp_path):
+    code, _, err = _cli(argv(tmp_path))
+    _check_one_line(code, err)
+    assert "--tasks" in err and "output" not in err, err
 
 
 # ---------------------------------------------------------------------------------------------- a finished run, damaged
