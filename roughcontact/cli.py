@@ -82,6 +82,7 @@ def _cmd_scene(args, provenance) -> int:
         if path is not None and study.has_variation(path):
             return _show_variant_study(study.load_variant_study(path), args.show, path)
         scene = study.load_scene(path)
+        study.plan_study(scene)                 # the patch's checks of roughcontact run, before any solve
     except (ValueError, ImportError) as error:
         print(f"roughcontact scene: error: {error}", file=sys.stderr)
         return USAGE_ERROR

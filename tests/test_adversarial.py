@@ -1065,6 +1065,9 @@ ROWS += [
      refused(ValueError, "rms_height", "1e+300", "[1e-50, 1e+50]")),
     ("sa-rms-tiny", lambda: self_affine(G(), hurst=0.8, rms_height=1e-300, rng=0),
      refused(ValueError, "rms_height", "1e-300", "[1e-50, 1e+50]")),
+    ("plan-flat-patch", lambda: _plan(load_scene(text=FLAT_PATCH_SCENE)), refused(ValueError, "the patch is flat")),
+    ("plan-long-cutoff-beyond-patch", lambda: _plan(load_scene(text=WIDE_ROUGHNESS_SCENE)),
+     refused(ValueError, "roughness.long_cutoff", "0.001", "patch side 0.00045")),
     ("study-tasks-is-file", in_tmp(lambda tmp: run_study(_tiny(), tasks=write(tmp / "f", "x"))),
      refused(ValueError, "tasks path", "is a file")),
     ("sa-rms-range-ends-right", lambda: [self_affine(G(), hurst=0.8, rms_height=rms, rng=1).heights
@@ -1072,6 +1075,17 @@ ROWS += [
      right(lambda pair: all(close(float(np.sqrt(np.mean((h - h.mean()) ** 2))), rms, 1e-9)
                             for h, rms in zip(pair, (1e-50, 1e50))))),
 ]
+
+
+#: Scenes that no realisation can make a patch of: flat (neither ridges nor roughness), roughness wider than the
+#: patch side (one ridge period, 0.45 mm).
+FLAT_PATCH_SCENE = "[ridges]\nenabled = false\n[roughness]\nenabled = false\n"
+WIDE_ROUGHNESS_SCENE = "[roughness]\nlong_cutoff = 1e-3\n"
+
+
+def _plan(scene):
+    from roughcontact.study.plan import plan_study
+    return plan_study(scene)
 
 
 def _fe_reduction():
@@ -1275,6 +1289,11 @@ CLI_ROWS += [        # issue 36 (the study): a scene's scan keys, one line namin
 CLI_ROWS += [        # the second audit: what the scene check refuses, and flags named as given
     ("scene-float32-tolerance-below-floor", lambda tmp: ["scene", write(tmp / "s.toml", '[presets.draft]\n'
                                                                         'dtype = "float32"\ntolerance = 1e-8\n')]),
+    # what roughcontact run refuses at its plan, `scene` refuses too (it called them valid)
+    ("scene-flat-patch", lambda tmp: ["scene", write(tmp / "s.toml", FLAT_PATCH_SCENE)]),
+    ("scene-long-cutoff-beyond-patch", lambda tmp: ["scene", write(tmp / "s.toml", WIDE_ROUGHNESS_SCENE)]),
+    ("run-flat-patch", lambda tmp: ["run", write(tmp / "s.toml", FLAT_PATCH_SCENE), "--preset", "draft", "--out",
+                                    tmp / "o"]),
 ]
 #: A bad task directory on the command line: named as --tasks, not as the output directory.
 TASKS_ROWS = [
