@@ -1065,6 +1065,9 @@ ROWS += [
      refused(ValueError, "rms_height", "1e+300", "[1e-50, 1e+50]")),
     ("sa-rms-tiny", lambda: self_affine(G(), hurst=0.8, rms_height=1e-300, rng=0),
      refused(ValueError, "rms_height", "1e-300", "[1e-50, 1e+50]")),
+    # a key that acts only with another is refused without it (as screen.sigma_sc without screen.frequency)
+    ("scene-power-law-with-layer", lambda: load_scene(text='[fingerpad]\nmodel = "power_law"\nlayer = true\n'),
+     refused(ValueError, "fingerpad.layer", "'power_law'", 'model = "fingertip"')),
     ("plan-flat-patch", lambda: _plan(load_scene(text=FLAT_PATCH_SCENE)), refused(ValueError, "the patch is flat")),
     ("plan-long-cutoff-beyond-patch", lambda: _plan(load_scene(text=WIDE_ROUGHNESS_SCENE)),
      refused(ValueError, "roughness.long_cutoff", "0.001", "patch side 0.00045")),
@@ -1292,6 +1295,8 @@ CLI_ROWS += [        # the second audit: what the scene check refuses, and flags
     # what roughcontact run refuses at its plan, `scene` refuses too (it called them valid)
     ("scene-flat-patch", lambda tmp: ["scene", write(tmp / "s.toml", FLAT_PATCH_SCENE)]),
     ("scene-long-cutoff-beyond-patch", lambda tmp: ["scene", write(tmp / "s.toml", WIDE_ROUGHNESS_SCENE)]),
+    ("scene-power-law-with-layer", lambda tmp: ["scene", write(tmp / "s.toml", '[fingerpad]\nmodel = "power_law"\n'
+                                                                                'layer = true\n')]),
     ("run-flat-patch", lambda tmp: ["run", write(tmp / "s.toml", FLAT_PATCH_SCENE), "--preset", "draft", "--out",
                                     tmp / "o"]),
 ]

@@ -222,6 +222,13 @@ class Fingerpad(_Section):
     layer: bool = _field(_BOOLEAN)
     layer_grid: int = _field(_Integer(16, 2048))
 
+    def __post_init__(self):
+        super().__post_init__()
+        if self.layer and self.model != "fingertip":
+            raise ValueError(f"fingerpad.layer = true presses the fingertip's cap onto the skin's layer, but "
+                             f"fingerpad.model = {self.model!r} has no cap; valid: model = \"fingertip\", or leave "
+                             "layer out (false)")
+
 
 @dataclass(frozen=True)
 class Ridges(_Section):
