@@ -1059,6 +1059,11 @@ ROWS += [
     ("topo-read-periodic-string", _st(in_tmp(lambda tmp: read_topography(write(tmp / "p.txt", MATRIX), unit="um",
                                                                           pixel_size=1e-6, periodic="no"))),
      refused(TypeError, "periodic", "'no'")),
+    # read_topography opens (and closes) the file itself: SurfaceTopography's NPY reader left the one it opened
+    # open, a ResourceWarning when it was collected
+    ("topo-read-npy-closes-its-file", _st(in_tmp(lambda tmp: _collected(lambda: read_topography(
+        _npy(tmp / "a.npy", np.arange(16.0).reshape(4, 4)), unit="um", pixel_size=1e-6)))),
+     right(lambda field: field.shape == (4, 4))),
     # an rms height beyond the range of a grid's lengths: numpy's OverflowError (1e300), or heights that
     # underflowed to 0 (1e-300); at the range's ends the realisation has its rms exactly
     ("sa-rms-huge", lambda: self_affine(G(), hurst=0.8, rms_height=1e300, rng=0),
@@ -1089,6 +1094,14 @@ WIDE_ROUGHNESS_SCENE = "[roughness]\nlong_cutoff = 1e-3\n"
 def _plan(scene):
     from roughcontact.study.plan import plan_study
     return plan_study(scene)
+
+
+def _collected(call):
+    """``call()``, with the garbage it leaves collected (a file left open then warns here)."""
+    import gc
+    value = call()
+    gc.collect()
+    return value
 
 
 def _fe_reduction():
