@@ -82,6 +82,7 @@ def _cmd_scene(args, provenance) -> int:
         if path is not None and study.has_variation(path):
             return _show_variant_study(study.load_variant_study(path), args.show, path)
         scene = study.load_scene(path)
+        study.plan_study(scene)                 # the patch's checks of roughcontact run, before any solve
     except (ValueError, ImportError) as error:
         print(f"roughcontact scene: error: {error}", file=sys.stderr)
         return USAGE_ERROR
@@ -110,17 +111,15 @@ def _show_variant_study(variants, show: bool, path) -> int:
 def _cmd_run(args, provenance) -> int:
     start = time.perf_counter()
     path, preset, target = (getattr(args, name, None) for name in ("scene", "preset", "target_error"))
-    executor = {"workers": getattr(args, "workers", None), "dask": getattr(args, "dask", None),
-                "tasks": getattr(args, "tasks", None)}
     try:
         if path is not None and study.has_variation(path):
             variants = study.load_variant_study(path, preset=preset, target_error=target)
             output = output_directory(args.out)
-            return _report_variants(study.run_variants(variants, output, progress=True, **executor), output,
+            return _report_variants(study.run_variants(variants, output, progress=True, **_executor(args)), output,
                                     provenance, start)
         scene = study.scene_at_preset(path, preset, target)
         output = output_directory(args.out)
-        result = study.run_study(scene, output, progress=True, **executor)
+        result = study.run_study(scene, output, progress=True, **_executor(args))
     except (ValueError, ImportError) as error:   # a scene key or parameter the preset cannot resolve, another
         print(f"roughcontact run: error: {error}", file=sys.stderr)        # scene, dask not installed
         return USAGE_ERROR
@@ -135,6 +134,14 @@ def _cmd_run(args, provenance) -> int:
           f"{written['seconds']:.0f} s")
     print(f"report, figures and tables written to {output.resolve()}")
     return 0
+
+
+def _executor(args) -> dict:
+    """``workers``, ``dask`` and ``tasks`` of a run from its flags, the task directory checked (and created) as
+    ``--tasks``."""
+    tasks = getattr(args, "tasks", None)
+    return {"workers": getattr(args, "workers", None), "dask": getattr(args, "dask", None),
+            "tasks": None if tasks is None else output_directory(tasks, "--tasks")}
 
 
 def _report_variants(result, output, provenance, start) -> int:

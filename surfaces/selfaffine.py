@@ -27,7 +27,7 @@ import numpy as np
 import scipy.fft
 
 from .validation import check_bool, check_positive, check_real, check_rng
-from .grid import Grid
+from .grid import MAX_LENGTH, MIN_LENGTH, Grid
 from .heightfield import HeightField
 
 # A mode within this relative distance of a cutoff counts as on the cutoff (inside at λ_L, outside at λ_s),
@@ -154,7 +154,9 @@ def _amplitude_target(rms_height, rms_slope) -> tuple:
     if len(given) != 1:
         raise ValueError(f"give exactly one of rms_height, rms_slope; got {sorted(given) or 'none'}")
     (name, value), = given.items()
-    return (0 if name == "rms_height" else 1), check_positive(name, value)
+    if name == "rms_height":                # a length, in the range of the grid's (its square a power in float64)
+        return 0, check_real(name, value, low=MIN_LENGTH, high=MAX_LENGTH)
+    return 1, check_positive(name, value)
 
 
 def _stream_index(kx: np.ndarray, ky: np.ndarray, profile: bool) -> np.ndarray:
@@ -277,8 +279,8 @@ def self_affine(grid: Grid, hurst: float, *, rms_height=None, rms_slope=None, pr
     hurst : float
         Hurst exponent H in (0, 1].
     rms_height, rms_slope, prefactor : float
-        Amplitude, exactly one: rms height [m], rms gradient [-], or plateau PSD value C0 [m^4]
-        (profile: [m^3]).
+        Amplitude, exactly one: rms height [m] (in [1e-50, 1e50], the range of a grid's lengths), rms
+        gradient [-], or plateau PSD value C0 [m^4] (profile: [m^3]).
     long_cutoff : float, optional
         λ_L [m]; no power at longer wavelengths. Default: the largest window length (the fundamental).
         At most that length.

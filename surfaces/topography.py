@@ -23,7 +23,7 @@ import numpy as np
 from .grid import Grid
 from .heightfield import MISSING, HeightField, missing_handled, physical_size
 from .io import LENGTH_UNITS, length_unit
-from .validation import check_choice, check_real
+from .validation import check_bool, check_choice, check_real
 
 
 def _surface_topography():
@@ -129,26 +129,32 @@ def read_topography(path, *, channel: int = 0, format: str | None = None, length
         raise ValueError(f"cannot read the topography {path}: no such file")
     if path.stat().st_size == 0:
         raise ValueError(f"{path} is empty (0 bytes), not a topography file")
-    try:
-        reader = st.open_topography(str(path), format=format)
-    except (UnknownFileFormat, CannotDetectFileFormat) as error:
-        reason = "no reader recognises its contents" if format is None else str(error).splitlines()[0]
-        raise ValueError(f"{path} is not a topography file SurfaceTopography can read ({reason}); "
-                         "pass format= if the format is known") from None
-    except (ReadFileError, ValueError) as error:
-        raise ValueError(f"{path} is not a topography file SurfaceTopography can read: {error}") from None
-    channels = reader.channels
-    if isinstance(channel, bool) or not isinstance(channel, (int, np.integer)) or not 0 <= channel < len(channels):
-        raise ValueError(f"channel = {channel!r} is out of range; {path.name} has channels 0..{len(channels) - 1}: "
-                         + ", ".join(repr(info.name) for info in channels))
-    info = channels[channel]
-    options, factor = _unit_and_size(path, info, unit, lengths, pixel_size)
-    if periodic is not None:
-        options["periodic"] = periodic
-    try:
-        topography = reader.topography(channel_index=channel, **options)
-    except (ReadFileError, ValueError) as error:
-        raise ValueError(f"{path}: {error}") from None
+    try:           # opened here and closed: SurfaceTopography's NPY reader would leave a file it opens open
+        stream = open(path, "rb")
+    except OSError as error:
+        raise ValueError(f"cannot read the topography {path}: {error.strerror}") from None
+    with stream:
+        try:
+            reader = st.open_topography(stream, format=format)
+        except (UnknownFileFormat, CannotDetectFileFormat) as error:
+            reason = "no reader recognises its contents" if format is None else str(error).splitlines()[0]
+            raise ValueError(f"{path} is not a topography file SurfaceTopography can read ({reason}); "
+                             "pass format= if the format is known") from None
+        except (ReadFileError, ValueError) as error:
+            raise ValueError(f"{path} is not a topography file SurfaceTopography can read: {error}") from None
+        channels = reader.channels
+        if (isinstance(channel, bool) or not isinstance(channel, (int, np.integer))
+                or not 0 <= channel < len(channels)):
+            raise ValueError(f"channel = {channel!r} is out of range; {path.name} has channels "
+                             f"0..{len(channels) - 1}: " + ", ".join(repr(info.name) for info in channels))
+        info = channels[channel]
+        options, factor = _unit_and_size(path, info, unit, lengths, pixel_size)
+        if periodic is not None:
+            options["periodic"] = check_bool("periodic", periodic)          # as Grid: a truthy string is refused
+        try:
+            topography = reader.topography(channel_index=channel, **options)
+        except (ReadFileError, ValueError) as error:
+            raise ValueError(f"{path}: {error}") from None
     return from_topography(topography, unit=factor, missing=missing, detrend=detrend, source=str(path),
                            channel=channel, format=reader.format())
 

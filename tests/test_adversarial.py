@@ -1039,6 +1039,81 @@ ROWS += [
 ]
 
 
+# ---------------------------------------------------------------------------------------------- the second audit
+# An independent audit's findings: a crash, an answer silently wrong or an error that does not name its cause.
+
+ROWS += [
+    # a float32 preset below float32's round-off: no solve converged, then friction.csv raised on the NaN means
+    ("scene-float32-tolerance-below-floor", lambda: load_scene(text='[presets.draft]\ndtype = "float32"\n'
+                                                                    "tolerance = 1e-8\n"),
+     refused(ValueError, "presets.draft.tolerance", "1e-08", "[4.77e-07, 0.1]", 'dtype = "float64"')),
+    # the FE's area reduction is even in F_T: beyond full slip (|F_T| > mu F_N) NaN for either sign, not an
+    # extrapolation of Eq. 34 for a negative F_T (F_N = 1 N, mu = 1: full slip at |F_T| = 1 N)
+    ("fe-area-ratio-negative-ft-beyond-slip", lambda: _fe_reduction().area_ratio(1.0, np.array([-1.5, -0.9, 0.9]), 1.0),
+     right(lambda ratio: np.isnan(ratio[0]) and ratio[1] == ratio[2] and 0 < ratio[1] < 1)),
+    ("fe-effective-friction-mu0-negative", lambda: _effective_friction(-1.0, 0.0, 1.0),
+     refused(ValueError, "mu0", "-1", "(0, inf)")),
+    ("fe-effective-friction-mu0-nan", lambda: _effective_friction(np.nan, 0.0, 1.0),
+     refused(ValueError, "mu0", "nan", "(0, inf)")),
+    # periodic is checked as Grid checks it: "no" (a truthy string) made the grid periodic
+    ("topo-read-periodic-string", _st(in_tmp(lambda tmp: read_topography(write(tmp / "p.txt", MATRIX), unit="um",
+                                                                          pixel_size=1e-6, periodic="no"))),
+     refused(TypeError, "periodic", "'no'")),
+    # read_topography opens (and closes) the file itself: SurfaceTopography's NPY reader left the one it opened
+    # open, a ResourceWarning when it was collected
+    ("topo-read-npy-closes-its-file", _st(in_tmp(lambda tmp: _collected(lambda: read_topography(
+        _npy(tmp / "a.npy", np.arange(16.0).reshape(4, 4)), unit="um", pixel_size=1e-6)))),
+     right(lambda field: field.shape == (4, 4))),
+    # an rms height beyond the range of a grid's lengths: numpy's OverflowError (1e300), or heights that
+    # underflowed to 0 (1e-300); at the range's ends the realisation has its rms exactly
+    ("sa-rms-huge", lambda: self_affine(G(), hurst=0.8, rms_height=1e300, rng=0),
+     refused(ValueError, "rms_height", "1e+300", "[1e-50, 1e+50]")),
+    ("sa-rms-tiny", lambda: self_affine(G(), hurst=0.8, rms_height=1e-300, rng=0),
+     refused(ValueError, "rms_height", "1e-300", "[1e-50, 1e+50]")),
+    # a key that acts only with another is refused without it (as screen.sigma_sc without screen.frequency)
+    ("scene-power-law-with-layer", lambda: load_scene(text='[fingerpad]\nmodel = "power_law"\nlayer = true\n'),
+     refused(ValueError, "fingerpad.layer", "'power_law'", 'model = "fingertip"')),
+    ("plan-flat-patch", lambda: _plan(load_scene(text=FLAT_PATCH_SCENE)), refused(ValueError, "the patch is flat")),
+    ("plan-long-cutoff-beyond-patch", lambda: _plan(load_scene(text=WIDE_ROUGHNESS_SCENE)),
+     refused(ValueError, "roughness.long_cutoff", "0.001", "patch side 0.00045")),
+    ("study-tasks-is-file", in_tmp(lambda tmp: run_study(_tiny(), tasks=write(tmp / "f", "x"))),
+     refused(ValueError, "tasks path", "is a file")),
+    ("sa-rms-range-ends-right", lambda: [self_affine(G(), hurst=0.8, rms_height=rms, rng=1).heights
+                                         for rms in (1e-50, 1e50)],
+     right(lambda pair: all(close(float(np.sqrt(np.mean((h - h.mean()) ** 2))), rms, 1e-9)
+                            for h, rms in zip(pair, (1e-50, 1e50))))),
+]
+
+
+#: Scenes that no realisation can make a patch of: flat (neither ridges nor roughness), roughness wider than the
+#: patch side (one ridge period, 0.45 mm).
+FLAT_PATCH_SCENE = "[ridges]\nenabled = false\n[roughness]\nenabled = false\n"
+WIDE_ROUGHNESS_SCENE = "[roughness]\nlong_cutoff = 1e-3\n"
+
+
+def _plan(scene):
+    from roughcontact.study.plan import plan_study
+    return plan_study(scene)
+
+
+def _collected(call):
+    """``call()``, with the garbage it leaves collected (a file left open then warns here)."""
+    import gc
+    value = call()
+    gc.collect()
+    return value
+
+
+def _fe_reduction():
+    from roughcontact.fe.feed import FEAreaReduction
+    return FEAreaReduction.from_summary()
+
+
+def _effective_friction(*arguments):
+    from roughcontact.fe.feed import effective_friction
+    return effective_friction(*arguments)
+
+
 # ---------------------------------------------------------------------------------------------- helpers of rows
 
 #: The tiny scene of the study tests (32² patches, two loads, 0 and 150 V; under a second to run).
@@ -1227,6 +1302,25 @@ CLI_ROWS += [        # issue 36 (the study): a scene's scan keys, one line namin
                                           "--out", tmp / "o"]),
     ("run-scan-npz-with-unit", lambda tmp: ["run", _scan_file(tmp, 'unit = "um"\n'), "--out", tmp / "o"]),
 ]
+CLI_ROWS += [        # the second audit: what the scene check refuses, and flags named as given
+    ("scene-float32-tolerance-below-floor", lambda tmp: ["scene", write(tmp / "s.toml", '[presets.draft]\n'
+                                                                        'dtype = "float32"\ntolerance = 1e-8\n')]),
+    # what roughcontact run refuses at its plan, `scene` refuses too (it called them valid)
+    ("scene-flat-patch", lambda tmp: ["scene", write(tmp / "s.toml", FLAT_PATCH_SCENE)]),
+    ("scene-long-cutoff-beyond-patch", lambda tmp: ["scene", write(tmp / "s.toml", WIDE_ROUGHNESS_SCENE)]),
+    ("scene-power-law-with-layer", lambda tmp: ["scene", write(tmp / "s.toml", '[fingerpad]\nmodel = "power_law"\n'
+                                                                                'layer = true\n')]),
+    ("run-flat-patch", lambda tmp: ["run", write(tmp / "s.toml", FLAT_PATCH_SCENE), "--preset", "draft", "--out",
+                                    tmp / "o"]),
+]
+#: A bad task directory on the command line: named as --tasks, not as the output directory.
+TASKS_ROWS = [
+    ("run-tasks-parent-missing", lambda tmp: ["run", _tiny_file(tmp), "--preset", "draft", "--tasks", tmp / "a" / "b",
+                                              "--out", tmp / "o"]),
+    ("run-tasks-is-file", lambda tmp: ["run", _tiny_file(tmp), "--preset", "draft", "--tasks", write(tmp / "f", "x"),
+                                       "--out", tmp / "o"]),
+]
+CLI_ROWS += TASKS_ROWS
 
 
 def _check_one_line(code, err):
@@ -1277,6 +1371,13 @@ def test_command_line_interrupted(tmp_path, monkeypatch):
     code, _, err = _cli(["run", "--preset", "draft", "--out", tmp_path / "o"])
     _check_one_line(code, err)
     assert code == 130 and "interrupted" in err and str(tmp_path / "o") in err
+
+
+@pytest.mark.parametrize("argv", [pytest.param(argv, id=name) for name, argv in TASKS_ROWS])
+def test_command_line_names_the_tasks_flag(argv, tmp_path):
+    code, _, err = _cli(argv(tmp_path))
+    _check_one_line(code, err)
+    assert "--tasks" in err and "output" not in err, err
 
 
 # ---------------------------------------------------------------------------------------------- a finished run, damaged

@@ -35,7 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
-from surfaces.validation import check_finite_array
+from surfaces.validation import check_finite_array, check_real
 
 from ..io.provenance import read_csv
 from ..macro.friction import SlidingFrictionModel, SlidingState
@@ -54,7 +54,9 @@ class FETableWarning(UserWarning):
 
 def effective_friction(mu0, electrostatic_force, normal_force) -> np.ndarray:
     """μ_eff = μ0 (1 + F_el/F_N): the local Coulomb coefficient of the FE contact whose capacity at full slip,
-    μ_eff F_N, is the interface's μ0 (F_N + F_el) (module docstring); F_el, F_N [N] (or per unit width), F_N > 0."""
+    μ_eff F_N, is the interface's μ0 (F_N + F_el) (module docstring); μ0 > 0, F_el, F_N [N] (or per unit width),
+    F_N > 0."""
+    mu0 = check_real("mu0", mu0, low=0.0, low_open=True)
     force = check_finite_array("normal_force", normal_force)
     if (force <= 0).any():
         raise ValueError(f"normal_force must be > 0, got {force.min()}")
@@ -165,9 +167,10 @@ class FEAreaReduction:
 
     def length_ratio(self, line_load, friction, line_tangential) -> np.ndarray:
         """L(f_T)/L0 = 1 − ξ f_T²/L0 (Eq. 34) at f_N, μ and f_T [N/m], clipped at 0; NaN outside the table and
-        where f_T exceeds the FE's full slip μ f_N (by more than :data:`SLIP_TOLERANCE`): no extrapolation."""
+        where |f_T| exceeds the FE's full slip μ f_N (by more than :data:`SLIP_TOLERANCE`): no extrapolation."""
         initial, xi, _ = self.eq34(line_load, friction)
-        beyond = np.asarray(line_tangential) > np.asarray(friction) * np.asarray(line_load) * (1 + SLIP_TOLERANCE)
+        beyond = (np.abs(np.asarray(line_tangential, float))
+                  > np.asarray(friction) * np.asarray(line_load) * (1 + SLIP_TOLERANCE))
         return np.where(beyond, np.nan, np.maximum(1 - xi * np.asarray(line_tangential, float) ** 2 / initial, 0.0))
 
     def area_ratio(self, normal_force, tangential_force, friction) -> np.ndarray:

@@ -107,28 +107,29 @@ def parse_arguments(parser, argv, program: str) -> tuple:
     return args, Provenance.of_command(program, argv, parameters)
 
 
-def output_directory(path) -> Path:
+def output_directory(path, name: str = "output") -> Path:
     """``path`` as a writable directory, created if missing (only its last level). Raises
-    :class:`OutputPathError` for an empty path, a file, a missing parent or a directory without write access."""
+    :class:`OutputPathError` for an empty path, a file, a missing parent or a directory without write access,
+    naming the directory by ``name`` (the parameter or flag it came from, e.g. "tasks" or "--tasks")."""
     if not isinstance(path, (str, os.PathLike)):
-        raise TypeError(f"the output path must be a str or os.PathLike, got {type(path).__name__}")
+        raise TypeError(f"the {name} path must be a str or os.PathLike, got {type(path).__name__}")
     if not str(path).strip():
-        raise OutputPathError("the output path is empty")
+        raise OutputPathError(f"the {name} path is empty")
     path = Path(path)
     if path.exists() and not path.is_dir():
-        raise OutputPathError(f"output path {path} is a file, not a directory")
+        raise OutputPathError(f"{name} path {path} is a file, not a directory")
     if not path.exists():
         if path.parent.exists() and not path.parent.is_dir():
-            raise OutputPathError(f"the parent of the output directory, {path.parent}, is a file, not a directory")
+            raise OutputPathError(f"the parent of the {name} directory, {path.parent}, is a file, not a directory")
         if not path.parent.is_dir():
-            raise OutputPathError(f"the parent of the output directory, {path.parent}, does not exist "
+            raise OutputPathError(f"the parent of the {name} directory, {path.parent}, does not exist "
                                   "(only the last level of the path is created)")
         try:
             path.mkdir()
         except OSError as error:
-            raise OutputPathError(f"cannot create the output directory {path}: {error.strerror}") from None
+            raise OutputPathError(f"cannot create the {name} directory {path}: {error.strerror}") from None
     if not os.access(path, os.W_OK | os.X_OK):
-        raise OutputPathError(f"the output directory {path} is not writable")
+        raise OutputPathError(f"the {name} directory {path} is not writable")
     return path
 
 

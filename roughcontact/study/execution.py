@@ -164,7 +164,7 @@ class ResultsDirectory:
         try:
             self._check_scene()
             self._keep_patch()
-            self.tasks = TaskStore(output_directory(self.directory / "tasks" if tasks is None else tasks))
+            self.tasks = TaskStore(output_directory(self.directory / "tasks" if tasks is None else tasks, "tasks"))
         except BaseException:
             self.release()
             raise

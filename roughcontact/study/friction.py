@@ -28,8 +28,17 @@ FRICTION_MIN_LOADS = 2
 
 
 def friction_computed(result: StudyResult) -> bool:
-    """Whether the study has the loads the friction law needs (:data:`FRICTION_MIN_LOADS`)."""
-    return len(result.normal_forces) >= FRICTION_MIN_LOADS
+    """Whether the study has the loads the friction law needs (:data:`FRICTION_MIN_LOADS`) and a converged
+    realisation at every point (its tables are realisation means: :func:`unconverged_points`)."""
+    return len(result.normal_forces) >= FRICTION_MIN_LOADS and not unconverged_points(result)
+
+
+def unconverged_points(result: StudyResult) -> str:
+    """The points without a converged realisation, "F_N N at U V" joined by commas ("" if none): their
+    realisation means are NaN."""
+    converged = result.array("converged").astype(bool)
+    none = ~converged.reshape(*converged.shape[:2], -1).any(axis=-1)
+    return ", ".join(f"{result.normal_forces[i]:g} N at {result.voltages[j]:g} V" for i, j in zip(*np.nonzero(none)))
 
 
 def friction_recipe(normal_forces, voltages, ridge_gaps, ridge_areas, stack, c2: float | None = None
@@ -65,11 +74,14 @@ def bottom_up_friction(result: StudyResult, c2: float | None = None,
     if result.frequencies:
         raise ValueError(f"screen.frequency = {list(result.frequencies)} Hz: the seed's friction law has no drive "
                          "frequency; pass result.at_frequency(k), the study at one frequency")
-    if not friction_computed(result):
+    if len(forces) < FRICTION_MIN_LOADS:
         raise ValueError(f"loads.normal_forces = {forces.tolist()}: the bottom-up friction law interpolates d_eq,R and "
                          f"A_R in F_N and needs at least {FRICTION_MIN_LOADS} loads")
     apparent = result.array("apparent_area")
     if realisation is None:
+        if unconverged_points(result):
+            raise ValueError(f"no realisation converged at {unconverged_points(result)}: the bottom-up friction law "
+                             "interpolates the realisation means of d_eq,R and A_R, which are NaN there")
         gaps = result.summary("ridge_equivalent_gap")[0]
         fractions = result.summary("ridge_area_fractions")[0][:, :, 0]
     else:
@@ -104,15 +116,21 @@ def assumption_errors(result: StudyResult) -> dict:
     """Relative errors of the solved electrostatic force σ̄_el A0 (shape loads × voltages, realisation means;
     NaN at 0 V): ``constant_gap``: the field-equivalent gap of the lowest voltage (0 V in the default scene: the
     small-voltage limit) used at every voltage (the seed's voltage-independent gap); ``mean_gap``: Eq. 21 at the
-    arithmetic mean gap; ``per_pixel``: Eq. 21 pixel by pixel on the solved gap (Eq. 21 at d_eq)."""
+    arithmetic mean gap; ``per_pixel``: Eq. 21 pixel by pixel on the solved gap (Eq. 21 at d_eq). NaN too where
+    no realisation converged (:func:`unconverged_points`)."""
     stack = result.scene.screen.stack()
     voltages = result.voltages[None, :]
     sigma = result.summary("electrostatic_attraction")[0]
     d_field = result.summary("field_equivalent_gap")[0]
     mean_gap = result.summary("mean_gap")[0]
+
+    def attraction(gap):                        # Eq. 21 at the finite means, NaN where they are
+        finite = np.isfinite(gap)
+        return np.where(finite, stack.attraction(np.where(finite, gap, 0.0), voltages), np.nan)
+
     with np.errstate(divide="ignore", invalid="ignore"):
-        constant = stack.attraction(np.maximum(d_field[:, :1], 0.0), voltages) / sigma - 1
-        naive = stack.attraction(mean_gap, voltages) / sigma - 1
+        constant = attraction(np.maximum(d_field[:, :1], 0.0)) / sigma - 1
+        naive = attraction(mean_gap) / sigma - 1
         per_pixel = result.summary("pixel_law_attraction")[0] / sigma - 1
     on = result.voltages > 0
     return {name: np.where(on[None, :], error, np.nan)

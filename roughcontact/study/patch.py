@@ -69,10 +69,7 @@ def roughness_heights(scene: Scene, realisation: int, grid=None, short_cutoff: f
     grid = patch_grid(scene) if grid is None else grid
     if not scene.roughness.enabled:
         return np.zeros(grid.shape)
-    if scene.roughness.long_cutoff > grid.lengths[0]:
-        raise ValueError(f"roughness.long_cutoff = {scene.roughness.long_cutoff!r} m exceeds the patch side "
-                         f"{grid.lengths[0]:g} m (presets.{scene.study.preset}.periods x ridges.period); "
-                         "valid range (short_cutoff, patch side]")
+    check_patch(scene, grid)
     return self_affine(grid, scene.roughness.hurst, rms_height=scene.roughness.rms_height,
                        long_cutoff=scene.roughness.long_cutoff,
                        short_cutoff=resolved_short_cutoff(scene, grid) if short_cutoff is None else short_cutoff,
@@ -86,10 +83,30 @@ def patch_surface(scene: Scene, realisation: int, grid=None, short_cutoff: float
         return measured_topography(scene.roughness).heights
     grid = patch_grid(scene) if grid is None else grid
     heights = ridge_heights(scene, grid, realisation) + roughness_heights(scene, realisation, grid, short_cutoff)
-    if not heights.any():
-        raise ValueError("the patch is flat: enable ridges (ridges.enabled, ridges.height > 0) or roughness "
-                         "(roughness.enabled)")
+    if not heights.any():                       # (its pores missed, where ridges have no height of their own)
+        raise ValueError(FLAT_PATCH)
     return heights
+
+
+#: Why a patch without a height anywhere is refused.
+FLAT_PATCH = "the patch is flat: enable ridges (ridges.enabled, ridges.height > 0) or roughness (roughness.enabled)"
+
+
+def check_patch(scene: Scene, grid=None) -> None:
+    """Refuse, before any solve, a synthetic patch that no realisation can make on ``grid`` (default: the patch
+    grid): roughness longer than the patch side, or a patch flat in every realisation (neither roughness nor
+    ridges with a height or pores; :func:`patch_surface` refuses a realisation flat by chance)."""
+    if scene.roughness.topography:
+        return
+    grid = patch_grid(scene) if grid is None else grid
+    roughness, ridges = scene.roughness, scene.ridges
+    if roughness.enabled and roughness.long_cutoff > grid.lengths[0]:
+        raise ValueError(f"roughness.long_cutoff = {roughness.long_cutoff!r} m exceeds the patch side "
+                         f"{grid.lengths[0]:g} m (presets.{scene.study.preset}.periods x ridges.period); "
+                         "valid range (short_cutoff, patch side]")
+    relief = ridges.enabled and (ridges.height > 0 or ridges.pore_density * ridges.pore_depth > 0)
+    if not (roughness.enabled or relief):
+        raise ValueError(FLAT_PATCH)
 
 
 def patch_body(scene: Scene, grid=None, threads=None):

@@ -37,8 +37,8 @@ from surfaces import Grid, HeightField
 
 from .._version import __version__
 from .apparent import ring_count
-from .patch import (PatchScaleWarning, closing_lengths, patch_body, patch_grid, patch_scale_message, patch_surface,
-                    realisation_count, resolved_short_cutoff)
+from .patch import (PatchScaleWarning, check_patch, closing_lengths, patch_body, patch_grid, patch_scale_message,
+                    patch_surface, realisation_count, resolved_short_cutoff)
 from .scene import LEAK_KEYS, Scene, measured_topography
 
 
@@ -185,7 +185,8 @@ def field_digest(field: HeightField) -> str:
 
 def plan_study(scene: Scene, topography: HeightField | None = None) -> StudyPlan:
     """The :class:`StudyPlan` of ``scene``: a measured topography read once (or ``topography``, the patch stored
-    with a study's results, used instead of the scan), the cut-offs checked, every task keyed."""
+    with a study's results, used instead of the scan), the patch (:func:`~.patch.check_patch`) and the cut-offs
+    checked, every task keyed."""
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a Scene (roughcontact.study.load_scene reads one from a TOML file), got "
                         f"{type(scene).__name__}")
@@ -196,6 +197,7 @@ def plan_study(scene: Scene, topography: HeightField | None = None) -> StudyPlan
         grid, cutoff = topography.grid, float("nan")
     else:
         grid = patch_grid(scene)
+        check_patch(scene, grid)
         cutoff = resolved_short_cutoff(scene, grid) if scene.roughness.enabled else float("nan")
     if message := patch_scale_message(scene, grid):
         warnings.warn(message, PatchScaleWarning, stacklevel=2)

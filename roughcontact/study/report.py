@@ -19,7 +19,8 @@ from .._version import __version__
 from ..macro import LinearGap, PowerLawGap
 from .dataset import write_dataset, write_variant_dataset
 from .figures import write_figures, write_sensitivity_figure
-from .friction import FRICTION_MIN_LOADS, HOLDS_WITHIN, assumption_errors, friction_computed, friction_realisations
+from .friction import (FRICTION_MIN_LOADS, HOLDS_WITHIN, assumption_errors, friction_computed, friction_realisations,
+                       unconverged_points)
 from .patch import patch_scale_message
 from .presets import applicability, describe
 from .records import confidence_interval, positive_interval
@@ -171,7 +172,10 @@ def _run_sentence(result: StudyResult, seconds: float | None) -> str:
             + _patch_sentence(result, converged.shape[-1])
             + f", solver tolerance {scene.preset.tolerance:g}. Scene: `scene.toml` in this directory. "
             f"{converged.size - int(converged.sum())} of {converged.size} patch results did not converge (also "
-            "from the solver's own start) and are left out of the means. " + _unstable_sentence(result)
+            "from the solver's own start) and are left out of the means"
+            + (f"; none converged at {unconverged_points(result)}, whose means are NaN (`nan` in the tables, left "
+               "out of the comparisons below)" if unconverged_points(result) else "") + ". "
+            + _unstable_sentence(result)
             + (f" Run time {seconds:.0f} s, tables and figures included ({result.computed} points computed with "
                f"{result.solves} solves, "
                f"{result.array('seconds').size - result.computed} read back)." if seconds is not None else ""))
@@ -189,6 +193,7 @@ def report_text(result: StudyResult, seconds: float | None = None) -> str:
     a_mean = result.summary("ridge_area_fractions")[0]
     slope = result.summary("gap_slope")[0]
     errors = assumption_errors(result)
+    none_above = "no converged point above 0 V" if voltages[-1] > 0 else "no voltage above 0 V"   # errors NaN at 0 V
     text = ["# Multiscale fingerpad study", "",
             _run_sentence(result, seconds), "", *_caveats(result),
             describe(preset, scene.study.preset) + applicability(scene) if not scene.roughness.topography else
@@ -226,23 +231,29 @@ def report_text(result: StudyResult, seconds: float | None = None) -> str:
     if len(voltages) > 1:
         constant = errors["constant_gap"]
         on = np.arange(len(voltages)) > 0
-        worst = np.nanmax(np.abs(constant))
-        held = [f"{v:g} V" for j, v in enumerate(voltages) if on[j] and np.all(np.abs(constant[:, j]) <= HOLDS_WITHIN)]
-        change = d_mean[:, -1] / d_mean[:, 0] - 1
+        finite = np.abs(constant[np.isfinite(constant)])          # none where no point converged
+        worst = f"{100 * finite.max():.0f} %" if finite.size else "n/a (no converged point above 0 V)"
+        held = [f"{v:g} V" for j, v in enumerate(voltages) if on[j] and _yes(HOLDS_WITHIN - np.abs(constant[:, j]))
+                == "yes"]
+        with np.errstate(divide="ignore", invalid="ignore"):       # d_eq = 0 at both (a flat patch): no change
+            change = np.where(d_mean[:, -1] == d_mean[:, 0], 0.0, d_mean[:, -1] / d_mean[:, 0] - 1)
         within = f"{100 * HOLDS_WITHIN:.0f} %"
         text += [f"* **Voltage independence** (seed: d_eq depends on F_N only). From {low} to {voltages[-1]:g} V d_eq "
-                 "changes by " + ", ".join(f"{100 * c:+.0f} % at {f:g} N" for c, f in zip(change, forces)) + ". "
+                 "changes by " + ", ".join((f"{100 * c:+.0f} %" if np.isfinite(c) else "n/a") + f" at {f:g} N"
+                                           for c, f in zip(change, forces)) + ". "
                  f"Using the field-equivalent gap of {low} at voltage U misjudges the solved electrostatic force by "
-                 f"up to {100 * worst:.0f} % (table below); "
-                 + (f"it stays within {within} at every load for {', '.join(held)}." if held else
-                    f"at every voltage above {low} it is off by more than {within} at some load."), "",
+                 f"up to {worst} (table below)"
+                 + (f"; it stays within {within} at every load for {', '.join(held)}." if held else
+                    f"; at every voltage above {low} it is off by more than {within} at some load." if finite.size
+                    else "."), "",
                  f"  Force error of the voltage-independent gap, σ_el(d_field({low}), U)/σ̄_el(U) − 1 [%]:",
                  "", *_error_table(forces, voltages[on], 100 * constant[:, on]), ""]
         naive = errors["mean_gap"]
         text += ["* **Arithmetic mean gap instead of Eq. 25**: the mean gap is "
                  + ", ".join(f"{m * MICRO:.1f} µm" for m in result.summary("mean_gap")[0][:, 0])
                  + f" at {low} against d_eq = " + ", ".join(f"{d * MICRO:.2f} µm" for d in d_mean[:, 0])
-                 + f"; σ_el at the mean gap changes the electrostatic force by {_range(100 * naive, '+.0f')} %.", ""]
+                 + "; σ_el at the mean gap changes the electrostatic force by "
+                 + f"{_range(100 * naive, '+.0f', missing=none_above)} %.", ""]
     else:
         text += [f"* One voltage ({low}) in the scene: its dependence on the voltage is not tested.", ""]
     seed_gap = LinearGap.paper_table1()(forces, 0.0)
@@ -256,18 +267,19 @@ def report_text(result: StudyResult, seconds: float | None = None) -> str:
              + ", ".join(f"{d * MICRO:.2f}" for d in guo) + f" µm at F_N = {', '.join(f'{f:g}' for f in forces)} N "
              "(field-equivalent gap d_field: " + ", ".join(f"{d * MICRO:.2f}" for d in f_mean[:, 0]) + " µm); "
              f"Eq. 46 lies inside the confidence interval of d_eq at {', '.join(inside) if inside else 'no load'}. "
-             f"d_eq falls with load at every voltage: {_yes(np.diff(d_mean, axis=0) < 0)}; A_R grows with load: "
-             f"{_yes(np.diff(a_mean[:, :, 0], axis=0) > 0)}; A_R grows with voltage: "
-             f"{_yes(np.diff(a_mean[:, :, 0], axis=1) > 0)} (realisation means).", "",
+             f"d_eq falls with load at every voltage: {_yes(-np.diff(d_mean, axis=0))}; A_R grows with load: "
+             f"{_yes(np.diff(a_mean[:, :, 0], axis=0))}; A_R grows with voltage: "
+             f"{_yes(np.diff(a_mean[:, :, 0], axis=1))} (realisation means).", "",
              f"* **Parallel-plate field per pixel** (Eq. 21 pixel by pixel, the assumption behind Eq. 25): on the "
-             f"solved gaps it misjudges the solved attraction by {_range(100 * errors['per_pixel'], '+.0f')} % "
+             "solved gaps it misjudges the solved attraction by "
+             f"{_range(100 * errors['per_pixel'], '+.0f', missing=none_above)} % "
              f"({scene.screen.field} field; table above); the (c + g)⁻²-weighted rms gap slope is "
-             f"{_range(slope, '.2f')}.", ""]
+             f"{_range(slope, '.2f', missing='no converged point')}.", ""]
     lengths = result.coarse_graining
     if len(lengths) > 1:
         ratio = a_mean[:, :, 1:] / a_mean[:, :, :1]
         text += ["* **A_R depends on its coarse-graining length**: closing at "
-                 + ", ".join(f"{l * MICRO:g} µm gives {_range(ratio[:, :, k], '.2f', '–')} ×"
+                 + ", ".join(f"{l * MICRO:g} µm gives {_range(ratio[:, :, k], '.2f', '–', 'no converged point')} ×"
                              for k, l in enumerate(lengths[1:]))
                  + f" the A_R at {lengths[0] * MICRO:g} µm (`ridge_area_sensitivity.csv`). d_eq does not depend "
                  "on it; the friction law's F_el = σ_el(d_eq,R) A_R = σ̄_el A0 does not either, only the "
@@ -279,9 +291,14 @@ def report_text(result: StudyResult, seconds: float | None = None) -> str:
 def _friction_section(result: StudyResult) -> list:
     """The report's friction section: the recipe's μ, F_T and A_R0 beside the seed's (or why it is missing)."""
     if not friction_computed(result):
-        return ["## Friction", "", f"Not computed: the bottom-up friction law interpolates d_eq,R and A_R in F_N "
-                f"and needs at least {FRICTION_MIN_LOADS} loads; the scene has one (`loads.normal_forces`), so "
-                "`friction.csv` and `friction.png` are not written.", ""]
+        reason = (f"the bottom-up friction law interpolates d_eq,R and A_R in F_N and needs at least "
+                  f"{FRICTION_MIN_LOADS} loads; the scene has one (`loads.normal_forces`)"
+                  if len(result.normal_forces) < FRICTION_MIN_LOADS else
+                  f"no realisation converged at {unconverged_points(result)} (`converged` in `points.csv` and "
+                  "`realisations.csv`), where the realisation means of d_eq,R and A_R that the bottom-up friction "
+                  "law interpolates are NaN")
+        return ["## Friction", "", f"Not computed: {reason}, so `friction.csv` and `friction.png` are not written.",
+                ""]
     rows = friction_rows(result)
     saturated = sum(row["bottom_up_area_saturated"] for row in rows)
     bounds = {name: positive_interval(values) for name, values in friction_realisations(result).items()}
@@ -357,17 +374,20 @@ def _clipped_ridge_gap(result: StudyResult) -> list:
             "law's electrostatic force falls short of the solved one."]
 
 
-def _range(values, spec, joint=" to ") -> str:
-    """"low to high" of the finite ``values`` formatted with ``spec``; one number where both read the same."""
+def _range(values, spec, joint=" to ", missing="no voltage above 0 V") -> str:
+    """"low to high" of the finite ``values`` formatted with ``spec``; one number where both read the same; "n/a"
+    and why (``missing``) where none is finite."""
     finite = np.round(np.asarray(values)[np.isfinite(values)], 12) + 0.0      # + 0.0: no "-0" for a zero error
     if finite.size == 0:
-        return "n/a (no voltage above 0 V)"
+        return f"n/a ({missing})"
     low, high = format(np.min(finite), spec), format(np.max(finite), spec)
     return low if low == high else f"{low}{joint}{high}"
 
 
-def _yes(condition) -> str:
-    return "n/a" if np.size(condition) == 0 else "yes" if np.all(condition) else "no"
+def _yes(rises) -> str:
+    """"yes" if every finite one of ``rises`` is positive, "no" if one is not, "n/a" if none is finite."""
+    finite = rises[np.isfinite(rises)]
+    return "n/a" if finite.size == 0 else "yes" if np.all(finite > 0) else "no"
 
 
 def _error_table(forces, voltages, values) -> list:

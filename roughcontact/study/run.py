@@ -171,7 +171,8 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
     check_executor(workers, dask)
     check_drive(plan)
     results = None if directory is None else ResultsDirectory(output_directory(directory), plan, tasks)
-    store = results.tasks if results is not None else None if tasks is None else TaskStore(output_directory(tasks))
+    store = (results.tasks if results is not None else None if tasks is None
+             else TaskStore(output_directory(tasks, "tasks")))
     apparent = apparent_scale(scene)                # once, for every task
     try:
         records, solved = solve_plans([(plan, apparent)], store, workers, dask, progress)

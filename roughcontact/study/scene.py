@@ -36,6 +36,7 @@ from surfaces.validation import check_integer, check_real
 from ..electrostatics import DielectricStack, LeakyStack
 from ..electrostatics.stack import SIGMA_SC
 from ..interactions import FIELDS, ElectrostaticInteraction
+from ..solvers.inputs import FLOAT32_TOL_FLOOR
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -220,6 +221,13 @@ class Fingerpad(_Section):
     E_star: float = _field(RealKey(0.0, low_open=True))
     layer: bool = _field(_BOOLEAN)
     layer_grid: int = _field(_Integer(16, 2048))
+
+    def __post_init__(self):
+        super().__post_init__()
+        if self.layer and self.model != "fingertip":
+            raise ValueError(f"fingerpad.layer = true presses the fingertip's cap onto the skin's layer, but "
+                             f"fingerpad.model = {self.model!r} has no cap; valid: model = \"fingertip\", or leave "
+                             "layer out (false)")
 
 
 @dataclass(frozen=True)
@@ -439,6 +447,15 @@ class Preset(_Section):
     dtype: str = _field(_Choice(DTYPES))
     warm_start: bool = _field(_BOOLEAN)
     scales: str = _field(_Choice(SCALES))
+
+    def __post_init__(self):
+        super().__post_init__()
+        if self.dtype == "float32" and self.tolerance < FLOAT32_TOL_FLOOR:
+            raise ValueError(f"tolerance = {self.tolerance!r} is below float32's round-off floor "
+                             f"{FLOAT32_TOL_FLOOR:.3g}, where a solve's residual stalls short of it (the point is "
+                             "left without a converged realisation); valid: "
+                             f"tolerance in [{FLOAT32_TOL_FLOOR:.3g}, 0.1] with dtype = \"float32\", or "
+                             "dtype = \"float64\"")
 
 
 #: The table of a parameter study (:mod:`roughcontact.study.variants`), read beside the sections.
@@ -697,7 +714,7 @@ def _build(cls, table, defaults: dict, given: dict, origin, text):
     try:
         return cls(**{**defaults, **given})
     except (TypeError, ValueError) as error:      # a relation between keys (e.g. the two cut-offs)
-        key = next((k for k in given if k in str(error)), None)
+        key = min((k for k in given if k in str(error)), key=str(error).index, default=None)   # the one named first
         raise _error(origin, text, table, key, str(error), None) from None
 
 

@@ -3,8 +3,8 @@
 The outputs (:data:`OUTPUTS`) are the realisation means of a variant's study at every load and voltage: d_eq
 (seed Eq. 25), the field-equivalent gap d_field, the electrostatic force F_el = σ̄_el A0, the ridge contact
 fraction A_R/A0 at the coarse-graining length and the bottom-up friction coefficient μ of the ridge-area recipe
-(:func:`~.friction.bottom_up_friction`; NaN for a study of one load). :func:`analyse` measures how each input
-moves each output at each (F_N, U):
+(:func:`~.friction.bottom_up_friction`; NaN for a study of one load or with a point where no realisation
+converged). :func:`analyse` measures how each input moves each output at each (F_N, U):
 
 * **one at a time** (a tornado): the output at the input's lowest and highest level relative to the baseline,
   (y − y₀)/|y₀|, and its swing, (max − min)/|y₀| over the baseline and the input's levels (:data:`RANKED_BY`);
@@ -49,10 +49,7 @@ def study_outputs(result: StudyResult) -> dict:
               "ridge_area_fraction": result.summary("ridge_area_fractions")[0][:, :, 0]}
     friction = np.full((forces.size, voltages.size), np.nan)
     if friction_computed(result):
-        try:
-            friction = bottom_up_friction(result).state(forces[:, None], voltages[None, :]).friction_coefficient
-        except ValueError:                      # a point without a converged realisation (NaN in its tables)
-            pass
+        friction = bottom_up_friction(result).state(forces[:, None], voltages[None, :]).friction_coefficient
     values["friction_coefficient"] = np.asarray(friction, dtype=float)
     return values
 

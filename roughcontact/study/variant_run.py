@@ -113,7 +113,8 @@ def run_variants(study: VariantStudy, directory=None, progress: bool = False, wo
     for plan in plans:
         check_drive(plan)
     results = None if directory is None else VariantDirectory(output_directory(directory), study, plans, tasks)
-    store = results.tasks if results is not None else None if tasks is None else TaskStore(output_directory(tasks))
+    store = (results.tasks if results is not None else None if tasks is None
+             else TaskStore(output_directory(tasks, "tasks")))
     try:
         apparents = _apparent(variant.scene for variant in study.variants)
         records, solved = solve_plans(list(zip(plans, apparents)), store, workers, dask, progress)

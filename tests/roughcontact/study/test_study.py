@@ -253,6 +253,50 @@ def test_failed_warm_start_is_retried_cold_and_failures_leave_the_means(tiny, mo
     assert np.isfinite(failing.summary("equivalent_gap")[0][:, 0]).all()
 
 
+@pytest.mark.parametrize("failed, named", [({(1, 1)}, "2 N at 150 V"),
+                                           ({(0, 0), (0, 1), (1, 0), (1, 1)}, "0.5 N at 0 V, 0.5 N at 150 V")])
+def test_a_point_without_a_converged_realisation_is_reported_not_raised(tiny_result, tmp_path, failed, named):
+    """Points where no realisation converged (a float32 preset below its round-off floor left every point so):
+    the results are written without a numpy warning, those points' means NaN, and report.md names them and says
+    why the friction law is not computed; before, friction.csv raised friction_recipe's "ridge_gaps must be
+    finite" as a traceback (and report.md numpy's all-NaN max)."""
+    import dataclasses
+    import warnings
+    from roughcontact.io.provenance import Provenance
+    from roughcontact.study.report import write_results
+    points = tuple(tuple(dataclasses.replace(point, converged=(False, False)) if (i, j) in failed else point
+                         for j, point in enumerate(row)) for i, row in enumerate(tiny_result.points))
+    result = dataclasses.replace(tiny_result, points=points)
+    with pytest.raises(ValueError, match=f"no realisation converged at {named}"):
+        bottom_up_friction(result)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        write_results(result, tmp_path, Provenance.of_command("roughcontact run", [], {}))
+    report = (tmp_path / "report.md").read_text()
+    assert f"none converged at {named}" in report and f"Not computed: no realisation converged at {named}" in report
+    assert not (tmp_path / "friction.csv").exists() and not (tmp_path / "friction.png").exists()
+    rows = read_csv(tmp_path / "points.csv")
+    assert [row["equivalent_gap_um"] == "nan" for row in rows] == [(i, j) in failed for i in range(2) for j in range(2)]
+
+
+def test_a_flat_scan_changes_d_eq_by_zero_percent(tmp_path):
+    """A constant scan is flat after detrending: d_eq = 0 at both voltages, a change of 0 % (it read "+nan %",
+    with numpy's "invalid value encountered in divide" on the console)."""
+    import warnings
+    from roughcontact.study.patch import PatchScaleWarning
+    np.save(tmp_path / "flat.npy", np.full((16, 16), 3.0))
+    (tmp_path / "flat.toml").write_text('[loads]\nnormal_forces = [0.5]\nvoltages = [0.0, 150.0]\n[ridges]\n'
+                                        'enabled = false\n[roughness]\ntopography = "flat.npy"\nunit = "um"\n'
+                                        "pixel_size = 2e-6\n[ridge_area]\ncoarse_graining = 1e-5\n")
+    scene = load_scene(tmp_path / "flat.toml", preset="draft")
+    with pytest.warns(PatchScaleWarning):
+        result = run_study(scene, workers=1)
+    assert np.all(result.summary("equivalent_gap")[0] == 0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        assert "d_eq changes by +0 % at 0.5 N." in report_text(result)
+
+
 def test_tabulated_area_and_bottom_up_friction(tiny_result):
     table = TabulatedArea(np.array([1.0, 2.0]), np.array([[0.0, 1.0], [0.0, 2.0]]), np.array([[1.0, 3.0], [2.0, 4.0]]))
     assert table.area(1.0, 0.5) == pytest.approx(2.0) and table.area(1.5, 0.0) == pytest.approx(1.5)
