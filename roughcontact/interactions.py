@@ -42,6 +42,7 @@ import numpy as np
 from surfaces.validation import check_choice, check_finite_array, check_positive
 
 from .electrostatics import EPSILON_0, DielectricStack, LeakyStack
+from .electrostatics.contact_line import AirBreakdown, RoughnessFilm, check_contact_line
 from .electrostatics.stack import check_frequency, check_voltage
 from .io.results import savable_field
 
@@ -188,12 +189,19 @@ class ElectrostaticInteraction(Interaction):
     interface (:mod:`roughcontact.electrostatics.ac`): the solve balances the time-averaged attraction
     (:mod:`roughcontact.solvers.deferred_correction`, ``docs/guide/ac_drive.md``). ``None`` (the default) is the
     dielectric stratum corneum, as is ``math.inf``; 0 is a DC voltage. It needs ``field="layered"``.
+
+    ``contact_line`` is the layered field's model of the contact line
+    (:mod:`roughcontact.electrostatics.contact_line`): None (a sharp line without finite strength), an
+    :class:`~roughcontact.electrostatics.contact_line.AirBreakdown` or a
+    :class:`~roughcontact.electrostatics.contact_line.RoughnessFilm`; a model needs ``field="layered"`` and the
+    dielectric stratum corneum (no ``frequency``).
     """
 
     stack: DielectricStack = DielectricStack()
     voltage: float = 0.0
     field: str = "layered"
     frequency: float | None = None
+    contact_line: object = None
 
     def __post_init__(self):
         if not isinstance(self.stack, DielectricStack):
@@ -205,6 +213,9 @@ class ElectrostaticInteraction(Interaction):
             if self.local:
                 raise ValueError(f"frequency = {self.frequency!r} Hz needs field = 'layered' (the AC drive acts "
                                  f"through the layered field); got field = {self.field!r}")
+        if check_contact_line(self.contact_line) is not None and (self.local or self.frequency is not None):
+            raise ValueError(f"contact_line = {self.contact_line!r} needs field = 'layered' and no frequency (the "
+                             f"dielectric layered field); got field = {self.field!r}, frequency = {self.frequency!r}")
 
     @property
     def local(self) -> bool:
@@ -322,8 +333,8 @@ class MaugisDugdale(Interaction):
 
 #: The laws that results can be saved and loaded with (by class name).
 LAWS = {law.__name__: law for law in (HardWall, ElectrostaticInteraction, ExponentialAdhesion, MaugisDugdale)}
-# a result holding a law (and its stack) loads them by name
-for _kind in (*LAWS.values(), DielectricStack, LeakyStack):
+# a result holding a law (and its stack, its contact line) loads them by name
+for _kind in (*LAWS.values(), DielectricStack, LeakyStack, AirBreakdown, RoughnessFilm):
     savable_field(_kind)
 
 
