@@ -50,6 +50,9 @@ from .io.results import savable_field
 FINITE_DIFFERENCE_STEP = float(np.finfo(np.float64).eps) ** (1 / 3)
 #: How an electrostatic law takes the field (:class:`ElectrostaticInteraction`).
 FIELDS = ("parallel_plate", "layered")
+#: The layered dielectric law's model of the contact line unless one is given: air breakdown at 350 V/µm
+#: (``docs/findings/contact_line.md``).
+DEFAULT_CONTACT_LINE = AirBreakdown()
 
 
 def _gaps(gap) -> np.ndarray:
@@ -191,17 +194,20 @@ class ElectrostaticInteraction(Interaction):
     dielectric stratum corneum, as is ``math.inf``; 0 is a DC voltage. It needs ``field="layered"``.
 
     ``contact_line`` is the layered field's model of the contact line
-    (:mod:`roughcontact.electrostatics.contact_line`): None (a sharp line without finite strength), an
-    :class:`~roughcontact.electrostatics.contact_line.AirBreakdown` or a
-    :class:`~roughcontact.electrostatics.contact_line.RoughnessFilm`; a model needs ``field="layered"`` and the
-    dielectric stratum corneum (no ``frequency``).
+    (:mod:`roughcontact.electrostatics.contact_line`): an
+    :class:`~roughcontact.electrostatics.contact_line.AirBreakdown` (the default of the layered dielectric law,
+    :data:`DEFAULT_CONTACT_LINE`: without a finite strength at the contact line its F_el does not converge with
+    the pixel, ``docs/findings/contact_line.md``), a :class:`~roughcontact.electrostatics.contact_line.RoughnessFilm`
+    or None (the sharp line of the plain layered field); a model needs ``field="layered"`` and the dielectric
+    stratum corneum (no ``frequency``), and the default is None for the per-pixel law and under a drive (the AC
+    field has no model of the contact line).
     """
 
     stack: DielectricStack = DielectricStack()
     voltage: float = 0.0
     field: str = "layered"
     frequency: float | None = None
-    contact_line: object = None
+    contact_line: object = "default"
 
     def __post_init__(self):
         if not isinstance(self.stack, DielectricStack):
@@ -213,6 +219,9 @@ class ElectrostaticInteraction(Interaction):
             if self.local:
                 raise ValueError(f"frequency = {self.frequency!r} Hz needs field = 'layered' (the AC drive acts "
                                  f"through the layered field); got field = {self.field!r}")
+        if isinstance(self.contact_line, str) and self.contact_line == "default":
+            dielectric_layered = not self.local and self.frequency is None
+            object.__setattr__(self, "contact_line", DEFAULT_CONTACT_LINE if dielectric_layered else None)
         if check_contact_line(self.contact_line) is not None and (self.local or self.frequency is not None):
             raise ValueError(f"contact_line = {self.contact_line!r} needs field = 'layered' and no frequency (the "
                              f"dielectric layered field); got field = {self.field!r}, frequency = {self.frequency!r}")
