@@ -1,7 +1,7 @@
 """Resolution near contacts: how the electrostatic attraction F_el and the equivalent gaps converge with the
-pixel size, and the discretisation error at each preset's pixel (``docs/guide/presets.md``, the tables of
-"Convergence with the pixel", "Discretisation error at the presets' pixels", "1-D profiles against the 2-D
-patch" and "The remedy: a measured correction of F_el"; the columns ``fel_error``, ``deq_error`` and
+pixel size, and the discretisation error at each preset's pixel (``docs/guide/presets.md``, "Discretisation error
+of F_el and d_eq"; ``docs/findings/contact_line.md`` for the models of the contact line; the plain law's
+measured correction in ``docs/dev/investigations.md``; the columns ``fel_error``, ``deq_error`` and
 ``field_deq_error`` of ``roughcontact/study/preset_errors.csv``).
 
     python studies/resolution.py --patch-grids 128 256 512 1024 --output out            # docs/guide/presets.md
@@ -22,16 +22,18 @@ of the contact line (:func:`roughcontact.electrostatics.contact_line.parse_conta
 F_el use it; the per-pixel law has none).
 
 Convergence: per point, law and quantity, the mean over the realisations (those whose solves converged at
-every pixel) against the pixel h, up to the reference pixel ``REFERENCE_PIXELS`` (0.11 µm): below it the layered
-law's contact edges resolve structure the layered model does not describe (``studies/resolution_edges.py``),
-so finer pixels measure the model's edge error (``beyond_reference``: the largest |f(h)/f_ref − 1| at finer
-pixels), not a discretisation error. Where the sequence up to the reference is regular (the observed orders
+every pixel) against the pixel h, up to the reference pixel ``REFERENCE_PIXELS`` (0.11 µm), and beyond it
+(``beyond_reference``: the largest |f(h)/f_ref − 1| at finer pixels; ``halving_beyond_reference``: the largest
+change per halving there). With air breakdown at the contact lines (the default) the layered F_el converges
+below the reference too; without a model of the contact line (``--contact-line none``) its contact edges
+resolve there structure the plain layered model does not describe (``docs/findings/contact_line.md``), so finer
+pixels measure the model's edge error, not a discretisation error. Where the sequence up to the reference is regular (the observed orders
 p = log2(Δ_coarse/Δ_fine) of the two finest triples agree within ``ORDER_SPREAD`` and p > 0), the converged
 value is Richardson's f_h + (f_h − f_2h)/(2^p − 1) from the finest pair; otherwise the reference pixel's value
 stands for it. The error at a preset's pixel is f(h)/f_∞ − 1, with a paired 95 % half-width (1.96 sd/√R of the
-realisations' differences from their reference-pixel value, over f_∞). The layered law's F_el is irregular:
-single realisations jump between equilibria (neighbouring asperities pulled into contact or not, contact edges
-trapped at different pixels) from one pixel to the next.
+realisations' differences from their reference-pixel value, over f_∞). Without a model of the contact line the
+layered law's F_el is irregular: single realisations jump between equilibria (neighbouring asperities pulled
+into contact or not, contact edges trapped at different pixels) from one pixel to the next.
 
 Measured correction: the factor f_ref/f(h) of the layered F_el at each preset pixel from the even
 realisations, applied to the odd ones, and the error left there against their reference-pixel mean.

@@ -1,8 +1,9 @@
-"""Why the layered law's own contact solve does not converge with the pixel: its contact edges
-(``docs/dev/investigations.md``, "The layered law at contact edges"; ``docs/guide/presets.md``, "Resolution near
-contacts").
+"""The layered law at its contact edges: why its own contact solve does not converge with the pixel without a model
+of the contact line, and what each model does (``docs/findings/contact_line.md``; ``docs/dev/investigations.md``,
+"The layered law at contact edges", for the plain law).
 
-    python studies/resolution_edges.py --output out          # every table (minutes)
+    python studies/resolution_edges.py --output out          # every table (minutes), air breakdown (the default)
+    python studies/resolution_edges.py --contact-line none --output out   # the plain layered law
     python studies/resolution_edges.py --fast --output out   # two pixels, one realisation: seconds
     python studies/resolution_edges.py --contact-line breakdown --output out   # docs/findings/contact_line.md
     python studies/resolution_edges.py --only strip fem cylinder --contact-line film:1e-7 --output out

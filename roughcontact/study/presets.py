@@ -216,7 +216,7 @@ def _discretisation_sentence(entry: Measurement) -> str:
         return ""
     return (f" Discretisation error of its pixel (1-D profiles of the default scene against 0.11 µm pixels, beyond "
             f"which the layered F_el with air breakdown at its contact lines changes by less than 0.1 %; "
-            f"`docs/guide/presets.md`, 'Resolution near contacts'): the layered field's F_el "
+            f"`docs/guide/presets.md`, 'Discretisation error of F_el and d_eq'): the layered field's F_el "
             f"{100 * error['fel_error']:.2g} % low, d_eq (Eq. 25) {100 * error['deq_error']:.2g} %, the "
             f"field-equivalent gap {100 * error['field_deq_error']:.2g} %.")
 
