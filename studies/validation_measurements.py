@@ -44,7 +44,7 @@ from roughcontact.solvers import solve_contact
 from roughcontact.study import bottom_up_friction, load_scene, load_variant_study, run_study, run_variants
 from roughcontact.study.apparent import apparent_scale
 from roughcontact.study.plan import plan_study
-from roughcontact.study.presets import fel_error_range, measured
+from roughcontact.study.presets import measured
 from roughcontact.study.records import confidence_interval, positive_interval
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -163,17 +163,17 @@ def attraction_samples(result) -> np.ndarray:
 
 def central_numbers(result) -> dict:
     """The central study's numbers per (load, voltage): F_el/F_N (``x``) with its sampling interval and its total
-    interval (sampling, then the standard preset's discretisation error of F_el with the contact edges' modelling
-    band, docs/guide/presets.md), d_field and d_eq with their intervals widened by the preset's gap errors, the real
-    contact fraction with its interval, and the ridge-area reduction of the friction recipe. The errors are the
-    standard preset's (measured on the default scene), in ``--fast`` too."""
+    interval (sampling, then the standard preset's discretisation error of F_el, docs/guide/presets.md), d_field and
+    d_eq with their intervals widened by the preset's gap errors, the real contact fraction with its interval, and
+    the ridge-area reduction of the friction recipe. The errors are the standard preset's (measured on the default
+    scene), in ``--fast`` too."""
     entry = measured(load_scene(preset="standard").preset)              # the standard preset's errors (--fast too)
-    least, most = fel_error_range(entry.discretisation["fel_error"])      # F_el low by this much
+    fel_error = entry.discretisation["fel_error"]                        # F_el low by this much
     samples = attraction_samples(result)
     x = np.nanmean(samples, axis=-1)
     low, high = positive_interval(samples)
     numbers = {"x": x, "x_low": low, "x_high": high,
-               "x_total_low": low / (1 - least), "x_total_high": high / (1 - most), "least": least, "most": most}
+               "x_total_low": low / (1 - fel_error), "x_total_high": high / (1 - fel_error)}
     for name, error in (("field_equivalent_gap", entry.discretisation["field_deq_error"]),
                         ("equivalent_gap", entry.discretisation["deq_error"])):
         values = np.where(result.array("converged").astype(bool), result.array(name), np.nan)
@@ -390,7 +390,7 @@ def budget_table(numbers, studies) -> str:
     _, force_factor, _ = draft_factors(inputs)
     sampled = sample_rows(central, sample)
     lines = {name: [] for name in ("stand-in (the seed's fit to the measurement)", "bottom-up, 200 V RMS: sampling",
-                                   "+ discretisation and contact-edge band", "inputs one at a time (draft)",
+                                   "+ discretisation", "inputs one at a time (draft)",
                                    "five inputs jointly (draft, Sobol' sample)",
                                    "200 V read as amplitude (141.4 V RMS)",
                                    "200 V RMS, leak at {:g}–{:g} Hz".format(*LEAK_RANGE),
