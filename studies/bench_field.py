@@ -21,8 +21,8 @@ realisations 0 … R−1) and ``bench_field_totals.csv`` holds the FFT pairs and
 the per-pixel law's sums: near instabilities one solve's cost moves by a factor 2 with its path.
 
 With ``--matched`` each case also solves the per-pixel law at the voltage where its attraction matches the layered
-solve's F_el (within ``MATCH_TOL``, by secant steps on log F_el against log U; rows ``parallel_plate_matched``,
-their voltage in ``matched_voltage_V``): the layered solve's cost over that solve's separates the stronger
+solve's F_el (with ``--contact-line``, that model's; within ``MATCH_TOL``, by secant steps on log F_el against log
+U; rows ``parallel_plate_matched``, their voltage in ``matched_voltage_V``): the layered solve's cost over that solve's separates the stronger
 attraction (which the per-pixel law pays as well once driven to it) from what the layered law itself adds
 (``docs/guide/electrostatics.md``, "Cost"). It also solves, at the voltage matched the same way, the per-pixel law of
 the layered law's range (rows ``parallel_plate_local``; :func:`local_stack`): its offset is the layered field's
@@ -145,7 +145,7 @@ def rows_for(name, n, args, realisation=0):
                              field_equivalent_gap_m=result.field_equivalent_gap,
                              equivalent_gap_m=result.equivalent_gap, converged=result.converged,
                              contact_line=args.contact_line if contact_line else ""))
-            if field == "layered":
+            if field == (CONTACT_LINE if model else "layered"):    # the attraction the per-pixel law matches
                 layered_force = result.electrostatic_force
             at = f" (at {solved_voltage:.0f} V: F_el x{matched:.3f})" if matched else ""
             print(f"{name:5s} {n:4d}² r{realisation} {voltage:5.0f} V {field:22s} {seconds:8.3f} s  "

@@ -37,7 +37,7 @@ from pathlib import Path
 
 import numpy as np
 
-from roughcontact.electrostatics import StackField
+from roughcontact.electrostatics import solve_field
 from roughcontact.io import output_directory, parse_arguments, save_figure, write_atomic, write_csv
 from roughcontact.macro import SlidingFrictionModel
 from roughcontact.solvers import solve_contact
@@ -168,12 +168,12 @@ def central_numbers(result) -> dict:
     the ridge-area reduction of the friction recipe. The errors are the standard preset's (measured on the default
     scene), in ``--fast`` too."""
     entry = measured(load_scene(preset="standard").preset)              # the standard preset's errors (--fast too)
-    fel_error = entry.discretisation["fel_error"]                        # F_el low by this much
+    fel_error = entry.discretisation["fel_error"]                # |F_el error| of the pixel, either sign
     samples = attraction_samples(result)
     x = np.nanmean(samples, axis=-1)
     low, high = positive_interval(samples)
     numbers = {"x": x, "x_low": low, "x_high": high,
-               "x_total_low": low / (1 - fel_error), "x_total_high": high / (1 - fel_error)}
+               "x_total_low": low / (1 + fel_error), "x_total_high": high / (1 - fel_error)}
     for name, error in (("field_equivalent_gap", entry.discretisation["field_deq_error"]),
                         ("equivalent_gap", entry.discretisation["deq_error"])):
         values = np.where(result.array("converged").astype(bool), result.array(name), np.nan)
@@ -274,7 +274,6 @@ def extra_gap_fields(scene) -> dict:
     voltages = (141.421, 200.0)
     scales = apparent_scale(scene)[:len(forces)]
     stack, body = scene.screen.stack(), plan.body(threads=1)
-    field = StackField(stack, plan.grid, threads=1)
     count = plan.realisations
     attraction = np.full((len(forces), len(voltages), 2, len(EXTRA_GAPS), count), np.nan)
     share = np.full((len(forces), len(voltages), 2, count), np.nan)
@@ -287,13 +286,14 @@ def extra_gap_fields(scene) -> dict:
                 chains[voltage] = solve_contact(heights, body, mean_pressure=pressure, interaction=law,
                                                 tol=scene.preset.tolerance, x0=chains[voltage], warn=False)
             for j, voltage in enumerate(voltages):
+                contact_line = scene.screen.interaction(voltage, None).contact_line     # the study's law's
                 for state, solved in enumerate((chains[0.0], chains[voltage])):
                     if not solved.converged:
                         continue
                     gap = np.asarray(solved.gap, dtype=float)
                     for k, extra in enumerate(EXTRA_GAPS):
-                        flux = field.solve_flux(gap + extra, tol=1e-8)[0]
-                        sigma = voltage ** 2 * field.attraction(gap + extra, flux)
+                        sigma = solve_field(stack, gap + extra, plan.grid.lengths, voltage, tol=1e-8,
+                                            contact_line=contact_line).attraction
                         attraction[i, j, state, k, r] = sigma.mean()
                         if k == 0:
                             share[i, j, state, r] = sigma[np.asarray(solved.contact)].sum() / sigma.sum()

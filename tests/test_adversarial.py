@@ -612,8 +612,8 @@ ROWS = [
     ("recipe-right", lambda: friction_recipe([0.5, 1.0], [0.0], np.full((2, 1), 1e-6), np.full((2, 1), 1e-5), STACK
                                              ).friction_coefficient(1.0, 0.0),
      right(lambda mu: close(float(mu), 0.26, 1e-12))),      # at 0 V only μ0 F_N: the seed's μ0 = 0.26
-    ("preset-auto-below-floor", lambda: scene_at_preset(None, "auto", "1%"),
-     refused(ValueError, "target", "1 %", f"{100 * error_floor()[0]:.2f} %")),
+    ("preset-auto-below-floor", lambda: scene_at_preset(None, "auto", "0.2%"),
+     refused(ValueError, "target", "0.2 %", f"{100 * error_floor()[0]:.3g} %")),
     ("preset-auto-garbage", lambda: scene_at_preset(None, "auto", "ten"), refused(ValueError, "target", "ten")),
     ("preset-auto-negative", lambda: scene_at_preset(None, "auto", "-5%"),
      refused(ValueError, "target", "-0.05", "(0, 1]")),
@@ -1287,7 +1287,7 @@ CLI_ROWS = [
     ("run-out-parent-missing", lambda tmp: ["run", _tiny_file(tmp), "--preset", "draft", "--out", tmp / "a" / "b"]),
     ("run-out-is-file", lambda tmp: ["run", _tiny_file(tmp), "--preset", "draft", "--out", write(tmp / "f", "x")]),
     ("run-target-text", lambda tmp: ["run", _tiny_file(tmp), "--preset", "auto", "--target-error", "ten", "--out", tmp / "o"]),
-    ("run-target-below-floor", lambda tmp: ["run", _tiny_file(tmp), "--preset", "auto", "--target-error", "1%", "--out", tmp / "o"]),
+    ("run-target-below-floor", lambda tmp: ["run", _tiny_file(tmp), "--preset", "auto", "--target-error", "0.2%", "--out", tmp / "o"]),
     ("run-target-negative", lambda tmp: ["run", _tiny_file(tmp), "--preset", "auto", "--target-error", "-5%", "--out", tmp / "o"]),
     ("run-target-without-auto", lambda tmp: ["run", _tiny_file(tmp), "--preset", "draft", "--target-error", "10%", "--out", tmp / "o"]),
     ("run-unknown-flag", lambda tmp: ["run", "--fast"]),

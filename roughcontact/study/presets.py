@@ -10,12 +10,12 @@ auto --target-error 2%``), and :func:`auto_scene` puts it into a scene as ``[pre
 
 The columns :data:`RESOLUTION_COLUMNS`, written by ``studies/resolution.py --library`` after the table, hold the
 discretisation error of the setting's pixel (ridge period / grid × periods) against 0.11 µm pixels
-(``docs/guide/presets.md``, "Discretisation error at the presets' pixels"; with the layered law's default model of
+(``docs/guide/presets.md``, "Discretisation error of F_el and d_eq"; with the layered law's default model of
 the contact line, air breakdown, F_el changes by less than 0.1 % beyond that pixel): ``fel_error`` of the layered
 attraction F_el at 200 V, ``deq_error`` of Eq. 25's d_eq (0 and 200 V) and ``field_deq_error`` of the
 field-equivalent gap at 200 V, each the largest magnitude of the relative error of the realisation mean over
-F_N = 0.5 and 2 N, measured on 1-D profiles of the default scene; empty (nan) for a pixel not measured. The errors of the other
-columns are against the reference setting, which is itself that far from converged: the reference's
+F_N = 0.5 and 2 N, measured on 1-D profiles of the default scene; empty (nan) for a pixel not measured. The
+errors of the other columns are against the reference setting, which is itself that far from converged: the reference's
 discretisation error is the floor of what ``--preset auto`` can promise (:func:`error_floor`).
 """
 from __future__ import annotations
@@ -217,8 +217,8 @@ def _discretisation_sentence(entry: Measurement) -> str:
     return (f" Discretisation error of its pixel (1-D profiles of the default scene against 0.11 µm pixels, beyond "
             f"which the layered F_el with air breakdown at its contact lines changes by less than 0.1 %; "
             f"`docs/guide/presets.md`, 'Discretisation error of F_el and d_eq'): the layered field's F_el "
-            f"{100 * error['fel_error']:.2g} % low, d_eq (Eq. 25) {100 * error['deq_error']:.2g} %, the "
-            f"field-equivalent gap {100 * error['field_deq_error']:.2g} %.")
+            f"±{100 * error['fel_error']:.2g} %, d_eq (Eq. 25) ±{100 * error['deq_error']:.2g} %, the "
+            f"field-equivalent gap ±{100 * error['field_deq_error']:.2g} %.")
 
 
 def scene_at_preset(path=None, preset: str | None = None, target_error=None, table=None) -> Scene:
