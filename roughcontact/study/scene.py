@@ -406,7 +406,8 @@ class Screen(_Section):
     def stack(self):
         """The :class:`DielectricStack` of the screen, with the stratum corneum's conductivity ``sigma_sc``; a
         :class:`LeakyStack` where a leak is set."""
-        keys = {key: value for key, value in dataclasses.asdict(self).items() if key not in ("field", "frequency", "contact_line")}
+        keys = {key: value for key, value in dataclasses.asdict(self).items()
+                if key not in ("field", "frequency", "contact_line")}
         if self.leaks:
             return LeakyStack(**keys)
         return DielectricStack(**{key: value for key, value in keys.items() if key not in LEAK_KEYS})
