@@ -1,7 +1,7 @@
 """The bottom-up prediction against the measured fingertip: every number and the figure of
 docs/validation/measurements.md and docs/findings/measured_fingertip.md.
 
-    python studies/validation_measurements.py           # the seven studies and every table (about 8 min on 2 cores)
+    python studies/validation_measurements.py           # the seven studies and every table (about 7 min on 2 cores)
     python studies/validation_measurements.py --docs    # also the pages' tables and docs/img/validation_friction.png
     python studies/validation_measurements.py --fast    # 32² patches, few samples: a test run
 
