@@ -13,6 +13,8 @@ from ._version import __version__
 _LAZY = {
     "DielectricStack": "electrostatics",
     "LeakyStack": "electrostatics",
+    "AirBreakdown": "electrostatics",
+    "RoughnessFilm": "electrostatics",
     "PowerLawContact": "macro",
     "SlidingFrictionModel": "macro",
     "ElasticHalfSpace": "body",

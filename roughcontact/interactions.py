@@ -42,6 +42,7 @@ import numpy as np
 from surfaces.validation import check_choice, check_finite_array, check_positive
 
 from .electrostatics import EPSILON_0, DielectricStack, LeakyStack
+from .electrostatics.contact_line import AirBreakdown, RoughnessFilm, check_contact_line
 from .electrostatics.stack import check_frequency, check_voltage
 from .io.results import savable_field
 
@@ -49,6 +50,9 @@ from .io.results import savable_field
 FINITE_DIFFERENCE_STEP = float(np.finfo(np.float64).eps) ** (1 / 3)
 #: How an electrostatic law takes the field (:class:`ElectrostaticInteraction`).
 FIELDS = ("parallel_plate", "layered")
+#: The layered dielectric law's model of the contact line unless one is given: air breakdown at 350 V/µm
+#: (``docs/findings/contact_line.md``).
+DEFAULT_CONTACT_LINE = AirBreakdown()
 
 
 def _gaps(gap) -> np.ndarray:
@@ -188,12 +192,22 @@ class ElectrostaticInteraction(Interaction):
     interface (:mod:`roughcontact.electrostatics.ac`): the solve balances the time-averaged attraction
     (:mod:`roughcontact.solvers.deferred_correction`, ``docs/guide/ac_drive.md``). ``None`` (the default) is the
     dielectric stratum corneum, as is ``math.inf``; 0 is a DC voltage. It needs ``field="layered"``.
+
+    ``contact_line`` is the layered field's model of the contact line
+    (:mod:`roughcontact.electrostatics.contact_line`): an
+    :class:`~roughcontact.electrostatics.contact_line.AirBreakdown` (the default of the layered dielectric law,
+    :data:`DEFAULT_CONTACT_LINE`: without a finite strength at the contact line its F_el does not converge with
+    the pixel, ``docs/findings/contact_line.md``), a :class:`~roughcontact.electrostatics.contact_line.RoughnessFilm`
+    or None (the sharp line of the plain layered field); a model needs ``field="layered"`` and the dielectric
+    stratum corneum (no ``frequency``), and the default is None for the per-pixel law and under a drive (the AC
+    field has no model of the contact line).
     """
 
     stack: DielectricStack = DielectricStack()
     voltage: float = 0.0
     field: str = "layered"
     frequency: float | None = None
+    contact_line: object = "default"
 
     def __post_init__(self):
         if not isinstance(self.stack, DielectricStack):
@@ -205,6 +219,12 @@ class ElectrostaticInteraction(Interaction):
             if self.local:
                 raise ValueError(f"frequency = {self.frequency!r} Hz needs field = 'layered' (the AC drive acts "
                                  f"through the layered field); got field = {self.field!r}")
+        if isinstance(self.contact_line, str) and self.contact_line == "default":
+            dielectric_layered = not self.local and self.frequency is None
+            object.__setattr__(self, "contact_line", DEFAULT_CONTACT_LINE if dielectric_layered else None)
+        if check_contact_line(self.contact_line) is not None and (self.local or self.frequency is not None):
+            raise ValueError(f"contact_line = {self.contact_line!r} needs field = 'layered' and no frequency (the "
+                             f"dielectric layered field); got field = {self.field!r}, frequency = {self.frequency!r}")
 
     @property
     def local(self) -> bool:
@@ -322,8 +342,8 @@ class MaugisDugdale(Interaction):
 
 #: The laws that results can be saved and loaded with (by class name).
 LAWS = {law.__name__: law for law in (HardWall, ElectrostaticInteraction, ExponentialAdhesion, MaugisDugdale)}
-# a result holding a law (and its stack) loads them by name
-for _kind in (*LAWS.values(), DielectricStack, LeakyStack):
+# a result holding a law (and its stack, its contact line) loads them by name
+for _kind in (*LAWS.values(), DielectricStack, LeakyStack, AirBreakdown, RoughnessFilm):
     savable_field(_kind)
 
 

@@ -5,6 +5,8 @@
     python studies/bench_field.py --sizes 256 --realisations 4 --matched --output out   # the tables of
                                                        # docs/guide/electrostatics.md (and --sizes 512)
     python studies/bench_field.py --fast               # 64², seconds
+    python studies/bench_field.py --sizes 256 --realisations 4 --contact-line breakdown --output out   # the cost
+                                                       # of a contact-line model (docs/findings/contact_line.md)
 
 Two patches per grid size n: ``bench``, the electrostatic bar's rough patch (1 mm square, 3 µm rms self-affine
 heights, H = 0.8, short cut-off 8 px, E* = 1 MPa, p̄ = 1 kPa), and ``scene``, the default scene's patch (one ridge
@@ -19,14 +21,19 @@ realisations 0 … R−1) and ``bench_field_totals.csv`` holds the FFT pairs and
 the per-pixel law's sums: near instabilities one solve's cost moves by a factor 2 with its path.
 
 With ``--matched`` each case also solves the per-pixel law at the voltage where its attraction matches the layered
-solve's F_el (within ``MATCH_TOL``, by secant steps on log F_el against log U; rows ``parallel_plate_matched``,
-their voltage in ``matched_voltage_V``): the layered solve's cost over that solve's separates the stronger
+solve's F_el (with ``--contact-line``, that model's; within ``MATCH_TOL``, by secant steps on log F_el against log
+U; rows ``parallel_plate_matched``, their voltage in ``matched_voltage_V``): the layered solve's cost over that solve's separates the stronger
 attraction (which the per-pixel law pays as well once driven to it) from what the layered law itself adds
 (``docs/guide/electrostatics.md``, "Cost"). It also solves, at the voltage matched the same way, the per-pixel law of
 the layered law's range (rows ``parallel_plate_local``; :func:`local_stack`): its offset is the layered field's
 pixel elastance ε0 M_ii instead of the stack's c, so that a lone pixel's attraction and stiffness are the layered
 law's; the layered solve's cost over that one is what the field's non-locality and its solves add to the physics
 of a stronger, shorter-ranged attraction near contacts. The totals then also hold the ratios to both matched sums.
+
+With ``--contact-line`` each case also solves the layered law with that model of the contact line
+(:func:`roughcontact.electrostatics.contact_line.parse_contact_line`; rows ``layered_contact_line``), and the totals
+hold its sums' ratios to the plain layered solve's (``fft_pairs_ratio_layered``, ``time_s_ratio_layered``): the
+cost the model adds per solve.
 """
 from __future__ import annotations
 
@@ -39,12 +46,16 @@ from _bench import best_of, count_argument, summed_ratios
 from surfaces import Grid, self_affine
 from roughcontact import ElasticHalfSpace, ElectrostaticInteraction, solve_contact
 from roughcontact.electrostatics import EPSILON_0, DielectricStack, StackField
+from roughcontact.electrostatics.contact_line import parse_contact_line
 from roughcontact.io import output_directory, parse_arguments, write_csv
 from roughcontact.study.patch import default_scene_patch
 
 COLUMNS = ("patch", "n", "realisation", "voltage_V", "field", "time_s", "time_ratio", "iterations", "unstable_steps", "fft_pairs",
            "field_fft_pairs", "field_evaluations", "fft_pair_ratio", "contact_fraction", "electrostatic_force_N",
-           "field_equivalent_gap_m", "equivalent_gap_m", "converged", "matched_voltage_V", "matched_force_ratio")
+           "field_equivalent_gap_m", "equivalent_gap_m", "converged", "matched_voltage_V", "matched_force_ratio",
+           "contact_line")
+#: the row of the layered law with ``--contact-line``'s model
+CONTACT_LINE = "layered_contact_line"
 MATCH_TOL = 0.02          # |F_el(per pixel, U_m) / F_el(layered, U) − 1| at which a matched voltage is accepted
 MATCH_SOLVES = 6          # per-pixel solves of the search before the closest is taken
 #: the per-pixel references of --matched: the stack's own law, and the law of the layered field's pixel elastance
@@ -103,15 +114,19 @@ def rows_for(name, n, args, realisation=0):
     rows = []
     for voltage in args.voltages:
         reference, matched, layered_force = None, None, None
-        for field in ("parallel_plate", "layered") + (MATCHED if args.matched else ()):
-            law_field, solved_stack, solved_voltage = field, stack, voltage
+        model = parse_contact_line(args.contact_line)
+        fields = ("parallel_plate", "layered") + ((CONTACT_LINE,) if model else ()) + (MATCHED if args.matched else ())
+        for field in fields:
+            law_field, solved_stack, solved_voltage, contact_line = field, stack, voltage, None
+            if field == CONTACT_LINE:
+                law_field, contact_line = "layered", model
             if field in MATCHED:
                 law_field = "parallel_plate"
                 if field == "parallel_plate_local":
                     solved_stack = local_stack(stack, body.grid)
                 solved_voltage, matched = matched_voltage(surface, body, pressure, solved_stack, voltage,
                                                           layered_force, args.tol)
-            law = ElectrostaticInteraction(solved_stack, solved_voltage, field=law_field)
+            law = ElectrostaticInteraction(solved_stack, solved_voltage, field=law_field, contact_line=contact_line)
             solve_contact(surface, body, mean_pressure=pressure, tol=args.tol, interaction=law, warn=False)  # warm
             result, seconds = best_of(lambda: solve_contact(surface, body, mean_pressure=pressure, tol=args.tol,
                                                             interaction=law, warn=False),
@@ -128,8 +143,9 @@ def rows_for(name, n, args, realisation=0):
                              contact_fraction=result.contact_fraction,
                              electrostatic_force_N=result.electrostatic_force,
                              field_equivalent_gap_m=result.field_equivalent_gap,
-                             equivalent_gap_m=result.equivalent_gap, converged=result.converged))
-            if field == "layered":
+                             equivalent_gap_m=result.equivalent_gap, converged=result.converged,
+                             contact_line=args.contact_line if contact_line else ""))
+            if field == (CONTACT_LINE if model else "layered"):    # the attraction the per-pixel law matches
                 layered_force = result.electrostatic_force
             at = f" (at {solved_voltage:.0f} V: F_el x{matched:.3f})" if matched else ""
             print(f"{name:5s} {n:4d}² r{realisation} {voltage:5.0f} V {field:22s} {seconds:8.3f} s  "
@@ -151,6 +167,9 @@ def main(argv=None):
     parser.add_argument("--matched", action="store_true",
                         help="also the per-pixel law, with the stack's offset and with the layered law's pixel "
                              "elastance, at the voltages that match the layered law's attraction")
+    parser.add_argument("--contact-line", default="none",
+                        help="also the layered law with this model of the contact line: breakdown[:E_bd], "
+                             "film:<thickness in m>, ... (none: not)")
     parser.add_argument("--fast", action="store_true",
                         help="64², one voltage, with --matched: a test that the script runs")
     parser.add_argument("--output", default="out", help="directory for bench_field.csv")
@@ -170,13 +189,20 @@ def main(argv=None):
             suffix = reference.removeprefix("parallel_plate_")
             for row, other in zip(totals, against):
                 row.update({f"{name}_ratio_{suffix}": other[f"{name}_ratio"] for name in ("fft_pairs", "time_s")})
+        if parse_contact_line(args.contact_line):         # the model's cost over the plain layered law's
+            against = summed_ratios(rows, group, lambda key: key[:3] + ("layered",))
+            for row, other in zip(totals, against):
+                row.update({f"{name}_ratio_layered": other[f"{name}_ratio"] for name in ("fft_pairs", "time_s")})
         write_csv(directory / "bench_field_totals.csv", totals, provenance)
         for row in totals:
             matched = "".join(f"  ({suffix}: x{row[f'fft_pairs_ratio_{suffix}']:.2f}, CPU "
                               f"x{row[f'time_s_ratio_{suffix}']:.2f})" for suffix in ("matched", "local")
                               if args.matched)
+            layered = (f"  (layered: x{row['fft_pairs_ratio_layered']:.3f}, CPU x{row['time_s_ratio_layered']:.3f})"
+                       if "fft_pairs_ratio_layered" in row else "")
             print(f"{row['patch']:5s} {row['n']:4d}² {row['voltage_V']:5.0f} V {row['field']:22s} over {row['count']} "
-                  f"realisations: FFT pairs x{row['fft_pairs_ratio']:.2f}  CPU x{row['time_s_ratio']:.2f}{matched}")
+                  f"realisations: FFT pairs x{row['fft_pairs_ratio']:.2f}  CPU x{row['time_s_ratio']:.2f}{matched}"
+                  f"{layered}")
 
 
 if __name__ == "__main__":

@@ -1,11 +1,11 @@
 """The bottom-up prediction against the measured fingertip: every number and the figure of
 docs/validation/measurements.md and docs/findings/measured_fingertip.md.
 
-    python studies/validation_measurements.py           # the six studies and every table (about 9 min on 2 cores)
+    python studies/validation_measurements.py           # the seven studies and every table (about 7 min on 2 cores)
     python studies/validation_measurements.py --docs    # also the pages' tables and docs/img/validation_friction.png
     python studies/validation_measurements.py --fast    # 32² patches, few samples: a test run
 
-Six studies of the default scene share one task directory (``--tasks``, default ``<output>/tasks``), so an
+Seven studies of the default scene share one task directory (``--tasks``, default ``<output>/tasks``), so an
 interrupted or repeated run resumes and a task is never solved twice:
 
 * ``central`` (standard preset): F_N = 0.5, 1, 1.5, 2, 4.5 N at U = 0–200 V RMS, the voltages including the RMS
@@ -17,7 +17,8 @@ interrupted or repeated run resumes and a task is never solved twice:
 * ``leak`` and ``drive`` (draft): an AC drive of 62.5 Hz – 100 kHz with the interface's leak σ_g = 1.5e-8 S/m (the
   default scene's half-way point near the measured 250 Hz, docs/guide/ac_drive.md) and without it;
 * ``gaps`` (the central scene's patches re-solved at 0, 141.421 and 200 V): the field solved again on each
-  equilibrium gap widened by a uniform extra gap t, and the share of the attraction on contact pixels.
+  equilibrium gap widened by a uniform extra gap t, and the share of the attraction on contact pixels;
+* ``breakdown`` (draft): the breakdown field of the contact lines' air breakdown at half and twice 350 V/µm.
 
 The measurement stand-in for Sirin et al. 2019a is the seed's friction law (``SlidingFrictionModel.paper_table1``),
 which its authors fitted to the measured tangential forces with three parameters: a fit, labelled as such, not
@@ -37,14 +38,15 @@ from pathlib import Path
 
 import numpy as np
 
-from roughcontact.electrostatics import StackField
+from roughcontact.electrostatics import AIR_BREAKDOWN_FIELD, solve_field
+from roughcontact.fe.feed import FEAreaReduction
 from roughcontact.io import output_directory, parse_arguments, save_figure, write_atomic, write_csv
 from roughcontact.macro import SlidingFrictionModel
 from roughcontact.solvers import solve_contact
 from roughcontact.study import bottom_up_friction, load_scene, load_variant_study, run_study, run_variants
 from roughcontact.study.apparent import apparent_scale
 from roughcontact.study.plan import plan_study
-from roughcontact.study.presets import fel_error_range, measured
+from roughcontact.study.presets import measured
 from roughcontact.study.records import confidence_interval, positive_interval
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -71,6 +73,9 @@ INPUTS = ("roughness.rms_height", "skin.layer_thickness", "skin.layer_E_star", "
           "screen.eps_sc", "roughness.hurst", "screen.d_sc")
 SAMPLED = INPUTS[:5]
 DRAFT_LOADS, DRAFT_VOLTAGES = (0.5, 1.0, 2.0), (0.0, 70.711, 100.0, 141.421, 200.0)
+#: The breakdown field of the contact lines' air breakdown over the measured 350 V/µm: the model's one parameter,
+#: measured only in gaps from 0.1 µm up (docs/findings/contact_line.md)
+BREAKDOWN_FACTORS = (0.5, 1.0, 2.0)
 SAMPLE_LOADS = (0.5, 2.0)
 #: the interface's leak and the drive frequencies: carriers of 100–480 Hz are used in this literature
 LEAK_CONDUCTIVITY = 1.5e-8
@@ -114,7 +119,7 @@ def drive_table(frequencies, conductivity: float | None) -> str:
 
 
 def run_studies(args, tasks) -> dict:
-    """The six studies (module docstring), each resumed from the shared task directory ``tasks``; prints the
+    """The seven studies (module docstring), each resumed from the shared task directory ``tasks``; prints the
     wall time of each."""
     fast, workers = args.fast, args.workers or (1 if args.fast else 2)
     central = load_scene(text=scene_text(LOADS, VOLTAGES, "standard", fast))
@@ -140,6 +145,11 @@ def run_studies(args, tasks) -> dict:
         scene = load_scene(text=scene_text(DRAFT_LOADS, voltages, "draft", fast, drive_table(frequencies, leak)))
         studies[name] = run_study(scene, tasks=tasks, workers=workers)
         done(name)
+    studies["breakdown"] = {factor: run_study(load_scene(text=scene_text(
+        DRAFT_LOADS, DRAFT_VOLTAGES[1:], "draft", fast,
+        f'[screen]\ncontact_line = "breakdown:{factor * AIR_BREAKDOWN_FIELD:g}"\n')), tasks=tasks, workers=workers)
+        for factor in BREAKDOWN_FACTORS}
+    done("breakdown")
     studies["gaps"] = extra_gap_fields(central)
     done("gaps")
     return studies
@@ -163,17 +173,17 @@ def attraction_samples(result) -> np.ndarray:
 
 def central_numbers(result) -> dict:
     """The central study's numbers per (load, voltage): F_el/F_N (``x``) with its sampling interval and its total
-    interval (sampling, then the standard preset's discretisation error of F_el with the contact edges' modelling
-    band, docs/guide/presets.md), d_field and d_eq with their intervals widened by the preset's gap errors, the real
-    contact fraction with its interval, and the ridge-area reduction of the friction recipe. The errors are the
-    standard preset's (measured on the default scene), in ``--fast`` too."""
+    interval (sampling, then the standard preset's discretisation error of F_el, docs/guide/presets.md), d_field and
+    d_eq with their intervals widened by the preset's gap errors, the real contact fraction with its interval, and
+    the ridge-area reduction of the friction recipe. The errors are the standard preset's (measured on the default
+    scene), in ``--fast`` too."""
     entry = measured(load_scene(preset="standard").preset)              # the standard preset's errors (--fast too)
-    least, most = fel_error_range(entry.discretisation["fel_error"])      # F_el low by this much
+    fel_error = entry.discretisation["fel_error"]                # |F_el error| of the pixel, either sign
     samples = attraction_samples(result)
     x = np.nanmean(samples, axis=-1)
     low, high = positive_interval(samples)
     numbers = {"x": x, "x_low": low, "x_high": high,
-               "x_total_low": low / (1 - least), "x_total_high": high / (1 - most), "least": least, "most": most}
+               "x_total_low": low / (1 + fel_error), "x_total_high": high / (1 - fel_error)}
     for name, error in (("field_equivalent_gap", entry.discretisation["field_deq_error"]),
                         ("equivalent_gap", entry.discretisation["deq_error"])):
         values = np.where(result.array("converged").astype(bool), result.array(name), np.nan)
@@ -274,7 +284,6 @@ def extra_gap_fields(scene) -> dict:
     voltages = (141.421, 200.0)
     scales = apparent_scale(scene)[:len(forces)]
     stack, body = scene.screen.stack(), plan.body(threads=1)
-    field = StackField(stack, plan.grid, threads=1)
     count = plan.realisations
     attraction = np.full((len(forces), len(voltages), 2, len(EXTRA_GAPS), count), np.nan)
     share = np.full((len(forces), len(voltages), 2, count), np.nan)
@@ -287,13 +296,14 @@ def extra_gap_fields(scene) -> dict:
                 chains[voltage] = solve_contact(heights, body, mean_pressure=pressure, interaction=law,
                                                 tol=scene.preset.tolerance, x0=chains[voltage], warn=False)
             for j, voltage in enumerate(voltages):
+                contact_line = scene.screen.interaction(voltage, None).contact_line     # the study's law's
                 for state, solved in enumerate((chains[0.0], chains[voltage])):
                     if not solved.converged:
                         continue
                     gap = np.asarray(solved.gap, dtype=float)
                     for k, extra in enumerate(EXTRA_GAPS):
-                        flux = field.solve_flux(gap + extra, tol=1e-8)[0]
-                        sigma = voltage ** 2 * field.attraction(gap + extra, flux)
+                        sigma = solve_field(stack, gap + extra, plan.grid.lengths, voltage, tol=1e-8,
+                                            contact_line=contact_line).attraction
                         attraction[i, j, state, k, r] = sigma.mean()
                         if k == 0:
                             share[i, j, state, r] = sigma[np.asarray(solved.contact)].sum() / sigma.sum()
@@ -390,7 +400,7 @@ def budget_table(numbers, studies) -> str:
     _, force_factor, _ = draft_factors(inputs)
     sampled = sample_rows(central, sample)
     lines = {name: [] for name in ("stand-in (the seed's fit to the measurement)", "bottom-up, 200 V RMS: sampling",
-                                   "+ discretisation and contact-edge band", "inputs one at a time (draft)",
+                                   "+ discretisation", "inputs one at a time (draft)",
                                    "five inputs jointly (draft, Sobol' sample)",
                                    "200 V read as amplitude (141.4 V RMS)",
                                    "200 V RMS, leak at {:g}–{:g} Hz".format(*LEAK_RANGE),
@@ -454,17 +464,24 @@ def guo_table(numbers, central) -> str:
 
 def sirin_b_table(numbers, central) -> str:
     """Sirin et al. 2019b: the apparent-area reduction at the onset of sliding, measured, by the seed's Eq. 44
-    (Table 1) and by the bottom-up friction recipe (the seed's c₂ on the bottom-up A_R), both readings."""
+    (Table 1), by the bottom-up friction recipe (the seed's c₂ on the bottom-up A_R), both readings, and by the FE
+    fingertip's packaged table (Eq. 34's fit) at the stand-in's F_T/F_N, mapped to the area linearly and
+    isotropically (docs/findings/fe_fingertip.md)."""
     seed = SEED.state(np.array([force for force, _ in SIRIN_2019B]), np.array([u for _, u in SIRIN_2019B]))
+    fe = {isotropic: FEAreaReduction.from_summary(isotropic=isotropic) for isotropic in (False, True)}
+    reduction_fe = {isotropic: 1 - table.area_ratio(seed.normal_force, seed.tangential_force,
+                                                    seed.tangential_force / seed.normal_force)
+                    for isotropic, table in fe.items()}
     rows = []
     for n, ((force, reported), measured_value) in enumerate(SIRIN_2019B.items()):
         i = index(central.normal_forces, force)
         cells = [f"{100 * numbers['reduction'][i, index(central.voltages, reading_voltage(reported, reading))]:.1f}"
                  for reading in READINGS]
         rows.append([f"{force:g}", f"{reported:g}", f"{100 * measured_value:.0f}",
-                     f"{100 * seed.area_reduction[n]:.1f}", *cells, "pending"])
+                     f"{100 * seed.area_reduction[n]:.1f}", *cells,
+                     f"{100 * reduction_fe[False][n]:.1f} / {100 * reduction_fe[True][n]:.1f}"])
     return table(["F_N [N]", "U reported [V]", "measured [%]", "seed Eq. 44 [%]", "bottom-up recipe, U as RMS [%]",
-                  "U as amplitude [%]", "FE fingertip [%]"], rows)
+                  "U as amplitude [%]", "FE fingertip, linear / isotropic [%]"], rows)
 
 
 def aliabbasi_table(studies) -> str:
@@ -595,6 +612,35 @@ def tornado_table(numbers, studies) -> str:
         rows.append([f"`{name}`", *cells])
     return table(["input", "range", "F_el at 200 V: low / high end [%]", "d_field at 0 V [%]",
                   "μ ratio, 200 V as RMS", "μ ratio, as amplitude"], rows)
+
+
+def breakdown_table(numbers, studies) -> str:
+    """The breakdown field E_bd at :data:`BREAKDOWN_FACTORS` times 350 V/µm (draft): the change of F_el at 200 V
+    and the bottom-up μ over the stand-in's at 200 V reported (the central study scaled by the draft change), read
+    as RMS and as amplitude, at each of :data:`DRAFT_LOADS`."""
+    central, runs = studies["central"], studies["breakdown"]
+    base = runs[1.0]
+
+    def force(result):
+        return result.summary("electrostatic_attraction")[0] * result.array("apparent_area")
+
+    rows = []
+    for factor, result in runs.items():
+        change = force(result) / force(base)
+        cells = [" / ".join(f"{100 * (change[i, index(result.voltages, 200.0)] - 1):+.0f}"
+                            for i in range(len(DRAFT_LOADS)))]
+        for reading in READINGS:
+            voltage = reading_voltage(200.0, reading)
+            ratios = []
+            for i, load in enumerate(DRAFT_LOADS):
+                x = numbers["x"][index(central.normal_forces, load), index(central.voltages, voltage)]
+                scaled = x * change[i, index(result.voltages, voltage)]
+                ratios.append(f"{mu(scaled) / (MU0 * (1 + stand_in(load, 200.0))):.2f}")
+            cells.append(" / ".join(ratios))
+        rows.append([f"{factor * AIR_BREAKDOWN_FIELD / 1e6:g}", *cells])
+    loads = " / ".join(f"{load:g}" for load in DRAFT_LOADS)
+    return table(["E_bd [V/µm]", f"F_el at 200 V, {loads} N [%]", f"μ ratio, 200 V as RMS, {loads} N",
+                  "μ ratio, as amplitude"], rows)
 
 
 #: how the tables show each input: scale and unit
@@ -752,7 +798,8 @@ def all_tables(studies) -> dict:
             "readings": readings_table(numbers, studies), "inputs": tornado_table(numbers, studies),
             "feasible": feasible_table(sample, sample_rows(central, studies["inputs"]),
                                        studies["sample"].study.variation.names),
-            "field_gaps": field_gaps_table(numbers, central), "extra_gap": extra_gap_table(central, studies["gaps"])}
+            "field_gaps": field_gaps_table(numbers, central), "extra_gap": extra_gap_table(central, studies["gaps"]),
+            "breakdown": breakdown_table(numbers, studies)}
 
 
 # ---------------------------------------------------------------------------------------------------------

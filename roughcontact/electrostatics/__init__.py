@@ -4,12 +4,14 @@
 importing this package loads neither numba nor an FFT library. :mod:`~roughcontact.electrostatics.field` solves
 the layered stack's field over a gap field (``solve_field``), :mod:`~roughcontact.electrostatics.ac` the same under an
 AC or DC drive with a leaky stratum corneum and, for a :class:`LeakyStack`, a leak across the skin–screen interface
-(``solve_ac_field``), both loaded on first use.
+(``solve_ac_field``), both loaded on first use; :mod:`~roughcontact.electrostatics.contact_line` the models of the
+contact line that give the layered field a finite strength there (``AirBreakdown``, ``RoughnessFilm``).
 """
 from __future__ import annotations
 
 from surfaces.lazy import lazy_attributes
 
+from .contact_line import AIR_BREAKDOWN_FIELD, AirBreakdown, RoughnessFilm
 from .stack import EPSILON_0, DielectricStack, ElectricFields, LeakyStack
 
 # the field model loads the FFT backends: imported on first use
@@ -18,4 +20,5 @@ _LAZY = {"solve_field": "field", "FieldSolution": "field", "StackField": "field"
          "circuit_thickness": "ac"}
 
 __getattr__, __dir__, __all__ = lazy_attributes(__name__, _LAZY, ["EPSILON_0", "DielectricStack", "ElectricFields",
-                                                                    "LeakyStack"])
+                                                                    "LeakyStack", "AIR_BREAKDOWN_FIELD", "AirBreakdown",
+                                                                    "RoughnessFilm"])

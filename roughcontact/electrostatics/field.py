@@ -32,11 +32,18 @@ sinusoid at a 2 µm mean gap by 13 % and the attraction of resolved skin profile
 
 Periodic grids take the slabs' operator on the grid itself; a free window is zero-padded to twice its size per
 free axis, with no flux outside the window (the skin far from the screen there).
+
+A model of the contact line (``contact_line``, :mod:`~roughcontact.electrostatics.contact_line`) gives the line a
+finite strength: :class:`~roughcontact.electrostatics.contact_line.AirBreakdown` caps the air field at the
+breakdown field by the charge a discharge deposits on the insulator (the broken columns an active set, found by
+primal–dual active-set sweeps of the same conjugate gradients),
+:class:`~roughcontact.electrostatics.contact_line.RoughnessFilm` adds a film of air to every column.
 """
 from __future__ import annotations
 
+import math
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, field as dataclass_field
 
 import numpy as np
 from numba import njit
@@ -47,12 +54,15 @@ from surfaces.validation import check_choice, check_finite_array, check_integer,
 from ..fft import make_backend
 from ..io.results import ConvergenceWarning
 from .air import LateralAirField
+from .contact_line import AirBreakdown, RoughnessFilm, check_contact_line
 from .stack import EPSILON_0, DielectricStack, check_voltage
 
 MODELS = ("layered", "parallel_plate")
 #: the models of :func:`solve_field`: also the air's lateral field on fixed gaps (:mod:`.air`)
 FIELD_MODELS = MODELS + ("layered_air",)
 DEFAULT_TOL = 1e-10       # relative residual of the field solve ‖U − (M + R) D‖ / (U √n)
+#: active-set sweeps of an air-breakdown field solve before it is said to stall (a warm start needs 1–3)
+ACTIVE_SET_SWEEPS = 50
 
 
 def _elastance(stack: DielectricStack, q: np.ndarray, model: str) -> np.ndarray:
@@ -90,6 +100,7 @@ class StackField:
         self._window = tuple(slice(0, n) for n in grid.shape)
         self._stencil = _stencil(grid, enabled=self.model == "layered")
         self._work = None
+        self.active_set = None
         self.residual = None
 
     @property
@@ -154,15 +165,24 @@ class StackField:
         iterations, residual = self.conjugate_gradients(column, inverse_diagonal, flux, tol, maxiter)
         return flux, iterations, residual
 
-    def conjugate_gradients(self, column, inverse_diagonal, flux, tol: float, maxiter: int) -> tuple:
-        """CG on (M + R) D₁ = 1 from ``flux`` (improved in place), preconditioned by ``inverse_diagonal`` =
-        1/(M_ii + R_ii); returns (iterations, relative residual), the residual field on ``self.residual``."""
+    def conjugate_gradients(self, column, inverse_diagonal, flux, tol: float, maxiter: int, rhs=None,
+                            known_product: bool = False) -> tuple:
+        """CG on (M + R) D₁ = 1 (or = ``rhs``) from ``flux`` (improved in place), preconditioned by
+        ``inverse_diagonal`` = 1/(M_ii + R_ii); returns (iterations, relative residual ‖ρ₁‖/√n), the residual field
+        ρ₁ on ``self.residual``. ``known_product``: the work array ``self.product`` holds M D₁ already (no FFT pair
+        for the start)."""
         if self._work is None or self._work[0].shape != column.shape:
             self._work = tuple(np.empty(column.shape) for _ in range(4))       # allocated once per grid
         product, residual, z, direction = self._work
-        self.apply_elastance(flux, product)
-        rz, rr = cg_start(flux.reshape(-1), product.reshape(-1), column.reshape(-1), inverse_diagonal.reshape(-1),
-                           residual.reshape(-1), z.reshape(-1), direction.reshape(-1))
+        if not known_product:
+            self.apply_elastance(flux, product)
+        if rhs is None:
+            rz, rr = cg_start(flux.reshape(-1), product.reshape(-1), column.reshape(-1),
+                               inverse_diagonal.reshape(-1), residual.reshape(-1), z.reshape(-1), direction.reshape(-1))
+        else:
+            rz, rr = _cg_start_from(rhs.reshape(-1), flux.reshape(-1), product.reshape(-1), column.reshape(-1),
+                                    inverse_diagonal.reshape(-1), residual.reshape(-1), z.reshape(-1),
+                                    direction.reshape(-1))
         target = (tol * tol) * column.size
         iterations = 0
         while rr > target and iterations < maxiter:
@@ -175,6 +195,76 @@ class StackField:
             iterations += 1
         self.residual = residual
         return iterations, float(np.sqrt(rr / column.size))
+
+    @property
+    def product(self) -> np.ndarray:
+        """The CG's work array of products M p (:meth:`conjugate_gradients`)."""
+        return self._work[0]
+
+    def active_set_solve(self, column, inverse_diagonal, inverse_factor, scale: float, gap, at_contact: bool, flux,
+                         tol: float, maxiter: int) -> tuple:
+        """The flux of the air-breakdown field (:class:`~roughcontact.electrostatics.contact_line.AirBreakdown`) at
+        unit voltage, by primal–dual active-set sweeps from ``flux`` (improved in place).
+
+        A column is broken where its flux D₁ exceeds D₁* = ε0 ε_a f E_bd/|U| (and, unless ``at_contact``, g > 0;
+        ``inverse_factor`` 1/f, ``scale`` E_bd/|U|); a broken column drops E_bd g/|U| whatever its flux, an unbroken
+        one R D₁ (``column`` R, ``inverse_diagonal`` 1/(M_ii + R)). Each sweep solves (M + R_u) D₁ = 1 − drop_b by
+        CG for the present set (R_u: R of the unbroken columns, 0 of the broken; drop_b the broken columns' drops)
+        and takes the set of its solution; the sweeps stop when the set repeats. This is the semismooth Newton
+        method of the convex energy ½⟨D₁ M D₁⟩ + Σ ψ(D₁) − Σ D₁ whose column term ψ is ½ R D₁² below D₁* and
+        continues linearly with slope E_bd g/|U| above it. While no column is broken the sweep is the plain field's
+        solve, on its own arrays; a sweep after the first starts from M D₁ of the last one, rebuilt from its
+        residual (rhs − ρ − R_u D₁: no FFT pair). Returns (CG iterations, sweeps, FFT pairs, relative residual,
+        whether the set repeated, the system solved: None for the plain one, else ``self.active_set``, the reduced
+        columns R_u, the right-hand side, 1/(M_ii + R_u) and the broken mask); the last sweep's residual field stays
+        on ``self.residual``.
+        """
+        if self.active_set is None or self.active_set[0].shape != column.shape:
+            self.active_set = tuple(np.empty(column.shape) for _ in range(3)) + (np.zeros(column.shape, np.bool_),)
+        reduced, rhs, reduced_inverse, broken = (array.reshape(-1) for array in self.active_set)
+        limits = (inverse_factor.reshape(-1), gap.reshape(-1), EPSILON_0 * self.stack.eps_a * scale, at_contact)
+        broken[:] = False
+        system = None if not _broken_changes(flux.reshape(-1), *limits, broken) else self.active_set
+        if system is not None:
+            _active_system_into(column.reshape(-1), flux.reshape(-1), *limits, scale, broken, reduced, rhs,
+                                reduced_inverse, self._diagonal, flux.reshape(-1), flux.reshape(-1), False, False)
+        iterations, pairs, residual = 0, 0, math.inf
+        for sweep in range(1, ACTIVE_SET_SWEEPS + 1):
+            matrix = (column, inverse_diagonal, None) if system is None else (system[0], system[2], system[1])
+            steps, residual = self.conjugate_gradients(matrix[0], matrix[1], flux, tol, max(maxiter - iterations, 0),
+                                                       matrix[2], known_product=sweep > 1)
+            iterations += steps
+            pairs += steps + (sweep == 1)
+            if not _broken_changes(flux.reshape(-1), *limits, broken):
+                return iterations, sweep, pairs, residual, True, system
+            _active_system_into(column.reshape(-1), flux.reshape(-1), *limits, scale, broken, reduced, rhs,
+                                reduced_inverse, self._diagonal, self.residual.reshape(-1), self.product.reshape(-1),
+                                True, system is None)
+            system = self.active_set
+            if iterations >= maxiter:
+                break
+        return iterations, sweep, pairs, residual, False, system
+
+    def solve_breakdown(self, gap, voltage: float, breakdown: AirBreakdown, tol: float = DEFAULT_TOL,
+                        maxiter=None) -> tuple:
+        """The air-breakdown field of ``gap`` [m] at ``voltage`` U [V] (:meth:`active_set_solve`, from the flux of the
+        columns alone): ``(D₁, D₁ − ρ₁, CG iterations, sweeps, relative residual, whether the set repeated)`` with D₁
+        the flux through the solid layers per volt and ρ₁ the deposited charge per volt [C/m²/V]."""
+        gap = check_finite_array("gap", gap, nonnegative=True)
+        if gap.shape != self.grid.shape:
+            raise ValueError(f"gap has shape {gap.shape}, the grid has {self.grid.shape}; they must match")
+        if self.model != "layered":
+            raise ValueError(f"air breakdown needs model = 'layered', got {self.model!r}")
+        maxiter = 10 * gap.size if maxiter is None else check_integer("maxiter", maxiter, low=1)
+        factor = self.slope_factor(gap)
+        column = self.column_elastance(gap, factor)
+        flux = 1.0 / (self._diagonal + column)
+        scale = breakdown.field / abs(voltage)
+        iterations, sweeps, _, residual, settled, _ = self.active_set_solve(
+            column, flux.copy(), 1.0 / factor, scale, gap, breakdown.at_contact, flux, tol, maxiter)
+        threshold = EPSILON_0 * self.stack.eps_a * scale * factor
+        air = np.where((flux > threshold) & (breakdown.at_contact | (gap > 0)), threshold, flux)
+        return flux, air, iterations, sweeps, residual, settled
 
 
 def _stencil(grid: Grid, enabled: bool) -> tuple:
@@ -327,6 +417,90 @@ def cg_start(flux, product, column, inverse_diagonal, residual, z, direction):
 
 
 @njit(cache=True)
+def _cg_start_from(rhs, flux, product, column, inverse_diagonal, residual, z, direction):
+    """:func:`cg_start` for the right-hand side ``rhs``: residual ← rhs − (M D + R D)."""
+    rz, rr = 0.0, 0.0
+    for i in range(flux.size):
+        value = rhs[i] - product[i] - column[i] * flux[i]
+        residual[i] = value
+        z[i] = direction[i] = inverse_diagonal[i] * value
+        rz += value * z[i]
+        rr += value * value
+    return rz, rr
+
+
+@njit(cache=True)
+def _broken_changes(flux, inverse_factor, gap, field_scale, at_contact, broken):
+    """How many columns of ``flux`` changed sides against the set ``broken``, which takes the new sides: a column is
+    broken where D₁ > D₁* = ``field_scale``/(1/f) (field_scale = ε0 ε_a E_bd/|U|; and g > 0 unless
+    ``at_contact``). Reads three arrays: the sweeps' light check."""
+    changes = 0
+    for i in range(flux.size):
+        now = flux[i] * inverse_factor[i] > field_scale and (at_contact or gap[i] > 0.0)
+        if now != broken[i]:
+            changes += 1
+            broken[i] = now
+    return changes
+
+
+@njit(cache=True)
+def _active_system_into(column, flux, inverse_factor, gap, field_scale, at_contact, drop_scale, broken, reduced,
+                        rhs, inverse_diagonal, diagonal, residual, product, rebuild, from_plain):
+    """The system of the set ``broken``: R_u (0 where broken, else ``column`` R), the right-hand side
+    1 − ``drop_scale``·g (1 where unbroken) and 1/(M_ii + R_u). With ``rebuild`` (after a sweep) first ``product`` ←
+    M D₁ = rhs − ``residual`` − R_u D₁ of the sweep's system (``from_plain``: the plain one, rhs 1 and R), the next
+    sweep's start."""
+    for i in range(flux.size):
+        if rebuild:
+            product[i] = (1.0 - residual[i] - column[i] * flux[i] if from_plain
+                          else rhs[i] - residual[i] - reduced[i] * flux[i])
+        if broken[i]:
+            reduced[i] = 0.0
+            rhs[i] = 1.0 - drop_scale * gap[i]
+        else:
+            reduced[i] = column[i]
+            rhs[i] = 1.0
+        inverse_diagonal[i] = 1.0 / (diagonal + reduced[i])
+
+
+@njit(cache=True)
+def _breakdown_outputs_into(gap, flux, inverse_factor, column, inverse_diagonal, field_scale, drop_scale, residual,
+                            rhs, reduced, plain, accepted_charge, at_contact, inverse_permittivity, squared_voltage,
+                            stiffness, flux_out, column_out, air, charge):
+    """The air-breakdown field's pointwise outputs (:class:`FieldLaw`): the air flux D₁ − ρ₁ and the charge ρ₁ (D₁*
+    = ``field_scale``·f, the broken drop ``drop_scale``·g), the stiffness U² (D₁/(ε f))²/(M_ii + R) of the unbroken
+    columns (0 of the broken: their Maxwell stress does not follow the gap; the merit's curvature there,
+    E_bd²/M_ii, is that of the saturating air's energy, which the attraction is not, and taken as the model's
+    curvature it sends the solve round a cycle), the flux and the columns; returns (the energy sum
+    Σ ½ D₁ (M D₁) + ψ(D₁) − D₁ with M D₁ = rhs − ρ − R_u D₁ from the last sweep's residual ρ (``plain``: its
+    system was the plain field's, rhs 1 and R), Σ ρ₁ drop, Σ ρ̄₁ drop for the ``accepted_charge`` ρ̄₁)."""
+    energy, credit, accepted_credit = 0.0, 0.0, 0.0
+    nx, ny = gap.shape
+    for i in range(nx):
+        for j in range(ny):
+            d = flux[i, j]
+            threshold = field_scale / inverse_factor[i, j]
+            drop = drop_scale * gap[i, j]
+            broken = d > threshold and (at_contact or gap[i, j] > 0.0)
+            a = threshold if broken else d
+            rho = d - a
+            if plain:
+                product = 1.0 - residual[i, j] - column[i, j] * d
+            else:
+                product = rhs[i, j] - residual[i, j] - reduced[i, j] * d
+            energy += 0.5 * d * product + drop * rho + 0.5 * column[i, j] * a * a - d
+            credit += rho * drop
+            accepted_credit += accepted_charge[i, j] * drop
+            field = a * inverse_permittivity * inverse_factor[i, j]
+            stiffness[i, j] = 0.0 if broken else squared_voltage * field * field * inverse_diagonal[i, j]
+            flux_out[i, j] = d
+            column_out[i, j] = column[i, j]
+            air[i, j] = a
+            charge[i, j] = rho
+    return energy, credit, accepted_credit
+
+
+@njit(cache=True)
 def cg_curvature(direction, product, column):
     """product ← M p + R p (``product`` holds M p); returns p·(M + R) p."""
     total = 0.0
@@ -361,10 +535,13 @@ def cg_direction(direction, z, beta):
 class FieldSolution:
     """The field of the stack over one gap field at one voltage (``solve_field``). SI units.
 
-    ``flux`` D [C/m²] (through the air column; for ``"layered_air"`` the flux leaving the stratum corneum) and
-    ``attraction`` σ_el [Pa] (N ∂W/∂g) per pixel, shaped like the gap given;
+    ``flux`` D [C/m²] (through the air column; for ``"layered_air"`` the flux leaving the stratum corneum; with
+    air breakdown the flux through the solid layers, the air's being D − ``charge``) and ``attraction`` σ_el [Pa]
+    (N ∂W/∂g; with air breakdown the Maxwell stress, :class:`AirBreakdown`) per pixel, shaped like the gap given;
     ``traction`` −σ_el in the contact solver's convention (positive compressive). ``mean_attraction`` and
-    ``energy`` (W = −½ U ⟨D⟩ [J/m²]) are averages over the window (the apparent area).
+    ``energy`` (W = −½ U ⟨D⟩ [J/m²]) are averages over the window (the apparent area). ``contact_line`` is the
+    model of the contact line solved with, ``charge`` the surface charge ρ [C/m²] that air breakdown deposits on
+    the insulator (None without breakdown).
     """
 
     model: str
@@ -375,6 +552,8 @@ class FieldSolution:
     attraction: np.ndarray
     iterations: int
     residual: float
+    contact_line: object = dataclass_field(default=None, kw_only=True)
+    charge: np.ndarray | None = dataclass_field(default=None, kw_only=True)
 
     @property
     def traction(self) -> np.ndarray:
@@ -394,7 +573,11 @@ class FieldSolution:
 
     @property
     def energy(self) -> float:
-        """W = −½ U ⟨D⟩ [J/m²]: the interaction energy per unit area at fixed voltage (−w of Eq. 22)."""
+        """W = −½ U ⟨D⟩ [J/m²]: the interaction energy per unit area at fixed voltage (−w of Eq. 22). Air breakdown
+        has none (its discharges dissipate): ``ValueError``."""
+        if isinstance(self.contact_line, AirBreakdown):
+            raise ValueError("a field with air breakdown has no interaction energy: the discharges that deposit its "
+                             "charge dissipate (roughcontact.electrostatics.contact_line.AirBreakdown)")
         return float(-0.5 * self.voltage * np.mean(self.flux))
 
     @property
@@ -409,7 +592,8 @@ class FieldSolution:
 
 
 def solve_field(stack: DielectricStack, gap, lengths=None, voltage: float = 1.0, model: str = "layered",
-                periodic=True, tol: float = DEFAULT_TOL, maxiter=None, backend: str = "pyfftw") -> FieldSolution:
+                periodic=True, tol: float = DEFAULT_TOL, maxiter=None, backend: str = "pyfftw",
+                contact_line=None) -> FieldSolution:
     """The field of ``stack`` over the air-gap field ``gap`` [m] at ``voltage`` U [V] (module docstring).
 
     ``gap`` is a 1-D profile or a 2-D field [m] (g ≥ 0), or a :class:`~surfaces.HeightField` (its grid then
@@ -417,7 +601,9 @@ def solve_field(stack: DielectricStack, gap, lengths=None, voltage: float = 1.0,
     ``periodic`` a bool or one per axis (a free axis is zero-padded). ``model`` is ``"layered"`` (the slabs'
     lateral field, air columns: the law inside the contact solve), ``"layered_air"`` (also the air's own lateral
     field, periodic grids only: :mod:`~roughcontact.electrostatics.air`) or ``"parallel_plate"`` (Eq. 21 per
-    pixel). ``tol`` bounds the field solve's relative residual.
+    pixel). ``tol`` bounds the field solve's relative residual. ``contact_line`` is None, a
+    :class:`~roughcontact.electrostatics.contact_line.RoughnessFilm` (any model: the gap seen is g + t) or an
+    :class:`~roughcontact.electrostatics.contact_line.AirBreakdown` (``model="layered"``).
     """
     shape = np.shape(gap.heights if isinstance(gap, HeightField) else gap)
     grid, gap = grid_and_gap(gap, lengths, periodic)
@@ -425,7 +611,17 @@ def solve_field(stack: DielectricStack, gap, lengths=None, voltage: float = 1.0,
     model = check_choice("model", model, FIELD_MODELS)
     tol = check_real("tol", tol, low=0.0, low_open=True)
     maxiter = None if maxiter is None else check_integer("maxiter", maxiter, low=1)
-    if model == "layered_air":
+    contact_line = check_contact_line(contact_line)
+    if isinstance(contact_line, RoughnessFilm):
+        gap = gap + contact_line.thickness
+    charge = None
+    if isinstance(contact_line, AirBreakdown):
+        if model != "layered":
+            raise ValueError(f"air breakdown (contact_line = {contact_line!r}) needs model = 'layered', got "
+                             f"model = {model!r}")
+        flux, attraction, charge, iterations, residual = _breakdown_field(stack, grid, gap, voltage, contact_line,
+                                                                          tol, maxiter, backend)
+    elif model == "layered_air":
         flux, attraction, iterations, residual = LateralAirField(stack, grid, backend=backend).solve_flux(
             gap, voltage, tol, maxiter)
     else:
@@ -436,7 +632,26 @@ def solve_field(stack: DielectricStack, gap, lengths=None, voltage: float = 1.0,
         warnings.warn(f"field solve stopped at relative residual {residual:.3g} > tol = {tol:g} after "
                       f"{iterations} iterations", ConvergenceWarning, stacklevel=2)
     return FieldSolution(model=model, voltage=voltage, stack=stack, grid=grid, flux=flux.reshape(shape),
-                         attraction=attraction.reshape(shape), iterations=iterations, residual=residual)
+                         attraction=attraction.reshape(shape), iterations=iterations, residual=residual,
+                         contact_line=contact_line, charge=None if charge is None else charge.reshape(shape))
+
+
+def _breakdown_field(stack, grid, gap, voltage, breakdown, tol, maxiter, backend) -> tuple:
+    """(D, σ_el, ρ, CG iterations, relative residual) of the air-breakdown field at ``voltage`` (zero at 0 V); a
+    field whose broken set did not settle is reported by its residual (inf)."""
+    if voltage == 0.0:
+        zeros = np.zeros(gap.shape)
+        return zeros, zeros.copy(), zeros.copy(), 0, 0.0
+    field = StackField(stack, grid, backend=backend, threads=1)
+    unit_flux, air, iterations, sweeps, residual, settled = field.solve_breakdown(gap, voltage, breakdown, tol,
+                                                                                  maxiter)
+    if not settled:
+        warnings.warn(f"the air-breakdown field's broken set did not settle in {sweeps} sweeps", ConvergenceWarning,
+                      stacklevel=3)
+    attraction = voltage ** 2 * field.attraction(gap, air)
+    if breakdown.traction == "energy":
+        attraction += breakdown.field * abs(voltage) * (unit_flux - air)
+    return voltage * unit_flux, attraction, voltage * (unit_flux - air), iterations, residual if settled else math.inf
 
 
 def grid_and_gap(gap, lengths, periodic) -> tuple:
@@ -480,13 +695,32 @@ class FieldLaw:
     (and never below the exact minimum), the traction p_int = −σ_el (:meth:`StackField.attraction`) and the
     diagonal stiffness k = ∂p_int/∂g ≈ G_ii (D ∂R_ii/∂g_i)², with G_ii ≈ 1/(M_ii + R_ii) (exact for the
     parallel plate).
+
+    ``contact_line`` (:mod:`~roughcontact.electrostatics.contact_line`): a :class:`RoughnessFilm` evaluates the law
+    at g + t. With :class:`AirBreakdown` the field is the minimiser of the saturating air's convex energy
+    H = ½⟨D M D⟩ + Σ ψ(D) − U⟨D⟩ (:meth:`StackField.active_set_solve`) and the traction its Maxwell stress, which is
+    not the derivative of an energy: ∂H/∂g_i exceeds it by E_bd ρ_i, the work a discharge dissipates per unit
+    opening. The solver's line search then runs on a merit that has the traction as its gradient at the accepted
+    gap, N [H(g) − E_bd ⟨ρ̄ g⟩] + C, with ρ̄ the charge of the accepted gap; the constant C keeps the merit
+    continuous from one accepted gap to the next (it sums the work E_bd g Δρ̄ of the charge deposited at each
+    accepted gap), so that each line search starts where the last one ended. An evaluation is accepted when the
+    solver starts the next from its arrays (``start``): the solver passes the accepted evaluation's columns and
+    flux. Σ V returned is that merit, not an energy. ``traction="energy"`` returns N H itself and its derivative.
     """
 
     def __init__(self, stack: DielectricStack, voltage: float, grid: Grid, tol: float = DEFAULT_TOL,
-                 backend: str = "pyfftw", threads=None):
+                 backend: str = "pyfftw", threads=None, contact_line=None):
         self.field = StackField(stack, grid, model="layered", backend=backend, threads=threads)
         self.voltage, self.tol = float(voltage), tol
+        self.contact_line = check_contact_line(contact_line)
         self._work = tuple(np.zeros(grid.shape) for _ in range(4))   # 1/f, R, 1/(M_ii + R_ii), D₁
+        self._film = np.empty(grid.shape) if isinstance(self.contact_line, RoughnessFilm) else None
+        self._breakdown = None
+        if isinstance(self.contact_line, AirBreakdown) and self.voltage != 0.0:
+            # D₁ − ρ₁, and ρ₁ of the last evaluation and of the accepted one
+            self._breakdown = tuple(np.zeros(grid.shape) for _ in range(3))
+            self._last = None                  # (address of the last evaluation's flux output, its merit, its own)
+            self._offset = 0.0
         self.fft_pairs = 0                     # over all evaluations: one per CG iteration and per start
         self.evaluations = 0
 
@@ -494,15 +728,22 @@ class FieldLaw:
         """traction, stiffness, the unit-voltage flux and the column elastance (grid-shaped) ← the law at
         ``gap``; returns Σ V [J/m² per pixel, summed].
 
-        ``start``: (columns, flux) of a nearby evaluation, whose flux starts the field solve. A solve that misses
-        ``tol`` (or whose residual is not a number) writes the flux it reached and raises
+        ``start``: (columns, flux) of a nearby evaluation, whose flux starts the field solve (with air breakdown:
+        the accepted evaluation's). A solve that misses ``tol`` (or whose residual is not a number; with air
+        breakdown also one whose broken set did not settle) writes the flux it reached and raises
         :class:`FieldSolveStalled` with its Σ V."""
         field, work = self.field, self._work
+        if self._film is not None:
+            gap = np.add(gap, self.contact_line.thickness, out=self._film)
         inverse_permittivity = 1.0 / (EPSILON_0 * field.stack.eps_a)
         start_column, start_flux = (work[1], work[3]) if start is None else start
+        if self._breakdown is not None:
+            self._accept(start)
         _law_start_into(gap, field._stencil, inverse_permittivity, field.pixel_elastance, start is not None,
                         start_column, start_flux, *work)
         inverse_factor, column, inverse_diagonal, unit_flux = work
+        if self._breakdown is not None:
+            return self._evaluate_breakdown(gap, traction, stiffness, flux, columns, start is None)
         iterations, residual = field.conjugate_gradients(column, inverse_diagonal, unit_flux, self.tol,
                                                          10 * unit_flux.size)
         self.fft_pairs += iterations + 1
@@ -517,3 +758,49 @@ class FieldLaw:
             raise FieldSolveStalled(f"the layered field's solve stalled at relative residual {residual:.3g} "
                                     f"(tol {self.tol:g}) after {iterations} iterations", energy)
         return energy
+
+    def _accept(self, start):
+        """Air breakdown: where ``start`` holds the last evaluation's flux, the solver accepted that evaluation: its
+        charge becomes the accepted one and the merit's constant keeps the merit continuous there."""
+        if start is None or self._last is None or start[1].ctypes.data != self._last[0]:
+            return
+        air, charge, accepted = self._breakdown
+        self._breakdown = (air, accepted, charge)
+        self._offset = self._last[1] - self._last[2]
+
+    def _evaluate_breakdown(self, gap, traction, stiffness, flux, columns, cold: bool) -> float:
+        """:meth:`evaluate` with air breakdown from the start that ``work`` holds (class docstring)."""
+        field, breakdown = self.field, self.contact_line
+        inverse_factor, column, inverse_diagonal, unit_flux = self._work
+        air, charge, accepted = self._breakdown
+        inverse_permittivity = 1.0 / (EPSILON_0 * field.stack.eps_a)
+        scale = breakdown.field / abs(self.voltage)
+        iterations, sweeps, pairs, residual, settled, system = field.active_set_solve(
+            column, inverse_diagonal, inverse_factor, scale, gap, breakdown.at_contact, unit_flux, self.tol,
+            10 * unit_flux.size)
+        self.fft_pairs += pairs
+        self.evaluations += 1
+        squared_voltage = self.voltage ** 2
+        reduced, rhs = field.active_set[:2]
+        energy, credit, accepted_credit = _breakdown_outputs_into(
+            gap, unit_flux, inverse_factor, column, inverse_diagonal, scale / inverse_permittivity, scale,
+            field.residual, rhs, reduced, system is None, accepted, breakdown.at_contact, inverse_permittivity,
+            squared_voltage, stiffness, flux, columns, air, charge)
+        _attraction_into(gap, air, inverse_factor, field._stencil, -0.5 * squared_voltage * inverse_permittivity,
+                         squared_voltage * inverse_permittivity / 3.0, traction)
+        if breakdown.traction == "energy":
+            traction -= squared_voltage * scale * charge
+            merit = own = squared_voltage * energy
+        else:
+            own = squared_voltage * (energy - credit)
+            if cold:
+                accepted[...] = charge
+                self._offset, merit = 0.0, own
+            else:
+                merit = squared_voltage * (energy - accepted_credit) + self._offset
+        self._last = (flux.ctypes.data, merit, own)
+        if not (residual <= self.tol and settled):
+            raise FieldSolveStalled(f"the air-breakdown field's solve stalled at relative residual {residual:.3g} "
+                                    f"(tol {self.tol:g}) after {iterations} iterations and {sweeps} active-set "
+                                    f"sweeps" + ("" if settled else " (the broken set did not settle)"), merit)
+        return merit

@@ -24,7 +24,7 @@ from __future__ import annotations
 import itertools
 import math
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, field as dataclass_field
 
 import numpy as np
 
@@ -37,6 +37,8 @@ from ..electrostatics.stack import EPSILON_0, DielectricStack, check_voltage
 
 #: Gaps up to this fraction of the air-equivalent offset eps_a c are contact (merged air rows).
 CONTACT_GAP = 1e-9
+#: Active-set sweeps of the deposited charge (air breakdown) before the solve is reported as not converged.
+BREAKDOWN_SWEEPS = 60
 
 
 @dataclass(frozen=True)
@@ -67,12 +69,14 @@ class ProfileFieldSolution(PatchFieldSolution):
     (``attraction`` per column over its tributary width, ``energy`` E [J/m]), and ``x`` the column positions
     [m]. ``maxwell_attraction`` [Pa] is the independent air-side Maxwell traction on the skin per interval between
     columns (the field of the air triangle under it; the zero-area ones at contact take their limiting field),
-    ``mean_maxwell_attraction`` its mean; it converges to σ̄ with the mesh.
+    ``mean_maxwell_attraction`` its mean; it converges to σ̄ with the mesh. ``charge`` [C/m²] is the charge air
+    breakdown deposits on the insulator per column (None without breakdown).
     """
 
     x: np.ndarray
     maxwell_attraction: np.ndarray
     mean_maxwell_attraction: float
+    charge: np.ndarray | None = dataclass_field(default=None, kw_only=True)
 
 
 @dataclass(frozen=True)
@@ -111,14 +115,19 @@ def _stratum_corneum_rows(d_sc: float, first: float, count: int) -> np.ndarray:
 
 
 def _build_mesh(stack: DielectricStack, gap, spacing, periodic, insulator_rows, air_rows, sc_rows,
-                sc_first) -> _Mesh:
-    """The mesh over the lateral gap array ``gap`` (1-D or 2-D) at ``spacing`` [m] per axis. Every lateral
-    cell × row is cut into dim! simplices along the paths of Kuhn's triangulation (one per order of the unit
-    steps), so that every simplex has exactly one vertical edge; in 2-D these are the two triangles of a quad."""
+                sc_first, nodes=None, insulator_first=None) -> _Mesh:
+    """The mesh over the lateral gap array ``gap`` (1-D or 2-D) at ``spacing`` [m] per axis, or at the lateral node
+    coordinates ``nodes`` (one array per axis, the periodic image included); the insulator's rows uniform, or
+    geometric from ``insulator_first`` [m] at its face down to the electrode. Every lateral cell × row is cut into
+    dim! simplices along the paths of Kuhn's triangulation (one per order of the unit steps), so that every
+    simplex has exactly one vertical edge; in 2-D these are the two triangles of a quad."""
     node_shape = tuple(n + 1 if periodic else n for n in gap.shape)
     g = np.pad(gap, [(0, 1)] * gap.ndim, mode="wrap") if periodic else gap
-    lateral = np.meshgrid(*[np.arange(m) * h for m, h in zip(node_shape, spacing)], indexing="ij")
-    insulator = np.linspace(-stack.d_i, 0.0, insulator_rows + 1)
+    if nodes is None:
+        nodes = [np.arange(m) * h for m, h in zip(node_shape, spacing)]
+    lateral = np.meshgrid(*nodes, indexing="ij")
+    insulator = np.linspace(-stack.d_i, 0.0, insulator_rows + 1) if insulator_first is None else \
+        -_stratum_corneum_rows(stack.d_i, insulator_first, insulator_rows)[::-1]
     air = np.linspace(0.0, 1.0, air_rows + 1)[1:]
     sc = _stratum_corneum_rows(stack.d_sc, sc_first, sc_rows)[1:]
     rows = insulator_rows + air_rows + sc_rows + 1
@@ -268,6 +277,7 @@ class _Solved:
     converged: bool
     iterations: int
     residual: float
+    charge: np.ndarray | None = None
 
 
 def _check_options(rows: dict, solver, sc_first, spacing):
@@ -277,9 +287,49 @@ def _check_options(rows: dict, solver, sc_first, spacing):
     return check_positive("sc_first", min(spacing) if sc_first is None else sc_first)
 
 
+def _deposited_charge(matrix, rhs, insulator, insulator_fixed, bottom, top, limit, candidate) -> tuple:
+    """Air breakdown on the merged system ``matrix`` u = ``rhs`` + P q: a discharge in column j moves the charge
+    q_j ≥ 0 [C/m] from the stratum corneum's face (its unknown ``top``[j]) to the insulator's (``bottom``[j]); the
+    two coincide at contact. The air's flux into the insulator's face is F_j = (K_ins u)_j − q_j (``insulator``
+    the merged stiffness of the insulator, ``insulator_fixed`` its Dirichlet part), at most ``limit`` (ε0 ε_a E_bd
+    times the column's width), and q_j = 0 wherever F_j stays below (complementarity); only the ``candidate``
+    columns may break down. Active sets: the broken columns' charges are unknowns beside u with F_j = limit_j as
+    their equations, sparse LU solves, and the set is updated (q < 0 leaves it, F above the limit joins it) until
+    it repeats. Returns (solution, charge per column, sweeps, the last system's relative residual; inf if the set
+    did not repeat)."""
+    from scipy import sparse
+    from scipy.sparse.linalg import splu
+
+    count = bottom.size
+    columns = np.arange(count)
+    transfer = sparse.csr_matrix((np.concatenate([np.ones(count), -np.ones(count)]),
+                                  (np.concatenate([bottom, top]), np.concatenate([columns, columns]))),
+                                 shape=(matrix.shape[0], count))
+    lateral = insulator[bottom]                                   # rows of K_ins at the insulator's face
+    active, charge = np.zeros(count, np.bool_), np.zeros(count)
+    for sweep in range(1, BREAKDOWN_SWEEPS + 1):
+        broken = np.flatnonzero(active)
+        system = sparse.bmat([[matrix, -transfer[:, broken]],
+                              [lateral[broken], -sparse.identity(broken.size)]], format="csc")
+        right = np.concatenate([rhs, limit[broken] - insulator_fixed[bottom][broken]])
+        solution = splu(system, permc_spec="MMD_AT_PLUS_A").solve(right)
+        residual = float(np.linalg.norm(right - system @ solution) / np.linalg.norm(right))
+        charge[:] = 0.0
+        charge[broken] = solution[matrix.shape[0]:]
+        potential = solution[:matrix.shape[0]]
+        inflow = lateral @ potential + insulator_fixed[bottom] - charge
+        now = np.where(active, charge > 0, inflow > limit) & candidate
+        if np.array_equal(now, active):
+            return potential, charge, sweep, residual
+        active = now
+    return potential, charge, sweep, math.inf
+
+
 def _solve_stack(stack, gap, spacing, periodic, voltage, rows: dict, sc_first, solver, tol, maxiter,
-                 caller) -> _Solved:
-    """Mesh, assemble (scikit-fem), solve and differentiate (module docstring) over the gap array ``gap``."""
+                 caller, nodes=None, breakdown=None, widths=None, insulator_first=None) -> _Solved:
+    """Mesh, assemble (scikit-fem), solve and differentiate (module docstring) over the gap array ``gap``; with
+    ``breakdown`` (an :class:`~roughcontact.electrostatics.contact_line.AirBreakdown`, direct solver) the charge on
+    the insulator's surface nodes of :func:`_deposited_charge`, the columns' ``widths`` [m] setting their limits."""
     from scipy import sparse
     from skfem import Basis, BilinearForm, ElementTetP1, ElementTriP1, MeshTet, MeshTri, asm
     from skfem.helpers import dot, grad
@@ -289,7 +339,7 @@ def _solve_stack(stack, gap, spacing, periodic, voltage, rows: dict, sc_first, s
     collapsed = gap <= CONTACT_GAP * stack.eps_a * stack.dielectric_offset
     gap = np.where(collapsed, 0.0, gap)
     mesh = _build_mesh(stack, gap, spacing, periodic, rows["insulator_rows"], rows["air_rows"], rows["sc_rows"],
-                       sc_first)
+                       sc_first, nodes, insulator_first)
     determinant, grads = _gradients(mesh.points, mesh.simplices)
     degenerate = determinant == 0
     kept = ~degenerate
@@ -308,8 +358,31 @@ def _solve_stack(stack, gap, spacing, periodic, voltage, rows: dict, sc_first, s
                               shape=(index.size, unknowns))
     fixed = np.where(index == -2, voltage, 0.0)
     matrix = (merge.T @ stiffness @ merge).tocsr()
-    solution, converged, iterations, residual = _solve(matrix, -merge.T @ (stiffness @ fixed), solver, tol,
-                                                       maxiter)
+    charge, sources = None, 0.0
+    if breakdown is None:
+        solution, converged, iterations, residual = _solve(matrix, -merge.T @ (stiffness @ fixed), solver, tol,
+                                                           maxiter)
+    else:
+        in_insulator = mesh.simplices[0, kept] % mesh.rows < rows["insulator_rows"]
+        insulator = asm(laplace, basis, eps=np.where(in_insulator[:, None], permittivity, 0.0)).tocsr()
+        row = np.arange(index.size) % mesh.rows
+        faces = []
+        for face in (rows["insulator_rows"], rows["insulator_rows"] + rows["air_rows"]):
+            nodes = np.flatnonzero(row == face)
+            unknown = np.zeros(mesh.columns, int)
+            unknown[mesh.column[nodes]] = index[nodes]
+            faces.append(unknown)
+        solution, charge, iterations, residual = _deposited_charge(
+            matrix, -merge.T @ (stiffness @ fixed), (merge.T @ insulator @ merge).tocsr(),
+            merge.T @ (insulator @ fixed),
+            *faces, EPSILON_0 * stack.eps_a * breakdown.field * widths, breakdown.at_contact | ~collapsed.ravel())
+        converged = residual <= tol
+        # the charges as nodal sources of the unmerged mesh: +q on the insulator's face, −q on the stratum corneum's
+        sources = np.zeros(index.size)
+        for face, sign in ((rows["insulator_rows"], 1.0), (rows["insulator_rows"] + rows["air_rows"], -1.0)):
+            nodes = np.flatnonzero(row == face)
+            first = nodes[np.unique(mesh.column[nodes], return_index=True)[1]]       # one node per column
+            sources[first] = sign * charge[mesh.column[first]]
     if not converged:
         warnings.warn(f"{caller}: relative residual {residual:.2e} > tol = {tol:g} after {iterations} "
                       "iterations", ConvergenceWarning, stacklevel=3)
@@ -325,11 +398,11 @@ def _solve_stack(stack, gap, spacing, periodic, voltage, rows: dict, sc_first, s
                                              - 2 * field[:, -1:] * np.einsum("eij,ej->ei", g_kept, field))
     derivative = np.bincount(mesh.column[simplices.T].ravel(), (per_vertex * mesh.velocity[simplices.T]).ravel(),
                              mesh.columns)
-    opening, degenerate_gradient = _opening_derivative(mesh, degenerate, potential, stiffness @ potential)
+    opening, degenerate_gradient = _opening_derivative(mesh, degenerate, potential, stiffness @ potential - sources)
     gradient = np.zeros((mesh.simplices.shape[1], mesh.points.shape[0]))
     gradient[kept], gradient[degenerate] = field, degenerate_gradient
     return _Solved(mesh, energy, derivative + opening, gradient, int(kept.sum()), int(unknowns), bool(converged),
-                   int(iterations), residual)
+                   int(iterations), residual, charge)
 
 
 def _tributary(count: int, spacing: float, periodic: bool) -> np.ndarray:
@@ -342,37 +415,114 @@ def _tributary(count: int, spacing: float, periodic: bool) -> np.ndarray:
 
 def field_solve_profile(stack: DielectricStack, gap, length: float, voltage: float, periodic: bool = True,
                         insulator_rows: int = 4, air_rows: int = 4, sc_rows: int = 24, sc_first=None,
-                        solver: str = "direct", tol: float = 1e-9,
-                        maxiter: int = 500) -> ProfileFieldSolution:
+                        solver: str = "direct", tol: float = 1e-9, maxiter: int = 500, positions=None,
+                        insulator_first=None, breakdown=None) -> ProfileFieldSolution:
     """Solve the stack's field over the gap profile ``gap`` [m] (1-D, >= 0) on a window ``length`` [m].
 
     ``gap`` holds the air gap at equally spaced columns (spacing length/n when ``periodic``, the window's ends
-    included otherwise), linear in between; ``voltage`` U [V]. Rows per layer: ``insulator_rows``, ``air_rows``
-    (uniform), ``sc_rows`` (geometric from ``sc_first`` [m], default the column spacing). ``tol``: relative
-    residual of the linear solve, by ``solver`` ``"direct"`` (sparse LU) or ``"amg"`` (CG + pyamg, at most
-    ``maxiter`` iterations); ``ConvergenceWarning`` and ``converged=False`` if it is not met.
+    included otherwise), linear in between, or at the column ``positions`` [m] given (increasing; in [0, length)
+    when ``periodic``, from 0 to ``length`` otherwise): a mesh graded towards a contact line keeps its cells
+    unsheared where the gap rises steeply (:func:`graded_positions`). ``voltage`` U [V]. Rows per layer:
+    ``insulator_rows`` (uniform, or geometric from ``insulator_first`` [m] at its face: the field of a contact line
+    concentrates there), ``air_rows`` (uniform), ``sc_rows`` (geometric from ``sc_first`` [m], default the
+    smallest column spacing). ``tol``: relative residual of the linear solve, by ``solver`` ``"direct"`` (sparse
+    LU) or ``"amg"`` (CG + pyamg, at most ``maxiter`` iterations); ``ConvergenceWarning`` and ``converged=False``
+    if it is not met.
+
+    ``breakdown`` (an :class:`~roughcontact.electrostatics.contact_line.AirBreakdown`, direct solver) deposits
+    charge on the insulator's surface nodes wherever the air's flux into a node would exceed ε0 ε_a E_bd per unit
+    width of the node's column (contact columns too when ``breakdown.at_contact``): the same condition as the
+    layered field's columns on the normal field of the air at the insulator, found by active sets. The attraction
+    is the virtual work of the rigid shift at fixed charge (the charge sits on the insulator, which does not move);
+    ``charge`` holds it per column [C/m²].
     """
     gap = check_finite_array("gap", gap, nonnegative=True)
     if gap.ndim != 1 or gap.size < 2:
         raise ValueError(f"gap must be a 1-D profile of at least 2 values; got shape {gap.shape}")
     length = check_positive("length", length)
     voltage = check_voltage(voltage)
-    spacing = length / (gap.size if periodic else gap.size - 1)
+    nodes = _profile_nodes(gap.size, length, periodic, positions)
+    widths = _widths(nodes, periodic)
     rows = dict(insulator_rows=insulator_rows, air_rows=air_rows, sc_rows=sc_rows)
-    sc_first = _check_options(rows, solver, sc_first, (spacing,))
-    solved = _solve_stack(stack, gap, (spacing,), periodic, voltage, rows, sc_first, solver, tol, maxiter,
-                          "field_solve_profile")
+    sc_first = _check_options(rows, solver, sc_first, (float(np.min(np.diff(nodes))),))
+    if breakdown is not None and solver != "direct":
+        raise ValueError(f"air breakdown needs solver = 'direct', got solver = {solver!r}")
+    # the attraction is even in U: a broken field solved at |U|
+    solved = _solve_stack(stack, gap, None, periodic, abs(voltage) if breakdown else voltage, rows, sc_first,
+                          solver, tol, maxiter, "field_solve_profile", (nodes,), breakdown, widths,
+                          None if insulator_first is None else check_positive("insulator_first", insulator_first))
     mesh = solved.mesh
     maxwell = _maxwell_attraction(mesh, solved.gradient, stack.eps_a)
     return ProfileFieldSolution(
-        mean_attraction=-float(solved.derivative.sum()) / length,
-        attraction=-solved.derivative / _tributary(gap.size, spacing, periodic),
-        x=mesh.points[0, ::mesh.rows][:gap.size], gap=gap.copy(),
+        mean_attraction=-float(solved.derivative.sum()) / length, attraction=-solved.derivative / widths,
+        x=nodes[:gap.size], gap=gap.copy(),
         energy=solved.energy, nodes=int(mesh.points.shape[1]), elements=solved.elements, unknowns=solved.unknowns,
         converged=solved.converged, iterations=solved.iterations, residual=solved.residual,
-        maxwell_attraction=maxwell, mean_maxwell_attraction=float(maxwell.sum() * spacing / length))
+        maxwell_attraction=maxwell, mean_maxwell_attraction=float(maxwell @ np.diff(nodes)) / length,
+        charge=None if solved.charge is None else solved.charge / widths)
 
 
+def _profile_nodes(count: int, length: float, periodic: bool, positions) -> np.ndarray:
+    """The lateral node coordinates [m] of a profile's ``count`` columns (the periodic image of the first at the
+    end when ``periodic``): equally spaced, or ``positions`` checked."""
+    if positions is None:
+        spacing = length / (count if periodic else count - 1)
+        return np.arange(count + 1 if periodic else count) * spacing
+    positions = check_finite_array("positions", positions)
+    if positions.shape != (count,) or np.any(np.diff(positions) <= 0):
+        raise ValueError(f"positions must be {count} increasing column positions (one per gap value); got shape "
+                         f"{positions.shape}")
+    if periodic and (positions[0] < 0 or positions[-1] >= length):
+        raise ValueError(f"positions must lie in [0, length) on a periodic window; got {positions[0]!r} … "
+                         f"{positions[-1]!r} for length = {length!r}")
+    if not periodic and (positions[0] != 0 or positions[-1] != length):
+        raise ValueError(f"positions of a free window must run from 0 to length = {length!r}; got "
+                         f"{positions[0]!r} … {positions[-1]!r}")
+    return np.append(positions, positions[0] + length) if periodic else positions
+
+
+def _widths(nodes: np.ndarray, periodic: bool) -> np.ndarray:
+    """Each column's share of the axis [m] (half the distance between its neighbours; the ends of a free window
+    half their interval)."""
+    intervals = np.diff(nodes)
+    if periodic:
+        return 0.5 * (intervals + np.roll(intervals, 1))
+    return 0.5 * (np.append(intervals, 0.0) + np.append(0.0, intervals))
+
+
+def graded_positions(length: float, edges, finest: float, coarsest: float, ratio: float = 1.15) -> np.ndarray:
+    """Column positions [m] on a periodic window of ``length`` [m] graded towards the contact lines at ``edges``
+    [m]: the spacing is ``finest`` at a line and grows by ``ratio`` per column away from it up to ``coarsest``, the
+    columns nearest a line ``finest``/2 from it on either side. Near a crack-like edge (g ∝ √s) the relative rise of
+    the gap across a column, Δx g'/g = Δx/(2s), then stays about (ratio − 1)/2 down to ``finest``."""
+    length = check_positive("length", length)
+    finest, coarsest = check_positive("finest", finest), check_positive("coarsest", coarsest)
+    ratio = check_real("ratio", ratio, low=1.0, low_open=True)
+    if coarsest < finest:
+        raise ValueError(f"coarsest = {coarsest!r} m must be at least finest = {finest!r} m")
+    edges = np.mod(np.atleast_1d(np.asarray(edges, dtype=float)), length)
+    steps = [finest]
+    while steps[-1] < coarsest:
+        steps.append(min(steps[-1] * ratio, coarsest))
+    offsets = 0.5 * finest + np.concatenate([[0.0], np.cumsum(steps[1:])])     # distances from a line
+    zone = offsets[-1]
+
+    def distance(x):                                               # to the nearest line, periodically
+        gaps = np.abs(np.subtract.outer(x, edges)) % length
+        return np.min(np.minimum(gaps, length - gaps), axis=-1)
+
+    uniform = np.arange(0.0, length, coarsest)
+    points = [uniform[distance(uniform) > zone + 0.5 * coarsest]]
+    points += [edge + sign * offsets for edge in edges for sign in (-1.0, 1.0)]
+    points = np.unique(np.mod(np.concatenate(points), length))
+    spacing = np.minimum(coarsest, np.maximum(finest, (ratio - 1.0) * distance(points) + 0.5 * finest))
+    keep = [0]
+    for index in range(1, points.size):                             # drop a column crowding the last one kept
+        if points[index] - points[keep[-1]] >= 0.5 * min(spacing[index], spacing[keep[-1]]):
+            keep.append(index)
+    if points[keep[0]] + length - points[keep[-1]] < 0.5 * min(spacing[keep[0]], spacing[keep[-1]]):
+        keep.pop()
+    return points[keep]
 def field_solve_patch(stack: DielectricStack, gap, lengths, voltage: float, periodic: bool = True,
                       insulator_rows: int = 4, air_rows: int = 4, sc_rows: int = 24, sc_first=None,
                       solver: str = "amg", tol: float = 1e-9, maxiter: int = 500) -> PatchFieldSolution:

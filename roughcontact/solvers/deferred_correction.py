@@ -105,7 +105,7 @@ class _Correction:
         else:
             self.permittivity = surrogate_permittivity(stack, self.rest_thickness, law.frequency)
             self.surrogate = ElectrostaticInteraction(dataclasses.replace(stack, eps_sc=self.permittivity),
-                                                      law.voltage)
+                                                      law.voltage, contact_line=None)
 
     def _leak_surrogate(self, law: ElectrostaticInteraction, grid, gap) -> tuple:
         """(ε_eff, S) across a leaking interface: the dielectric layered law with the gap's medium (σ_g) folded into
@@ -119,7 +119,7 @@ class _Correction:
         self.residual = max(self.residual, residual)
         drive = float(np.mean(self.drive.attraction_phasors(gap, self.flux)[0]))          # ⟨σ̄⟩/U² [Pa/V²]
         if drive <= 0.0:
-            return 0.0, ElectrostaticInteraction(stack, 0.0)
+            return 0.0, ElectrostaticInteraction(stack, 0.0, contact_line=None)
         kept = abs(1.0 / (1.0 + medium_ratio(stack, frequency)))                           # |t_m|
         insulator = stack.d_i / stack.eps_i
         rest = (self.rest_thickness - insulator) * kept + insulator
@@ -132,7 +132,7 @@ class _Correction:
         self.matching_pairs, self.residual = iterations + 1, max(self.residual, residual)
         surrogate = float(np.mean(field.attraction(gap, flux)))                              # per V² at U √|t_m| = 1
         voltage = abs(law.voltage) * math.sqrt(drive / surrogate)
-        return permittivity, ElectrostaticInteraction(surrogate_stack, voltage)
+        return permittivity, ElectrostaticInteraction(surrogate_stack, voltage, contact_line=None)
 
     def __call__(self, result) -> tuple:
         """(t(g), c(g)) [Pa] at the gap of the surrogate solve ``result``: c = t − t_S with t_S the traction that

@@ -19,7 +19,8 @@ Method: projected non-linear conjugate gradients (Polak–Ribière⁺) on the fr
 preconditioned by the compliance K (the inverse of the elastic Hessian; its q = 0 mode given the largest
 compliance), with a projected Armijo line search on Π started from the step that minimises the local
 quadratic model (curvature ⟨d, K⁻¹ d⟩ − ⟨k d²⟩). No point whose gap can be stable closes by more than 2 (g + law
-length) in one step (no tunnelling through an energy barrier into contact), nor opens by more than that in the
+length) in one step (no tunnelling through an energy barrier into contact; a saturated point of the layered law,
+a broken column of air breakdown, has none to tunnel through), nor opens by more than that in the
 first step along a concave direction (a body pulled off as a whole has no elastic curvature to limit it). Each
 step costs one FFT pair for z = K r and one for K⁻¹ d, plus one where the projection clipped the step; the
 pointwise work is in fused numba passes (a law's kernel compiled into them,
@@ -236,32 +237,36 @@ def _fluctuation_into(g, h_f, out):
 
 
 @njit(cache=True)
-def _closing_limit(g, d, stiffness, inside, length, pixel_compliance, approach):
+def _closing_limit(g, d, stiffness, inside, length, pixel_compliance, approach, saturation):
     """The step τ by which a stable approaching point of the window (k K_ii < 1) closes by ``approach`` (g + ρ);
-    inf for any other point."""
-    if d < 0 and inside and stiffness * pixel_compliance < 1.0:
+    inf for any other point. With ``saturation`` a point of zero stiffness is saturated (the layered law's broken
+    column of air breakdown: its attraction stays the broken stress all the way into contact, so there is no
+    barrier to tunnel through) and not capped either."""
+    if d < 0 and inside and stiffness * pixel_compliance < 1.0 and not (saturation and stiffness == 0.0):
         return approach * (g + length) / -d
     return np.inf
 
 
 @njit(cache=True)
-def _curvature_and_cap(g, d, w, stiffness, window, length, pixel_compliance, approach):
+def _curvature_and_cap(g, d, w, stiffness, window, length, pixel_compliance, approach, saturation):
     """Σ d K⁻¹d, Σ k d², and the largest step τ by which no stable approaching point closes by more than
     ``approach`` (g + ρ) (inf if none)."""
     dw, kdd, cap = 0.0, 0.0, np.inf
     for i in range(d.size):
         dw += d[i] * w[i]
         kdd += stiffness[i] * d[i] * d[i]
-        cap = min(cap, _closing_limit(g[i], d[i], stiffness[i], window[i], length, pixel_compliance, approach))
+        cap = min(cap, _closing_limit(g[i], d[i], stiffness[i], window[i], length, pixel_compliance, approach,
+                                      saturation))
     return dw, kdd, cap
 
 
 @njit(cache=True)
-def _cap(g, d, stiffness, window, length, pixel_compliance, approach):
+def _cap(g, d, stiffness, window, length, pixel_compliance, approach, saturation):
     """The cap of :func:`_curvature_and_cap` alone."""
     cap = np.inf
     for i in range(d.size):
-        cap = min(cap, _closing_limit(g[i], d[i], stiffness[i], window[i], length, pixel_compliance, approach))
+        cap = min(cap, _closing_limit(g[i], d[i], stiffness[i], window[i], length, pixel_compliance, approach,
+                                      saturation))
     return cap
 
 
@@ -594,9 +599,11 @@ class _Solver:
         self.window_view = tuple(slice(0, m) for m in grid.shape)  # the grid in the corner of the operator's fields
         # the layered law, evaluated by field solves on the window; it also carries its unit-voltage flux and
         # column elastance per point (zero outside the window)
-        self.field = FieldLaw(law.stack, law.voltage, grid, tol=FIELD_TOL_CEILING) \
+        self.field = FieldLaw(law.stack, law.voltage, grid, tol=FIELD_TOL_CEILING, contact_line=law.contact_line) \
             if isinstance(law, ElectrostaticInteraction) and not law.local else None
         arrays = 2 if self.field is None else 4
+        # the layered law's stiffness is positive wherever its column is unbroken: zero marks a saturated point
+        self.saturation = self.field is not None
         self.law_now = [np.zeros(n, dtype) for _ in range(arrays)]     # p_int, k at g (and D₁, R)
         self.law_trial = [np.zeros(n, dtype) for _ in range(arrays)]   # the same at the trial gap
         self.pixel_compliance = operator.pixel_compliance
@@ -780,7 +787,8 @@ class _Solver:
         stiffness, length = self.law_now[1], float(self.law.length)
         rejected = math.inf                                 # the snap-in try's length, if Armijo rejected it
         if self.snapping:
-            first = min(2 * tau, _cap(g, d, stiffness, self.window, length, self.pixel_compliance, self.approach))
+            first = min(2 * tau, _cap(g, d, stiffness, self.window, length, self.pixel_compliance, self.approach,
+                                      self.saturation))
             trial = self.trial_step(first, None, pel, value, magnitude, since_exact)
             if trial is not None:                           # concave along the step taken: the next one snaps too
                 curvature, total = _step_curvature(g, self.trial, pel, trial[0], stiffness)
@@ -794,7 +802,7 @@ class _Solver:
         w = operator.stiffness_into(self.work, self.w_field).reshape(-1)        # K⁻¹ d_f
         self.transforms += 2
         dw, kdd, cap = _curvature_and_cap(g, d, w, stiffness, self.window, length, self.pixel_compliance,
-                                          self.approach)
+                                          self.approach, self.saturation)
         curvature = self.curvature((dw - kdd) / n, d_mean)
         concave = curvature <= 0
         if not concave:

@@ -8,16 +8,17 @@ thread, CPU seconds):
 
 * a contact solve costs :func:`operator_applications` K(T, U) applications of the skin's Green operator (an FFT
   pair and its multiplier) on the transform grid of T pixels (the patch's; a free grid's is four times it),
-  K = (400 + 2000 U/100 V) (T/512²)^½: the FFT pairs of a solve (the contact solver's and the field's; 190 /
-  700 / 1590-2120 per solve at 512², 0 / 100 / 200 V, growing as about T^½ from 256²) times the cost of a pair
-  inside a solve over one timed alone (1.5-2.9). Against the calibration's mean cost per solve it is within
-  30 % at 256²–512² but for the 0 V solves (up to 2.3x: a hard-wall solve after a load step of 4x took 392
-  pairs where one after a step of 2x took 121); below 256² it underestimates (fixed costs per iteration), where
-  a task takes seconds anyway; another tolerance changes the pair count.
+  K = (400 + 600 U/100 V) (T/512²)^¼: the FFT pairs of a solve (the contact solver's and the field's, the
+  layered law with air breakdown at its contact lines, the default; 100-115 / 300-350 / 515-590 per solve at
+  512², 0 / 100 / 200 V, growing little from 256²) times the cost of a pair inside a solve over one timed alone
+  (2.4-4.3). Against the calibration's mean cost per solve it is within 25 % at 256²–512² but for the 0 V
+  solves (0.4-2x) and the free 256² window at 200 V (+47 %); below 256² it underestimates (fixed costs per
+  iteration), where a task takes seconds anyway; another tolerance changes the pair count. (The plain layered
+  law, ``contact_line = "none"``, took 3-4 times the pairs at 200 V: 1590-2120 per solve at 512².)
 * one application is timed on the patch's own grid before the run (:func:`operator_seconds`: best of three,
   a fraction of a second at 1536 x 1152 pixels, where FFTW also plans the transforms the workers reuse).
-* memory per worker (:func:`worker_memory`): the peak traced memory of a task, 12 float64 arrays of the patch
-  at 0 V and 47 with the attraction on a periodic grid, 24 and 117 on a free one, plus 0.2 GB for the
+* memory per worker (:func:`worker_memory`): the peak traced memory of a task, 31 float64 arrays of the patch
+  at 0 V and 51 with the attraction on a periodic grid, 24 and 124 on a free one, plus 0.2 GB for the
   interpreter and its libraries (a worker's resident size after its first task on a 32² patch: 0.18 GB).
 
 Checked on a 384 x 288 scan mirrored to 768 x 576 pixels, 0.5 and 2 N at 0 and 200 V, one process (``roughcontact
@@ -41,11 +42,11 @@ from ..solvers import polonsky_keer, projected_cg_gap
 from .apparent import ring_count
 
 #: Green-operator applications per solve at 512² pixels, at 0 V and per 100 V (the model above).
-APPLICATIONS_0V, APPLICATIONS_PER_100V = 400.0, 2000.0
+APPLICATIONS_0V, APPLICATIONS_PER_100V = 400.0, 600.0
 #: The transform grid of the calibration's largest patch, and the growth of the applications with it.
-CALIBRATION_PIXELS, APPLICATIONS_EXPONENT = 512 ** 2, 0.5
+CALIBRATION_PIXELS, APPLICATIONS_EXPONENT = 512 ** 2, 0.25
 #: Peak float64 arrays of the patch per task: (hard wall, with the attraction), periodic and free grid.
-PATCH_ARRAYS = {True: (12, 47), False: (24, 117)}
+PATCH_ARRAYS = {True: (31, 51), False: (24, 124)}
 #: A worker's interpreter, numpy, numba, FFTW and the compiled kernels [bytes].
 WORKER_BASELINE = 0.2e9
 #: The modules whose numba kernels a task runs (their cache is checked by :func:`kernels_cached`).

@@ -10,8 +10,8 @@ so nothing of the patch is worked out again per task, and a measured patch trave
 
 **Content keys.** A task's key (:attr:`Task.key`) is the SHA-256 of :meth:`StudyPlan.inputs`, exactly the inputs
 its records depend on: the library version; the voltage U_j and drive frequency f_k (and under a drive σ_sc and
-the keys of a leak across the interface that are set);
-every normal force (a task solves them in order, each warm-started from the last); the apparent scale's keys of
+the keys of a leak across the interface that are set; without a drive the layered law's model of the contact
+line); every normal force (a task solves them in order, each warm-started from the last); the apparent scale's keys of
 the fingerpad model in use (and the rings of a fingertip); the skin; the dielectric stack and its field model;
 the patch — its grid, the ridges (pores only where there are any), the micro-roughness with its cut-off in use and
 the rng stream seed + r where the patch is random, or, for a measured topography, the SHA-256 of the patch as
@@ -122,6 +122,8 @@ class StudyPlan:
         scene, preset = self.scene, self.scene.preset
         frequency = None if frequency_index is None else self.frequencies[frequency_index]
         screen = {key: getattr(scene.screen, key) for key in ("d_sc", "eps_sc", "d_i", "eps_i", "eps_a", "field")}
+        if scene.screen.field == "layered" and frequency is None:     # the layered law's model of the contact line
+            screen["contact_line"] = scene.screen.contact_line
         if frequency is not None:
             screen["sigma_sc"] = scene.screen.sigma_sc
             screen.update({key: getattr(scene.screen, key) for key, absent in LEAK_KEYS.items()

@@ -9,14 +9,13 @@ its error; :func:`choose` picks the cheapest setting whose error meets a target 
 auto --target-error 2%``), and :func:`auto_scene` puts it into a scene as ``[presets.auto]``.
 
 The columns :data:`RESOLUTION_COLUMNS`, written by ``studies/resolution.py --library`` after the table, hold the
-discretisation error of the setting's pixel (ridge period / grid × periods) against 0.11 µm pixels, the finest
-at which the layered model describes its contact edges (``docs/guide/presets.md``, "Discretisation error at
-the presets' pixels"; below it the layered F_el is defined only within :data:`EDGE_MODEL_BAND`, a modelling
-error): ``fel_error`` of the layered attraction
-F_el at 200 V, ``deq_error`` of Eq. 25's d_eq (0 and 200 V) and ``field_deq_error`` of the field-equivalent gap
-at 200 V, each the largest magnitude of the relative error of the realisation mean over F_N = 0.5 and 2 N,
-measured on 1-D profiles of the default scene; empty (nan) for a pixel not measured. The errors of the other
-columns are against the reference setting, which is itself that far from converged: the reference's
+discretisation error of the setting's pixel (ridge period / grid × periods) against 0.11 µm pixels
+(``docs/guide/presets.md``, "Discretisation error of F_el and d_eq"; with the layered law's default model of
+the contact line, air breakdown, F_el changes by less than 0.1 % beyond that pixel): ``fel_error`` of the layered
+attraction F_el at 200 V, ``deq_error`` of Eq. 25's d_eq (0 and 200 V) and ``field_deq_error`` of the
+field-equivalent gap at 200 V, each the largest magnitude of the relative error of the realisation mean over
+F_N = 0.5 and 2 N, measured on 1-D profiles of the default scene; empty (nan) for a pixel not measured. The
+errors of the other columns are against the reference setting, which is itself that far from converged: the reference's
 discretisation error is the floor of what ``--preset auto`` can promise (:func:`error_floor`).
 """
 from __future__ import annotations
@@ -33,13 +32,6 @@ from .scene import AUTO, Preset, Scene, load_scene
 
 #: The discretisation errors of a setting's pixel (fractions; module docstring).
 RESOLUTION_COLUMNS = ("fel_error", "deq_error", "field_deq_error")
-#: The band (fractions) within which the layered model defines F_el at the default scene's contact edges, about
-#: its cold solves' value at the 0.11 µm reference pixel: the lowest-energy equilibria that any start reaches, at
-#: that pixel or finer, lie down to 5.7 % below it (0.5 N, 0.055 µm; ``python studies/resolution_edges.py``, its
-#: "band" line, 8 realisations), and the cold solves rise by up to 3.4 % at finer pixels (0.5 N, 0.027 µm;
-#: ``python studies/resolution.py``, beyond_reference, 24 realisations). Both are set by the contact edges below
-#: 0.1 µm, which the model does not describe (``docs/guide/presets.md``, "Resolution near contacts").
-EDGE_MODEL_BAND = (-0.057, 0.034)
 #: The measured table (package data).
 TABLE_PATH = Path(__file__).with_name("preset_errors.csv")
 #: The Preset keys that a measured setting fixes (with ``realisations``); ``rings`` acts on the fingertip model
@@ -142,8 +134,7 @@ def error_floor(table=None) -> tuple:
     measured_floor = max((entry.discretisation_error for entry in references), default=math.nan)
     if not math.isnan(measured_floor):
         return measured_floor, ("the reference setting's own discretisation error of F_el and the equivalent "
-                                "gaps, measured on 1-D profiles against 0.11 um pixels (the layered F_el is "
-                                "further defined only within the modelling band of its contact edges)")
+                                "gaps, measured on 1-D profiles against 0.11 um pixels")
     if not references:
         return min(entry.error for entry in table), "the smallest error of any measured setting"
     return (min(entry.error for entry in table if entry.error > 0),
@@ -218,29 +209,16 @@ def applicability(scene: Scene) -> str:
             f"in {', '.join(differing)}, so its errors may differ and are not known.")
 
 
-def fel_error_range(fel_error: float) -> tuple:
-    """``(least, most)``: how far low F_el of a pixel with discretisation error ``fel_error`` (a fraction, F_el low
-    against the reference pixel) is against the layered model's F_el anywhere in :data:`EDGE_MODEL_BAND`:
-    1 − (1 − e)/(1 + b) at either end b of the band (fractions)."""
-    below, above = EDGE_MODEL_BAND
-    return 1 - (1 - fel_error) / (1 + below), 1 - (1 - fel_error) / (1 + above)
-
-
 def _discretisation_sentence(entry: Measurement) -> str:
-    """The discretisation error of the preset's pixel against the reference pixel and, for F_el, the range that
-    the modelling band of the contact edges adds, where measured."""
+    """The discretisation error of the preset's pixel against the reference pixel, where measured."""
     error = entry.discretisation
     if not error or all(math.isnan(error[column]) for column in RESOLUTION_COLUMNS):
         return ""
-    least, most = fel_error_range(error["fel_error"])
-    below, above = EDGE_MODEL_BAND
-    return (f" Discretisation error of its pixel (1-D profiles of the default scene against 0.11 µm pixels, the "
-            f"finest at which the layered model describes its contact edges; `docs/guide/presets.md`, 'Resolution "
-            f"near contacts'): the layered field's F_el {100 * error['fel_error']:.2g} % low, d_eq (Eq. 25) "
-            f"{100 * error['deq_error']:.2g} %, the field-equivalent gap {100 * error['field_deq_error']:.2g} %. "
-            f"The layered model defines F_el there only within {100 * below:+.2g} … {100 * above:+.2g} % "
-            f"(equilibria that differ at the contact edges, on scales below 0.1 µm that the model does not "
-            f"describe), so F_el is {100 * least:.2g}–{100 * most:.2g} % low.")
+    return (f" Discretisation error of its pixel (1-D profiles of the default scene against 0.11 µm pixels, beyond "
+            f"which the layered F_el with air breakdown at its contact lines changes by less than 0.1 %; "
+            f"`docs/guide/presets.md`, 'Discretisation error of F_el and d_eq'): the layered field's F_el "
+            f"±{100 * error['fel_error']:.2g} %, d_eq (Eq. 25) ±{100 * error['deq_error']:.2g} %, the "
+            f"field-equivalent gap ±{100 * error['field_deq_error']:.2g} %.")
 
 
 def scene_at_preset(path=None, preset: str | None = None, target_error=None, table=None) -> Scene:

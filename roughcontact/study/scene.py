@@ -34,9 +34,13 @@ from surfaces.ridges import ridge_fraction
 from surfaces.validation import check_integer, check_real
 
 from ..electrostatics import DielectricStack, LeakyStack
+from ..electrostatics.contact_line import parse_contact_line
 from ..electrostatics.stack import SIGMA_SC
 from ..interactions import FIELDS, ElectrostaticInteraction
 from ..solvers.inputs import FLOAT32_TOL_FLOOR
+
+#: The scene's contact line unless ``[screen] contact_line`` sets one (the library's default, air breakdown).
+DEFAULT_CONTACT_LINE = "breakdown"
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -190,6 +194,20 @@ class _Optional:
         return tuple(self.element(f"{name}[{i}]", item) for i, item in enumerate(value))
 
 
+@dataclass(frozen=True)
+class _ContactLine:
+    """The layered law's model of the contact line as :func:`~roughcontact.electrostatics.contact_line.parse_contact_line`
+    reads it."""
+    valid = 'one of "breakdown", "breakdown:<E_bd in V/m>", "film:<thickness in m>", "none"'
+
+    def __call__(self, name, value):
+        try:
+            parse_contact_line(value)
+        except ValueError as error:
+            raise ValueError(f"{name} = {value!r} is not valid ({error}); valid: {self.valid}") from None
+        return value
+
+
 def _field(check, **default):
     return field(metadata={"check": check}, **default)
 
@@ -340,7 +358,9 @@ class Screen(_Section):
     """Dielectric stack (``roughcontact.electrostatics.DielectricStack`` fields) and the ``field`` model of its
     attraction over a gap field ("layered" or "parallel_plate", ``ElectrostaticInteraction.field``); under a drive
     (``frequency``) the stratum corneum's ``sigma_sc`` and a leak across the interface (:data:`LEAK_KEYS`, the
-    fields of :class:`~roughcontact.electrostatics.LeakyStack`)."""
+    fields of :class:`~roughcontact.electrostatics.LeakyStack`); the layered field's model of the contact line
+    ``contact_line`` (default "breakdown": air breakdown at 350 V/µm, ``ElectrostaticInteraction.contact_line``; it
+    acts on the layered field of the dielectric model only)."""
     section = "screen"
     d_sc: float = _field(RealKey(0.0, low_open=True))
     eps_sc: float = _field(RealKey(0.0, low_open=True))
@@ -356,6 +376,7 @@ class Screen(_Section):
     gap_cpe_exponent: float = _field(RealKey(0.0, 1.0, low_open=True), default=1.0)
     surface_conductance: float = _field(RealKey(0.0), default=0.0)
     contact_transfer: bool = _field(_BOOLEAN, default=False)
+    contact_line: str = _field(_ContactLine(), default=DEFAULT_CONTACT_LINE)
 
     def __post_init__(self):
         super().__post_init__()
@@ -370,6 +391,11 @@ class Screen(_Section):
         if self.frequency is not None and self.field != "layered":
             raise ValueError(f"screen.frequency = {list(self.frequency)!r} Hz needs screen.field = \"layered\" (the "
                              f"drive acts through the layered field), got field = {self.field!r}")
+        if self.contact_line not in (DEFAULT_CONTACT_LINE, "none") and (self.field != "layered"
+                                                                       or self.frequency is not None):
+            raise ValueError(f"screen.contact_line = {self.contact_line!r} acts on the layered field of the dielectric "
+                             f"model only, got field = {self.field!r}, frequency = {self.frequency!r}; valid: "
+                             "field = \"layered\" without frequency, or leave contact_line out")
         self.stack()                                    # the leak's own relations (LeakyStack)
 
     @property
@@ -380,7 +406,8 @@ class Screen(_Section):
     def stack(self):
         """The :class:`DielectricStack` of the screen, with the stratum corneum's conductivity ``sigma_sc``; a
         :class:`LeakyStack` where a leak is set."""
-        keys = {key: value for key, value in dataclasses.asdict(self).items() if key not in ("field", "frequency")}
+        keys = {key: value for key, value in dataclasses.asdict(self).items()
+                if key not in ("field", "frequency", "contact_line")}
         if self.leaks:
             return LeakyStack(**keys)
         return DielectricStack(**{key: value for key, value in keys.items() if key not in LEAK_KEYS})
@@ -390,18 +417,23 @@ class Screen(_Section):
         with the scene's field model; None at 0 V (the hard wall)."""
         if voltage == 0:
             return None
-        return ElectrostaticInteraction(self.stack(), voltage=voltage, field=self.field, frequency=frequency)
+        dielectric_layered = self.field == "layered" and frequency is None
+        return ElectrostaticInteraction(self.stack(), voltage=voltage, field=self.field, frequency=frequency,
+                                        contact_line=parse_contact_line(self.contact_line) if dielectric_layered
+                                        else None)
 
     def items(self) -> dict:
         """The keys as written in a scene file: ``frequency`` and ``sigma_sc`` only where a frequency is set, the
-        leak's only where one is set (a scene without the drive or the leak reads and writes as before they
-        existed)."""
+        leak's only where one is set, ``contact_line`` only where it is not the default (a scene without the drive,
+        the leak or a contact line of its own reads and writes as before they existed)."""
         data = dataclasses.asdict(self)
         if self.frequency is None:
             del data["frequency"], data["sigma_sc"]
         if not self.leaks:
             for key in LEAK_KEYS:
                 del data[key]
+        if self.contact_line == DEFAULT_CONTACT_LINE:
+            del data["contact_line"]
         return data
 
 

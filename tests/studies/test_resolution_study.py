@@ -42,8 +42,9 @@ def test_fast_run_rows_and_their_consistency(study, read_csv):
         per_pixel, layered = float(row["fel_per_pixel_Pa"]), float(row["fel_layered_Pa"])
         assert float(stack.attraction(float(row["deq_um"]) * 1e-6, 200.0)) == pytest.approx(per_pixel, rel=1e-9)
         assert float(stack.attraction(float(row["field_deq_um"]) * 1e-6, 200.0)) == pytest.approx(layered, rel=1e-9)
-        # the stratum corneum's lateral conduction: the layered field attracts more than the per-pixel law
-        assert layered > 1.2 * per_pixel
+        # with air breakdown at its contact lines (the default) the layered field holds every contact at ε0 E_bd²/2,
+        # Eq. 23 three times that: at 200 V it attracts less than the per-pixel law on every gap (measured 0.40-0.68)
+        assert 0.3 * per_pixel < layered < 0.8 * per_pixel
     by_law = {(row["normal_force_N"], row["law"], row["pixels"]): row for row in rows}
     # the attraction closes the gap: at 200 V more contact and a smaller d_eq than the hard wall at 0 V
     for force in ("0.5", "2.0"):
@@ -68,6 +69,13 @@ def test_convergence_table_and_preset_errors(study, read_csv):
     assert errors[128][0] == max(abs(entry["error_draft"]) for entry in fel) > 0
     for entry in table:                     # paired 95 % half-width of two realisations: finite, 0 at the finest
         assert float(entry["ci_draft"]) >= 0 and float(entry["ci_reference"]) == 0.0
+
+
+def test_tables_rebuilt_from_stored_rows_are_the_runs(study, tmp_path):
+    module, path, convergence = study
+    _, again, _ = module.main(["--fast", "--profiles", str(path / "resolution_profiles.csv"), "--output",
+                               str(tmp_path)])
+    assert [entry["converged_value"] for entry in again] == [entry["converged_value"] for entry in convergence]
 
 
 def test_correction_is_measured_on_some_realisations_and_tested_on_others(study, read_csv):

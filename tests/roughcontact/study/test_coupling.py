@@ -58,9 +58,13 @@ def test_interface_law_is_consistent(scene, law):
         assert method(last * (1 + 1e-9)) == pytest.approx(method(last * (1 - 1e-9)), rel=1e-6, abs=1e-12)
     assert law.contact_fraction(last * 2) == 0.0 and law.ridge_area_fraction(last * 2, 1) == 0.0
     assert law.tractions[-1] < 0 < law.tractions[0]             # attraction far away, contact pressure near
-    # the layered field attracts more than Eq. 21 per pixel on every node's gap (smaller field gap; measured
-    # f/e = 0.61-0.98, the largest difference near contact); the parallel-plate law's field gap is e itself
-    assert (np.array(law.field_equivalent_gaps) < np.array(law.equivalent_gaps)).all()
+    # with air breakdown at its contact lines (the default) the layered field attracts less than Eq. 21 per pixel
+    # wherever the patch touches: its contacts hold ε0 E_bd²/2, Eq. 23 three times that (field gap over Eq. 25's
+    # measured 1.2-11, the largest at the most contact); on an open patch about as much (0.99)
+    field_gaps, gaps = np.array(law.field_equivalent_gaps), np.array(law.equivalent_gaps)
+    touching = np.array(law.contact_fractions) > 0
+    assert (field_gaps > gaps)[touching].all() and touching.sum() > 10
+    assert np.allclose(field_gaps[~touching], gaps[~touching], rtol=0.05)
     assert law.coarse_graining == closing_lengths(scene) and len(law.separations) == LAW_NODES
     for closed in law.ridge_area_fractions:                    # a closing only adds to the contact set
         assert (np.array(closed) >= np.array(law.contact_fractions)).all()

@@ -167,6 +167,20 @@ def test_a_key_changes_with_every_key_of_a_leak():
     assert set(inputs) == {"d_sc", "eps_sc", "d_i", "eps_i", "eps_a", "field", "sigma_sc"}
 
 
+def test_a_key_changes_with_the_contact_line():
+    # the layered law's model of the contact line changes what a voltage's records hold, so it changes the key
+    # (a study of another breakdown field once read the default's records from a shared task directory)
+    tiny = load_scene(text=TINY.replace("voltages = [0.0, 150.0]", "voltages = [150.0]"), preset="draft")
+    keys = {task.key for task in plan_study(tiny).tasks}
+    for line in ("none", "breakdown:7e+08", "film:5e-08"):
+        other = dataclasses.replace(tiny, screen=dataclasses.replace(tiny.screen, contact_line=line))
+        assert not keys & {task.key for task in plan_study(other).tasks}, line
+    plain = dataclasses.replace(tiny, screen=dataclasses.replace(tiny.screen, contact_line="none"))
+    records = [untimed(solve_chain(plan_study(scene), 0, 0, 1)) for scene in (tiny, plain)]
+    assert records[0] != records[1]                    # what the key now tells apart, the records do
+    assert plan_study(tiny).inputs(0, 0)["screen"]["contact_line"] == "breakdown"
+
+
 def test_a_key_changes_with_every_input_of_a_fingertip_with_pores():
     # a fingertip cap (rings) over ridges with sweat pores and no roughness: the pores make the seed an input, the
     # unused power law's keys are not, and the rings are

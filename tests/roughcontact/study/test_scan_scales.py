@@ -108,20 +108,23 @@ def test_a_patch_pressed_by_the_field_is_flagged_and_no_gap_is_negative(afm, tmp
         for column in ("equivalent_gap_um", "field_equivalent_gap_um", "ridge_equivalent_gap_um", "mean_gap_um"):
             assert float(row[column]) >= 0, (column, row)
     high = [row for row in points if float(row["voltage_V"]) == 200.0]
-    assert all(row["attraction_dominates"] == "True" and float(row["electrostatic_to_normal_force"]) > 50
+    assert all(row["attraction_dominates"] == "True" and float(row["electrostatic_to_normal_force"]) > 25
                for row in high)
-    assert all(row["field_gap_clipped"] == "True" and float(row["field_equivalent_gap_um"]) == 0 for row in high)
+    # air breakdown at the contact lines (the default) holds the mean attraction below ε0 E_bd²/2 = 0.54 MPa, so
+    # the field gap stays above U/E_bd - c = 0.232 µm at 200 V (measured 0.235 µm at 62-63 % contact): not clipped
+    assert all(row["field_gap_clipped"] == "False" and 0.2317 < float(row["field_equivalent_gap_um"]) < 0.24
+               for row in high)
     assert all(row["attraction_dominates"] == "False" for row in points if float(row["voltage_V"]) == 0.0)
     report = (out / "report.md").read_text()
     assert "**Points that say nothing about the topography** (marked † in the tables): the patch is pressed by an " \
            "attraction F_el ≥ 10 F_N" in report and "0.5 N at 200 V, 2 N at 200 V" in report
-    assert "**d_field = 0** at 2 of 4 points" in report and "**Patch too small**" in report
+    assert "**d_field = 0**" not in report and "**Patch too small**" in report
     friction = report[report.index("## Friction"):]
     assert friction.count(" †") == 3 * 2               # μ, F_T and A_R0 at the two flagged points
-    # the numbers docs/guide/study.md quotes: F_el = 219 F_N, μ = 57 without the area reduction (0.5 N, 200 V)
-    assert "(up to 219 F_N)" in report
+    # the numbers docs/guide/study.md quotes: F_el = 76 F_N, μ = 20 without the area reduction (0.5 N, 200 V)
+    assert "(up to 76 F_N)" in report
     row = next(row for row in read_csv(out / "friction.csv") if row["voltage_V"] == "200.0")
-    assert round(float(row["bottom_up_c2_0_friction_coefficient"])) == 57
+    assert round(float(row["bottom_up_c2_0_friction_coefficient"])) == 20
     with xarray.open_dataset(out / "results.nc", engine="h5netcdf") as data:
         assert data["attraction_dominates"].values.tolist() == [[0, 1], [0, 1]]
         assert float(data["field_equivalent_gap"].min()) >= 0 and not math.isnan(float(data["full_contact"].sum()))

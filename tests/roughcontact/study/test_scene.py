@@ -47,12 +47,30 @@ def test_partial_scene_keeps_the_other_defaults_and_preset_override():
     ("\n[study]\npreset = \"auto\"\n", "study.preset", 3, "[presets.auto]"),
     ("[presets.auto]\ngrid = 64\n", "presets.auto", 1, "missing keys periods, realisations"),
     ("[screen]\neps_a = 1.0\nfield = \"fem\"\n", "screen.field", 3, '"parallel_plate", "layered"'),
+    ("[screen]\ncontact_line = \"paschen\"\n", "screen.contact_line", 2, '"breakdown", "breakdown:<E_bd in V/m>"'),
+    ("[screen]\ncontact_line = \"film:-1e-7\"\n", "screen.contact_line", 2, "RoughnessFilm.thickness"),
+    ("[screen]\ncontact_line = \"film:1e-7\"\nfield = \"parallel_plate\"\n", "screen.contact_line", 2,
+     "layered field of the dielectric model only"),
 ])
 def test_scene_errors_name_key_line_and_valid_values(text, key, line, valid):
     with pytest.raises(ValueError) as error:
         load_scene(text=text)
     message = str(error.value)
     assert f"scene key {key}" in message and f"line {line}:" in message and valid in message, message
+
+
+def test_the_contact_line_key_sets_the_layered_law_and_round_trips():
+    from roughcontact.electrostatics import AirBreakdown, RoughnessFilm
+    default = load_scene()
+    assert default.screen.contact_line == "breakdown" and "contact_line" not in default.screen.items()
+    assert default.screen.interaction(200.0).contact_line == AirBreakdown()
+    film = load_scene(text="[screen]\ncontact_line = \"film:5e-8\"\n")
+    assert film.screen.interaction(200.0).contact_line == RoughnessFilm(5e-8)
+    assert load_scene(text=film.to_toml()) == film
+    plain = load_scene(text="[screen]\ncontact_line = \"none\"\n")
+    assert plain.screen.interaction(200.0).contact_line is None and plain.screen.interaction(0.0) is None
+    per_pixel = load_scene(text="[screen]\nfield = \"parallel_plate\"\n")      # the default does not act on it
+    assert per_pixel.screen.interaction(200.0).contact_line is None
 
 
 def test_preset_knobs_default_to_float64_warm_resolved():

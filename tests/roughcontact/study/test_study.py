@@ -48,8 +48,9 @@ def test_zero_volt_study_is_the_hard_wall_chain():
 
 
 def test_records_count_the_unstable_steps_of_their_solves(tiny, tiny_result):
-    # the 150 V chain solved again by hand: each record's count is the sum over its solves (measured 4-12 at
-    # 150 V, where the attraction snaps regions in), and the 0 V hard wall has none
+    # the 150 V chain solved again by hand: each record's count is the sum over its solves (measured 0-5 at
+    # 150 V with air breakdown at the contact lines, where the attraction snaps regions in), and the 0 V hard wall
+    # has none
     stack, body = tiny.screen.stack(), patch_body(tiny)
     law = ElectrostaticInteraction(stack, 150.0)
     for r in range(2):
@@ -58,16 +59,17 @@ def test_records_count_the_unstable_steps_of_their_solves(tiny, tiny_result):
             _, (pressure,) = apparent_contact(tiny.fingerpad, force, 1)
             previous = solve_contact(heights, body, mean_pressure=pressure, interaction=law, tol=1e-6,
                                      x0=previous, warn=False)
-            assert tiny_result.points[i][1].unstable_steps[r] == previous.unstable_steps > 0
+            assert tiny_result.points[i][1].unstable_steps[r] == previous.unstable_steps
             assert tiny_result.points[i][0].unstable_steps[r] == 0
             # F_el of the record against an independent field solve of the same gap (the solver's field is
             # converged to 0.1 x its residual, tol 1e-6: measured agreement 1e-7; a per-pixel F_el is 30 % off)
             point, grid = tiny_result.points[i][1], body.grid
-            field = solve_field(stack, previous.gap, grid.lengths, 150.0, tol=1e-10)
+            field = solve_field(stack, previous.gap, grid.lengths, 150.0, tol=1e-10, contact_line=law.contact_line)
             assert point.electrostatic_attraction[r] == pytest.approx(field.mean_attraction, rel=1e-5)
             assert point.pixel_law_attraction[r] == pytest.approx(float(np.mean(stack.attraction(previous.gap, 150.0))),
                                                                 rel=1e-12)
-    assert "4 of 8 patch results came from solves that crossed an instability (concave steps, from 150 V on)" \
+    assert sum(tiny_result.points[i][1].unstable_steps[r] for i in range(2) for r in range(2)) > 0
+    assert "3 of 8 patch results came from solves that crossed an instability (concave steps, from 150 V on)" \
         in report_text(tiny_result)
 
 
@@ -81,8 +83,10 @@ def test_field_gaps_and_ratio_carry_the_solved_attraction(tiny, tiny_result):
                 if point.voltage > 0:       # Eq. 21 at d_field is the solved attraction, the ratio F_el / F_el,pixel
                     assert stack.attraction(d_field, point.voltage) == pytest.approx(attraction, rel=1e-12)
                     assert ratio == pytest.approx(attraction / point.pixel_law_attraction[r], rel=1e-12)
-                # the layered field attracts more than Eq. 21 per pixel (measured 1.43-1.50 on these gaps)
-                assert 1.2 < ratio < 2.0 and d_field < point.equivalent_gap[r]
+                if point.voltage == 0:   # the small-voltage limit: the layered field attracts more than Eq. 21 per
+                    assert 1.2 < ratio < 2.0 and d_field < point.equivalent_gap[r]    # pixel (measured 1.46-1.48)
+                else:                    # 150 V: air breakdown holds its contacts at ε0 E_bd²/2 (measured 0.64-0.66)
+                    assert 0.5 < ratio < 0.8 and d_field > point.equivalent_gap[r]
                 # the friction law's gap: sigma_el(d_eq,R) A_R = F_el, or 0 where A_R cannot carry F_el
                 area = point.ridge_area_fractions[0][r]
                 unit = stack.attraction(max(d_field, 0.0), 1.0)
@@ -486,7 +490,9 @@ def test_extreme_scenes_run_to_finite_results(change):
     fraction = result.array("contact_fraction")
     assert (fraction <= 1).all()
     if "2000.0" in change[1]:
-        assert np.all(fraction[:, -1] == 1.0)                     # 2 kV pulls the patches into full contact
+        # 2 kV: air breakdown saturates the attraction at ε0 E_bd²/2 (0.54 MPa), which closes the patches to 62-68 %
+        # (without it they closed completely)
+        assert np.all((fraction[:, -1] > 0.5) & (fraction[:, -1] < 1.0))
 
 
 def test_zero_load_scene_is_refused_naming_the_key():
