@@ -152,9 +152,12 @@ def run_estimate(jobs, workers: int | None, seconds_per_application: float | Non
         where = (f"on {parallel} worker{'s' if parallel > 1 else ''}" if workers is not None else
                  "of CPU on the cluster")
         applications = ", ".join(f"{seconds * 1e3:.3g} ms" for seconds in timed.values())
+        calibrated = all(np.prod(shape) <= CALIBRATION_PIXELS for shape, _ in timed)
+        model = ("a model within a factor 2-3" if calibrated else
+                 "a lower bound: the model is calibrated up to 512² pixels")
         lines.append(f"{len(resolved)} task{'s' if len(resolved) > 1 else ''}, {solves} solves: "
                      f"{_duration(wall if workers is not None else sum(costs))} {where} (one Green-operator "
-                     f"application {applications}; a model within a factor 2-3: roughcontact.study.cost), memory "
+                     f"application {applications}; {model}: roughcontact.study.cost), memory "
                      f"about {memory / 1e9:.2g} GB per worker")
     if not kernels_cached():
         lines.append("compiling the numba kernels (first run only, 20-30 s per worker) ...")

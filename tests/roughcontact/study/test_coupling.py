@@ -16,9 +16,9 @@ from roughcontact.study.run import run_study
 from roughcontact.study.scene import load_scene
 
 # Largest relative differences coupled/resolved allowed on the tiny scene (32² patches, one realisation, 150 V,
-# 0.5 and 2 N; measured: d_eq +3 % and +15 %, real contact −4 % and −16 %, A_R +5 % and −19 %): the few
+# 0.5 and 2 N; measured: d_eq +3.9 % and +8.8 %, real contact −3.3 % and −11.2 %, A_R +14.2 % and −6.4 %): the few
 # micro-contacts of a 32² patch make single differences large; docs/findings/equivalent_gap.md states the errors at
-# 64² and 256². A law shifted by one rms height misses d_eq by more than twice the bound.
+# 128² and 256². A law shifted by one rms height misses d_eq by more than twice the bound.
 BOUNDS = {"equivalent_gap": 0.2, "contact_fraction": 0.25, "ridge_area": 0.25}
 
 
