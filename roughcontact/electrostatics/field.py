@@ -176,13 +176,9 @@ class StackField:
         product, residual, z, direction = self._work
         if not known_product:
             self.apply_elastance(flux, product)
-        if rhs is None:
-            rz, rr = cg_start(flux.reshape(-1), product.reshape(-1), column.reshape(-1),
-                               inverse_diagonal.reshape(-1), residual.reshape(-1), z.reshape(-1), direction.reshape(-1))
-        else:
-            rz, rr = _cg_start_from(rhs.reshape(-1), flux.reshape(-1), product.reshape(-1), column.reshape(-1),
-                                    inverse_diagonal.reshape(-1), residual.reshape(-1), z.reshape(-1),
-                                    direction.reshape(-1))
+        rz, rr = cg_start(flux.reshape(-1), product.reshape(-1), column.reshape(-1), inverse_diagonal.reshape(-1),
+                          residual.reshape(-1), z.reshape(-1), direction.reshape(-1),
+                          None if rhs is None else rhs.reshape(-1))
         target = (tol * tol) * column.size
         iterations = 0
         while rr > target and iterations < maxiter:
@@ -404,24 +400,12 @@ def _law_outputs_into(gap, flux, inverse_factor, column, inverse_diagonal, resid
 
 
 @njit(cache=True)
-def cg_start(flux, product, column, inverse_diagonal, residual, z, direction):
-    """residual ← 1 − (M D + R D) (``product`` holds M D), z = direction ← P⁻¹ residual; returns (r·z, r·r)."""
+def cg_start(flux, product, column, inverse_diagonal, residual, z, direction, rhs=None):
+    """residual ← 1 − (M D + R D) (``product`` holds M D; ``rhs`` in place of 1 where given), z = direction ←
+    P⁻¹ residual; returns (r·z, r·r)."""
     rz, rr = 0.0, 0.0
     for i in range(flux.size):
-        value = 1.0 - product[i] - column[i] * flux[i]
-        residual[i] = value
-        z[i] = direction[i] = inverse_diagonal[i] * value
-        rz += value * z[i]
-        rr += value * value
-    return rz, rr
-
-
-@njit(cache=True)
-def _cg_start_from(rhs, flux, product, column, inverse_diagonal, residual, z, direction):
-    """:func:`cg_start` for the right-hand side ``rhs``: residual ← rhs − (M D + R D)."""
-    rz, rr = 0.0, 0.0
-    for i in range(flux.size):
-        value = rhs[i] - product[i] - column[i] * flux[i]
+        value = (1.0 if rhs is None else rhs[i]) - product[i] - column[i] * flux[i]
         residual[i] = value
         z[i] = direction[i] = inverse_diagonal[i] * value
         rz += value * z[i]
