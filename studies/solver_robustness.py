@@ -1,4 +1,4 @@
-"""Does the contact solver converge wherever a study may take it? (a script; docs/guide/solver.md, "Robustness")
+"""Does the contact solver converge wherever a study may take it? (docs/dev/benchmarks.md, the hard-wall solver)
 
     python studies/solver_robustness.py                       # 256², 512²; 4 seeds; 20 loads; minutes
     python studies/solver_robustness.py --sizes 1024 --seeds 2
