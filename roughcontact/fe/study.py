@@ -5,13 +5,9 @@ Needs FElupe (``pip install "roughcontact[fe]"``) to run the model; the tables i
 """
 from __future__ import annotations
 
-import multiprocessing
 import os
-import signal
 import sys
-import threading
 import warnings
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -19,6 +15,7 @@ import numpy as np
 
 from surfaces.validation import check_integer, check_real
 
+from ..io.pool import ProcessPool
 from ..io.provenance import Provenance, save_figure, write_csv
 from ..io.results import ConvergenceWarning
 from ..macro.friction import SlidingFrictionModel
@@ -190,51 +187,18 @@ def run_fingertip_study(model: FingertipModel = FingertipModel(), normal_forces=
 
 
 def _finished(models: dict, keys: list, travel_step, max_travel: float, workers: int):
-    """Yield ((μ, f_N), run) as the runs of ``keys`` finish: in this process for one worker, else on a process
-    pool (forkserver where there is one, else spawn); interrupted, the pool's waiting runs are cancelled and its
-    workers terminated. (Not ``roughcontact.study.execution``'s pool: importing it loads the patch solvers, 0.4 s
-    on every command.)"""
+    """Yield ((μ, f_N), run) as the runs of ``keys`` finish: in this process for one worker, else on a
+    :class:`~roughcontact.io.pool.ProcessPool`, the costliest runs first (largest μ f_N); interrupted, the pool's
+    waiting runs are cancelled and its workers terminated."""
     if workers == 1 or len(keys) <= 1:
         for mu, force in keys:
             yield (mu, force), _slide(models[mu], force, travel_step, max_travel)
         return
-    methods = multiprocessing.get_all_start_methods()
-    context = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
-    lifeline = context.Pipe(duplex=False)          # (reading, writing): only this process holds the writing end
-    executor = ProcessPoolExecutor(min(workers, len(keys)), mp_context=context, initializer=_start_worker,
-                                   initargs=(lifeline[0],))
-    try:
-        futures = {executor.submit(_slide, models[mu], force, travel_step, max_travel): (mu, force)   # longest first
+    with ProcessPool(min(workers, len(keys))) as pool:
+        futures = {pool.submit(_slide, models[mu], force, travel_step, max_travel): (mu, force)
                    for mu, force in sorted(keys, key=lambda key: key[0] * key[1], reverse=True)}
-        for future in as_completed(futures):
+        for future in pool.as_completed(futures):
             yield futures[future], future.result()
-    except BaseException:
-        processes = list(executor._processes.values())     # (no public way to stop running tasks before 3.14)
-        executor.shutdown(wait=False, cancel_futures=True)
-        for process in processes:
-            process.terminate()
-        raise
-    else:
-        executor.shutdown()
-    finally:
-        for end in lifeline:
-            end.close()
-
-
-def _start_worker(client) -> None:
-    """Pool worker start: Ctrl-C is the client's to handle; the worker ends with the client process, even when
-    that is killed (``client`` is the reading end of a pipe whose writing end only the client holds, so it reads
-    end-of-file once the client is gone)."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    threading.Thread(target=_end_with, args=(client,), daemon=True).start()
-
-
-def _end_with(client) -> None:
-    try:
-        client.recv_bytes()                        # nothing is ever sent: returns at the client's end
-    except (EOFError, OSError):
-        pass
-    os._exit(1)
 
 
 def _progress(total: int, done: int):

@@ -9,8 +9,6 @@ import hashlib
 import json
 import math
 import os
-import signal
-import threading
 import warnings
 from pathlib import Path
 
@@ -18,6 +16,7 @@ from surfaces import HeightField
 from surfaces.validation import check_integer
 
 from ..fft import THREADS_VARIABLE, available_cores
+from ..io.pool import ProcessPool
 from ..io.provenance import output_directory, write_atomic
 from .plan import StudyPlan, Task, task_key
 from .records import RECORD_FIELDS, PatchRecord
@@ -330,67 +329,15 @@ class InProcess:
         return iter(futures)
 
 
-def _start_worker(threads: int, client):
-    """Pool worker start: ``threads`` FFT threads unless ``$ROUGHCONTACT_FFT_THREADS`` says otherwise; Ctrl-C is
-    the client's to handle (it cancels the tasks and stops the workers); the worker ends with the client
-    process, even when that is killed: ``client`` is the reading end of a pipe whose writing end only the
-    client holds, so it reads end-of-file once the client is gone, reaped or not (a worker would otherwise
-    wait for tasks for ever, holding the client's output pipes open)."""
-    if not os.environ.get(THREADS_VARIABLE):                 # (unset or empty)
-        os.environ[THREADS_VARIABLE] = str(threads)
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    threading.Thread(target=_end_with, args=(client,), daemon=True).start()
-
-
-def _end_with(client) -> None:
-    try:
-        client.recv_bytes()                                  # nothing is ever sent: returns at the client's end
-    except (EOFError, OSError):
-        pass
-    os._exit(1)
-
-
-class _Pool:
-    """A local pool of ``workers`` spawned processes with ``fft_threads`` FFT threads each (the numba kernels
-    are serial); interrupted, it cancels the waiting tasks and terminates the workers."""
-    threads = None                                  # the worker's default, set by _start_worker
+class _Pool(ProcessPool):
+    """A local pool of ``workers`` processes (:class:`~roughcontact.io.pool.ProcessPool`, forked from a server that
+    has loaded the patch solvers) with ``fft_threads`` FFT threads each unless ``$ROUGHCONTACT_FFT_THREADS`` says
+    otherwise (the numba kernels are serial)."""
+    threads = None                                  # the worker's default, set from its environment
 
     def __init__(self, workers: int, fft_threads: int):
-        self.workers, self.fft_threads = workers, fft_threads
-
-    def __enter__(self):
-        import multiprocessing
-        from concurrent.futures import ProcessPoolExecutor
-        if "forkserver" in multiprocessing.get_all_start_methods():      # workers forked from a loaded server
-            context = multiprocessing.get_context("forkserver")
-            context.set_forkserver_preload(["roughcontact.study.resolved", "roughcontact.study.coupled"])
-        else:
-            context = multiprocessing.get_context("spawn")
-        self.lifeline = context.Pipe(duplex=False)      # (reading, writing): only this process holds the writing end
-        self.executor = ProcessPoolExecutor(self.workers, mp_context=context, initializer=_start_worker,
-                                            initargs=(self.fft_threads, self.lifeline[0]))
-        return self
-
-    def __exit__(self, kind, error, traceback):
-        if kind is None:
-            self.executor.shutdown()
-        else:
-            processes = list(self.executor._processes.values())  # (no public way to stop running tasks before 3.14)
-            self.executor.shutdown(wait=False, cancel_futures=True)
-            for process in processes:
-                process.terminate()
-            for process in processes:
-                process.join()
-        for end in self.lifeline:
-            end.close()
-        return False
-
-    def submit(self, function, *arguments):
-        return self.executor.submit(function, *arguments)
-
-    def as_completed(self, futures):
-        from concurrent.futures import as_completed
-        return as_completed(futures)
+        super().__init__(workers, preload=("roughcontact.study.resolved", "roughcontact.study.coupled"),
+                         environment={THREADS_VARIABLE: str(fft_threads)})
 
 
 class _Dask:
