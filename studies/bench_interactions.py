@@ -3,16 +3,21 @@
     python studies/bench_interactions.py                     # 256² and 512², the table of docs/guide/interactions.md
     python studies/bench_interactions.py --sizes 1024 --output out
     python studies/bench_interactions.py --fast              # 64², seconds
+    python studies/bench_interactions.py --sizes 512 --voltages 30 50 100 --realisations 4   # summed over 4
 
 The scene is the electrostatic bar's rough patch: 1 mm square, 3 µm rms self-affine heights (H = 0.8, short
-cut-off 8 px), contact modulus E* (``--E-star``, default 1 MPa), external load p̄ (``--pressure``, default
-1 kPa), the seed's dielectric stack (Table 1). For each grid: the hard-wall solve (Polonsky–Keer) and the
-electrostatic solves (the per-pixel law, ``field="parallel_plate"``: the peers' law; the layered field's cost
-is ``studies/bench_field.py``) at each voltage, cold, their time and FFT pairs as multiples of the hard wall's; then the
-voltage sweep 0 → max solved cold at every step and as a continuation (each solve starts from the last
-gap). ``--peers``: the same electrostatic problem in Tamaas (gap-primal Polonsky–Keer–Rey with the law as a
-Python functional, at our mean gap) and ContactMechanics + Adhesion (L-BFGS-B at our flat position), timed
-against our solve at the same control, with the relative difference of the conjugate quantity. Writes ``bench_interactions.csv`` with its provenance into ``--output``.
+cut-off 8 px; realisation r has ``rng=r``, r = 1 … ``--realisations``), contact modulus E* (``--E-star``,
+default 1 MPa), external load p̄ (``--pressure``, default 1 kPa), the seed's dielectric stack (Table 1). For each
+grid: the hard-wall solve (Polonsky–Keer) and the electrostatic solves (the per-pixel law,
+``field="parallel_plate"``: the peers' law; the layered field's cost is ``studies/bench_field.py``) at each
+voltage, cold, their time and FFT pairs as multiples of the hard wall's; then the voltage sweep 0 → max solved
+cold at every step and as a continuation (each solve starts from the last gap). With ``--realisations`` > 1 the
+costs are also summed over the realisations, as ratios of the hard wall's sum (``bench_interactions_totals.csv``):
+near the snap-in one solve's cost moves by a factor 2 with its path, and the sums average it. ``--peers``: the
+same electrostatic problem in Tamaas (gap-primal Polonsky–Keer–Rey with the law as a Python functional, at our
+mean gap) and ContactMechanics + Adhesion (L-BFGS-B at our flat position), timed against our solve at the same
+control, with the relative difference of the conjugate quantity. Writes ``bench_interactions.csv`` with its
+provenance into ``--output``.
 """
 from __future__ import annotations
 
@@ -21,30 +26,31 @@ import time
 
 import numpy as np
 
-from _bench import best_of, count_argument
+from _bench import best_of, count_argument, summed_ratios
 from surfaces import Grid, self_affine
 from roughcontact import ElasticHalfSpace, ElectrostaticInteraction, solve_contact
 from roughcontact.electrostatics import DielectricStack
 from roughcontact.io import output_directory, parse_arguments, write_csv
 
-COLUMNS = ("section", "n", "voltage_V", "time_s", "time_ratio", "iterations", "fft_pairs", "fft_pair_ratio",
+COLUMNS = ("section", "n", "realisation", "voltage_V", "time_s", "time_ratio", "iterations", "fft_pairs", "fft_pair_ratio",
            "contact_fraction", "equivalent_gap_m", "converged", "relative_difference", "note")
 
 
-def patch(n, E_star):
+def patch(n, E_star, realisation=1):
     grid = Grid((n, n), (1e-3, 1e-3), periodic=True)
-    surface = self_affine(grid, hurst=0.8, rms_height=3e-6, short_cutoff=8e-3 / n, rng=1)
+    surface = self_affine(grid, hurst=0.8, rms_height=3e-6, short_cutoff=8e-3 / n,
+                          rng=realisation)
     return surface, ElasticHalfSpace(grid, E_star=E_star, planner_effort="FFTW_MEASURE")
 
 
 
-def rows_for(n, args):
-    surface, half = patch(n, args.E_star)
+def rows_for(n, args, realisation=1):
+    surface, half = patch(n, args.E_star, realisation)
     stack = DielectricStack()
     solve_contact(surface, half, mean_pressure=args.pressure, tol=args.tol)              # JIT and plans warm
     hard, hard_time = best_of(lambda: solve_contact(surface, half, mean_pressure=args.pressure, tol=args.tol),
                               args.repeat)
-    rows = [dict(section="hard_wall", n=n, voltage_V=0.0, time_s=hard_time, time_ratio=1.0,
+    rows = [dict(section="hard_wall", n=n, realisation=realisation, voltage_V=0.0, time_s=hard_time, time_ratio=1.0,
                  iterations=hard.iterations, fft_pairs=hard.solver.fft_pairs, fft_pair_ratio=1.0,
                  contact_fraction=hard.contact_fraction, equivalent_gap_m=stack.equivalent_gap(hard.gap),
                  converged=hard.converged)]
@@ -57,14 +63,14 @@ def rows_for(n, args):
             res, seconds = best_of(lambda: solve_contact(surface, half, mean_pressure=args.pressure, tol=args.tol,
                                                          interaction=law, x0=x0, warn=False), args.repeat)
             sweeps[kind] += seconds
-            rows.append(dict(section=f"electrostatic_{kind}", n=n, voltage_V=voltage, time_s=seconds,
-                             time_ratio=seconds / hard_time, iterations=res.iterations,
+            rows.append(dict(section=f"electrostatic_{kind}", n=n, realisation=realisation, voltage_V=voltage,
+                             time_s=seconds, time_ratio=seconds / hard_time, iterations=res.iterations,
                              fft_pairs=res.solver.fft_pairs, fft_pair_ratio=res.solver.fft_pairs /
                              hard.solver.fft_pairs, contact_fraction=res.contact_fraction,
                              equivalent_gap_m=res.equivalent_gap, converged=res.converged))
         previous = res
-    rows.append(dict(section="sweep", n=n, voltage_V=max(args.voltages), time_s=sweeps["continuation"],
-                     time_ratio=sweeps["cold"] / sweeps["continuation"]))
+    rows.append(dict(section="sweep", n=n, realisation=realisation, voltage_V=max(args.voltages),
+                     time_s=sweeps["continuation"], time_ratio=sweeps["cold"] / sweeps["continuation"]))
     return rows
 
 
@@ -163,6 +169,8 @@ def main(argv=None):
     parser.add_argument("--sizes", type=int, nargs="+", default=[256, 512], help="grid sizes n (n² pixels)")
     parser.add_argument("--voltages", type=float, nargs="+", default=[1e-6, 3.0, 10.0, 30.0, 50.0, 100.0, 200.0],
                         help="voltages U [V], solved in this order")
+    parser.add_argument("--realisations", type=count_argument, default=1,
+                        help="patch realisations rng = 1 … R; with R > 1 the costs are also summed over them")
     parser.add_argument("--E-star", type=float, default=1e6, help="contact modulus E* [Pa]")
     parser.add_argument("--pressure", type=float, default=1e3, help="external load p̄ [Pa]")
     parser.add_argument("--tol", type=float, default=1e-8, help="relative tolerance of both solvers")
@@ -182,12 +190,24 @@ def main(argv=None):
         import tamaas as tm
         tm.initialize(1)                                    # one thread, as ours
         tm.set_log_level(tm.LogLevel.error)
-    rows = [row for n in args.sizes for row in rows_for(n, args) + (peer_rows(n, args) if args.peers else [])]
-    path = write_csv(output_directory(args.output) / "bench_interactions.csv", rows, provenance, COLUMNS)
+    rows = [row for n in args.sizes for realisation in range(1, args.realisations + 1)
+            for row in rows_for(n, args, realisation)] + [row for n in args.sizes if args.peers
+                                                          for row in peer_rows(n, args)]
+    directory = output_directory(args.output)
+    path = write_csv(directory / "bench_interactions.csv", rows, provenance, COLUMNS)
     for row in rows:
         print("  ".join(f"{key}={value:.4g}" if isinstance(value, float) else f"{key}={value}"
                         for key, value in row.items()))
     print(f"wrote {path}")
+    if args.realisations > 1:
+        solves = [row for row in rows
+                  if row["section"] in ("hard_wall", "electrostatic_cold", "electrostatic_continuation")]
+        totals = summed_ratios(solves, ("n", "section", "voltage_V"), lambda key: (key[0], "hard_wall", 0.0))
+        write_csv(directory / "bench_interactions_totals.csv", totals, provenance)
+        for row in totals:
+            print(f"{row['n']:4d}² {row['section']:28s} {row['voltage_V']:6.3g} V over {row['count']} realisations: "
+                  f"{row['fft_pairs']:7.0f} FFT pairs (x{row['fft_pairs_ratio']:.2f} the hard wall), "
+                  f"time x{row['time_s_ratio']:.2f}")
 
 
 if __name__ == "__main__":
