@@ -32,8 +32,8 @@ from roughcontact import ElasticHalfSpace, ElectrostaticInteraction, solve_conta
 from roughcontact.electrostatics import DielectricStack
 from roughcontact.io import output_directory, parse_arguments, write_csv
 
-COLUMNS = ("section", "n", "realisation", "voltage_V", "time_s", "time_ratio", "iterations", "fft_pairs", "fft_pair_ratio",
-           "contact_fraction", "equivalent_gap_m", "converged", "relative_difference", "note")
+COLUMNS = ("section", "n", "realisation", "voltage_V", "time_s", "time_ratio", "iterations", "fft_pairs",
+           "fft_pair_ratio", "contact_fraction", "equivalent_gap_m", "converged", "relative_difference", "note")
 
 
 def patch(n, E_star, realisation=1):
