@@ -38,7 +38,8 @@ open points of the window and e those beside a point at the wall, f/e pixels is 
 1/κ the compliance of a region that wide; the mean mode gets 1/(1/Φ_max + κ). The solve starts from
 Polonsky–Keer's (which may finish it: it stops where slow) and ends with it, from the wall's reaction max(G, 0) on
 the points at the wall, so that its result meets PK's criterion (this one bounds the rms of the residual
-traction's displacement, which leaves single points √N times that).
+traction's displacement, which leaves single points √N times that); the gap is minimised to a tenth of tol first
+(``GAP_TOL_FACTOR``), which leaves that polish a few steps.
 
 Convergence criterion, with ``gap_scale`` the rms height of h (the law's length on a flat surface):
 
@@ -65,7 +66,7 @@ from .._version import __version__
 from ..electrostatics.field import FieldLaw, FieldSolveStalled
 from ..interactions import ElectrostaticInteraction
 from ..io.results import ConvergenceWarning
-from .inputs import Control
+from .inputs import FLOAT32_TOL_FLOOR, Control
 from .polonsky_keer import solve_hard_wall
 from .result import ContactResult, SolverReport, SolverState
 from .starts import hard_wall_start
@@ -80,7 +81,13 @@ FIELD_TOL_FLOOR = 1e-12  # but no tighter than this
 FIELD_TOL_CEILING = 1e-4 # and no looser (the start's, whose residual is not known yet)
 _REFRESH = 50             # exact recomputation of p_el at least every _REFRESH incremental steps
 RETRACT_HALVINGS = 10     # halvings of a cold tensile solve's retract step before its branch is said to end
-POLISH_STEPS = 100        # Polonsky–Keer's steps from the hard wall's answer on the gap, at most (4–14 measured)
+POLISH_STEPS = 100        # Polonsky–Keer's steps from the hard wall's answer on the gap, at most (0–4 measured)
+#: The hard wall's gap minimised to this times tol before the polish: a reaction that close to the answer leaves the
+#: polish 0–4 steps instead of 4–13 and the whole solve cheaper. Ten cold loads 0.4 … 4 MPa on the default scene's
+#: micro patch, tol 1e-8, FFT pairs summed at factors 1 / 0.3 / 0.1 / 0.03: 1044 / 962 / 938 / 922 on 128², 1148 /
+#: 1070 / 1036 / 1027 on 256², the flat positions within 1e-9 rms heights of each other
+#: (``python studies/bench_position.py``, ``sweep`` rows, with this constant set so).
+GAP_TOL_FACTOR = 0.1
 
 
 def _law_at(kernel, gap):
@@ -449,8 +456,10 @@ def solve_hard_wall_handing_over(problem, control: Control, *, cold_start="neste
 def solve_wall(problem, control: Control, first=None) -> ContactResult:
     """The hard wall (or a law that vanishes) on the gap (module docstring): from ``first`` (Polonsky–Keer's result,
     slow), else from ``control.x0`` where it is a result (its gap), else from Polonsky–Keer's solve with
-    ``slow_exit`` (from ``x0``'s pressure field, or cold; returned where it converges), then Polonsky–Keer's polish
-    (at most ``POLISH_STEPS`` steps; none where the gap did not converge) from the wall's reaction. The result's ``details`` are the polish's, with
+    ``slow_exit`` (from ``x0``'s pressure field, or cold; returned where it converges); the gap minimised to tol ×
+    ``GAP_TOL_FACTOR`` (in float32 not below its round-off floor), then Polonsky–Keer's polish (at most
+    ``POLISH_STEPS`` steps; none where the gap did not converge) from the wall's reaction. The result's ``details``
+    are the polish's, with
     ``gap_iterations``, ``polish_iterations`` and, after a slow start, ``handed_over_at`` (PK's step) and the
     start's ``nested_iterations``; its ``iterations``, ``fft_pairs`` and ``residuals`` count every phase."""
     start = time.perf_counter()
@@ -462,7 +471,10 @@ def solve_wall(problem, control: Control, first=None) -> ContactResult:
             return first
     begin = control.x0 if first is None else first
     kind = "x0" if first is None else f"polonsky-keer from {first.solver.start}, slow at step {first.iterations}"
-    gap = _minimise(problem, dataclasses.replace(control, warn=False), begin, kind,
+    # float32's gap gets no closer than its round-off floor (below it the solve runs to maxiter)
+    floor = FLOAT32_TOL_FLOOR if problem.body.dtype == np.float32 else 0.0
+    gap_tol = max(control.tol * GAP_TOL_FACTOR, min(control.tol, floor))
+    gap = _minimise(problem, dataclasses.replace(control, tol=gap_tol, warn=False), begin, kind,
                     0.0 if first is None else first.solver.fft_pairs, start)
     reaction = np.where(gap.contact, np.maximum(gap.pressure, 0.0), 0.0).astype(problem.body.dtype)
     polish = solve_hard_wall(problem, dataclasses.replace(        # (none where the gap stopped unconverged)
