@@ -439,11 +439,15 @@ def solve_hard_wall_handing_over(problem, control: Control, *, cold_start="neste
     stiff skin layer on a soft substrate) its contact set also cycles under load control. So on a periodic body
     (under load control a 2-D grid), preconditioned (the plain CG gains only about a decade in ten steps), PK
     runs with ``slow_exit`` and, where it stops so, :func:`solve_wall` continues from its result. Arguments as
-    :func:`~roughcontact.solvers.polonsky_keer.solve_hard_wall`'s."""
+    :func:`~roughcontact.solvers.polonsky_keer.solve_hard_wall`'s. Where PK would run so and ``control.x0`` is a
+    result solved on the gap (:func:`solved_on_the_gap`: PK was slow on this body before), the solve continues on
+    the gap from its gap at once (a load sweep's warm steps, :func:`~roughcontact.solvers.sweep.load_steps`)."""
     body = problem.body
     profile = body.grid.is_profile
     slow_mode = body.periodic and (not profile if preconditioned is None else preconditioned) and \
         (not profile if control.mean_pressure is not None else body.uniform_compliance == 0.0)
+    if slow_mode and solved_on_the_gap(control.x0):
+        return solve_wall(problem, control)
     first = solve_hard_wall(problem, dataclasses.replace(control, warn=False), cold_start=cold_start,
                             preconditioned=preconditioned, slow_exit=slow_mode)
     if "slow_exit_at" in first.solver.details:
@@ -451,6 +455,13 @@ def solve_hard_wall_handing_over(problem, control: Control, *, cold_start="neste
     if not first.converged and control.warn:
         warnings.warn(first.message, ConvergenceWarning, stacklevel=3)
     return first
+
+
+def solved_on_the_gap(result) -> bool:
+    """Whether ``result`` (a warm start ``x0``: a result, an array or None) is the hard wall's solve on the gap
+    (:func:`solve_wall`'s, handed over from Polonsky–Keer or started on the gap; its ``details`` have
+    ``gap_iterations``)."""
+    return isinstance(result, ContactResult) and "gap_iterations" in result.solver.details
 
 
 def solve_wall(problem, control: Control, first=None) -> ContactResult:

@@ -16,12 +16,18 @@ from contact_checks import check_contact_state
 TOL = 1e-8
 
 
+def _micro_patch(n):
+    """The default scene's micro patch on n² pixels (standard preset, realisation 0) on its layered skin (a 10 MPa
+    layer on 0.1 MPa)."""
+    scene = load_scene(text=f"[presets.standard]\ngrid = {n}\n", preset="standard")
+    return np.asarray(roughness_heights(scene, 0), float), patch_body(scene)
+
+
 @pytest.fixture(scope="module")
 def micro():
-    """The default scene's micro patch on 128² pixels (standard preset, realisation 0) on its layered skin (a 10 MPa
-    layer on 0.1 MPa), and the penetration that leaves a mean separation of 0.033 rms heights (87 % contact)."""
-    scene = load_scene(text="[presets.standard]\ngrid = 128\n", preset="standard")
-    heights, body = np.asarray(roughness_heights(scene, 0), float), patch_body(scene)
+    """The micro patch on 128² pixels, and the penetration that leaves a mean separation of 0.033 rms heights (87 %
+    contact)."""
+    heights, body = _micro_patch(128)
     return heights, body, heights.max() - heights.mean() - 0.033 * heights.std()
 
 
@@ -134,3 +140,22 @@ def test_pinning_edge_and_foundation_multiplier():
     expected = spectrum * multiplier / (1 + 0.7 * multiplier)
     apply_foundation_multiplier(spectrum, multiplier, 0.7)
     np.testing.assert_allclose(spectrum, expected, rtol=1e-14)
+
+
+def test_a_warm_start_solved_on_the_gap_continues_on_the_gap(micro):
+    """A load-controlled solve warm from a result that was handed over to the gap (Polonsky–Keer slow on this body)
+    continues on the gap from that result's gap at once: 39 FFT pairs at 2 MPa from the 1.6 MPa result, where
+    Polonsky–Keer from its pressure is slow again and hands over after 20 steps (94 pairs; the cold solve 93). The
+    same answer as the cold solve. A pressure field as x0 still starts Polonsky–Keer."""
+    heights, body, _ = micro
+    last = solve_contact(heights, body, mean_pressure=1.6e6, tol=TOL)
+    assert projected_cg_gap.solved_on_the_gap(last) and "handed_over_at" in last.solver.details
+    warm = solve_contact(heights, body, mean_pressure=2e6, tol=TOL, x0=last)
+    assert warm.converged and warm.solver.start == "x0" and "handed_over_at" not in warm.solver.details
+    assert warm.solver.fft_pairs < 45
+    cold = solve_contact(heights, body, mean_pressure=2e6, tol=TOL)
+    np.testing.assert_array_equal(warm.contact, cold.contact)
+    assert abs(warm.flat_position - cold.flat_position) <= TOL * heights.std()
+    from_pressure = solve_contact(heights, body, mean_pressure=2e6, tol=TOL, x0=last.pressure)
+    assert from_pressure.solver.details["handed_over_at"] == SLOW_STEPS
+
