@@ -14,9 +14,10 @@ and under load control at the mean pressure the first reached (``solve_contact(m
 hand-over on a periodic 2-D grid); ``--pk-alone`` adds Polonsky–Keer alone under both controls
 (``solve_hard_wall``, up to ``--pk-maxiter`` steps: on the micro patch it takes thousands). Then the coupled path's interface law at 0 V on each micro patch:
 its ``LAW_NODES`` separations solved from far to near, each from the last, as ``interface_law`` solves them.
-Then load sweeps (section ``sweep``): ``--sweep-loads`` mean pressures on each micro patch (0.4 … 4 MPa, 13–89 %
-contact on 128²) and on the bench surface (0.001 … 0.01 E*), each solved cold, by ``load_path`` (warm, secant
-predictor) and by ``load_path(method="projected-cg-gap")`` (warm from the last result's gap), summed. Columns:
+Then load sweeps (section ``sweep``): ``--sweep-loads`` mean pressures on each micro patch (0.4 … 4 MPa, 18–89 %
+contact on 128²) and on the bench surface (0.001 … 0.01 E*), each solved cold, by ``load_path`` (warm, the secant
+predictor: of the pressure, or of the gap where the last load was handed over to the gap) and by
+``load_path(method="projected-cg-gap")`` (the hard wall on the gap by name), summed. Columns:
 steps on the grid itself and the nested start's coarse steps, FFT pairs (the fine grid's), CPU time, contact
 fraction, and the flat positions' difference in rms heights between the two controls (sweeps: the largest over
 the loads against the cold solves). Writes
@@ -133,7 +134,8 @@ def sweep_rows(patch, n, realisation, heights, body, loads, args):
                          converged=all(result.converged for result in results),
                          note=f"{len(loads)} loads {loads[0]:.4g} … {loads[-1]:.4g} Pa"))
         print(f"{patch:5s} {n:4d}² r{realisation} sweep, {way:28s} {rows[-1]['iterations']:6d} + "
-              f"{rows[-1]['coarse_iterations']:5d} steps {rows[-1]['fft_pairs']:8.1f} FFT pairs  {seconds:.3f} s",
+              f"{rows[-1]['coarse_iterations']:5d} steps {rows[-1]['fft_pairs']:8.1f} FFT pairs  {seconds:.3f} s  "
+              f"({rows[-1]['fft_pairs'] / rows[0]['fft_pairs']:.2f} and {seconds / rows[0]['time_s']:.2f} of cold)",
               flush=True)
     return rows
 

@@ -1,29 +1,41 @@
 """Load sweeps: :func:`load_steps` solves a problem at a sequence of loads, each warm-started from a prediction of
-its pressure field (:func:`~roughcontact.solvers.problem.load_path`)."""
+its solution (:func:`~roughcontact.solvers.problem.load_path`)."""
 from __future__ import annotations
+
+import dataclasses
 
 import numpy as np
 
 from surfaces.validation import check_choice
 
-from .projected_cg_gap import METHOD as PROJECTED_CG_GAP
+from .projected_cg_gap import solved_on_the_gap
 from .result import ContactResult
 
 
 PREDICTORS = ("secant", "previous")
 
 
-def _secant_prediction(last, before, load):
-    """Pressure field [Pa] at mean pressure ``load`` [Pa] extrapolated linearly in load from the two previous
-    results, clipped at 0: p_k + w (p_k − p_{k−1}), w = (P − P_k)/(P_k − P_{k−1}) with P their mean pressures
-    (the last field if the two loads coincide)."""
+def _secant(last, before, load, field):
+    """The ``field`` of the results (``"pressure"`` [Pa] or ``"gap"`` [m]) at mean pressure ``load`` [Pa]
+    extrapolated linearly in load from the two previous results, clipped at 0: f_k + w (f_k − f_{k−1}),
+    w = (P − P_k)/(P_k − P_{k−1}) with P their mean pressures (the last field if the two loads coincide)."""
     if last.mean_pressure == before.mean_pressure:
-        return last.pressure
+        return getattr(last, field)
     weight = (load - last.mean_pressure) / (last.mean_pressure - before.mean_pressure)
-    prediction = np.subtract(last.pressure, before.pressure)
+    prediction = np.subtract(getattr(last, field), getattr(before, field))
     prediction *= weight
-    prediction += last.pressure
+    prediction += getattr(last, field)
     return np.maximum(prediction, 0.0, out=prediction)
+
+
+def _secant_start(last, before, load):
+    """The hard wall's warm start at mean pressure ``load`` [Pa] from the two previous results: the pressure's
+    secant, or, where the last was solved on the gap (Polonsky–Keer was slow on this body), the last result with
+    its gap [m] extrapolated the same way, from which the solve continues on the gap
+    (:func:`~roughcontact.solvers.projected_cg_gap.solve_hard_wall_handing_over`)."""
+    if solved_on_the_gap(last):
+        return dataclasses.replace(last, gap=_secant(last, before, load, "gap"))
+    return _secant(last, before, load, "pressure")
 
 
 def _start_results(start) -> list:
@@ -59,16 +71,18 @@ def _load_steps(problem, mean_pressures, warm_start, starts, progress, predictor
     """The generator behind :func:`load_steps` (its arguments checked before the first step)."""
     from tqdm.auto import tqdm
 
-    # a smooth law's warm start is the last result (its gap), as is the hard wall's on the gap, which sweeps faster on
-    # a layered periodic body (docs/guide/solver.md, "Slow solves continue on the gap")
-    smooth = problem.interaction.smooth or solver_options.get("method") == PROJECTED_CG_GAP
+    # a smooth law's warm start is the last result (its gap): a secant could carry it across an instability onto
+    # another branch; the hard wall's is the secant of its pressure, or of its gap where the last load was solved on
+    # the gap (docs/guide/solver.md, "Warm start")
+    law = problem.interaction
+    wall = not law.smooth or law.vanishes
     previous = starts[-1] if starts else None
     before = starts[0] if len(starts) == 2 else None
     steps = tqdm(mean_pressures, desc="load path", unit="step", disable=not progress)
     for mean_pressure in steps:
         x0 = previous if warm_start else None
-        if warm_start and predictor == "secant" and before is not None and not smooth:
-            x0 = _secant_prediction(previous, before, mean_pressure)
+        if warm_start and predictor == "secant" and before is not None and wall:
+            x0 = _secant_start(previous, before, mean_pressure)
         result = problem.solve(mean_pressure=mean_pressure, x0=x0, **solver_options)
         previous, before = result, previous
         steps.set_postfix(contact_fraction=f"{result.contact_fraction:.4g}", iterations=result.iterations,

@@ -3,7 +3,7 @@ name with method="projected-cg-gap", and the pinned preconditioner (docs/guide/s
 import numpy as np
 import pytest
 
-from roughcontact import ContactProblem, ElasticHalfSpace, solve_contact
+from roughcontact import ContactProblem, ElasticHalfSpace, load_path, solve_contact
 from roughcontact.body.elastic import apply_foundation_multiplier
 from roughcontact.solvers import projected_cg_gap
 from roughcontact.solvers.polonsky_keer import SLOW_STEPS, solve_hard_wall
@@ -159,3 +159,26 @@ def test_a_warm_start_solved_on_the_gap_continues_on_the_gap(micro):
     from_pressure = solve_contact(heights, body, mean_pressure=2e6, tol=TOL, x0=last.pressure)
     assert from_pressure.solver.details["handed_over_at"] == SLOW_STEPS
 
+
+def test_a_load_sweep_on_the_layered_skin_costs_under_half_the_cold_solves():
+    """``load_path`` on the 64² micro patch, 10 loads 0.4 … 4 MPa: each warm step continues on the gap from the
+    secant of the last two gaps, 350 FFT pairs against the cold solves' 843 (0.42; from the last gap alone,
+    ``predictor="previous"``, 375; Polonsky–Keer from the pressure's secant 834.5). The answers are the cold
+    solves' to the tolerance; a sweep resumed from two saved results repeats the uninterrupted one exactly."""
+    heights, body = _micro_patch(64)
+    loads = np.linspace(0.4e6, 4e6, 10)
+    warm = list(load_path(heights, body, loads, tol=TOL))
+    cold = [solve_contact(heights, body, mean_pressure=load, tol=TOL) for load in loads]
+    assert all(result.converged for result in warm + cold)
+    assert [result.solver.start for result in warm[1:]] == ["x0"] * 9
+    previous = list(load_path(heights, body, loads, tol=TOL, predictor="previous"))
+    pairs = [sum(result.solver.fft_pairs for result in results) for results in (warm, cold, previous)]
+    assert pairs[0] <= 0.45 * pairs[1] and pairs[0] < pairs[2]
+    for a, b in zip(warm, cold):
+        np.testing.assert_array_equal(a.contact, b.contact)
+        # flat positions measured at most 2.4e-10 rms heights apart at tol 1e-8
+        assert abs(a.flat_position - b.flat_position) <= TOL * heights.std()
+    resumed = list(load_path(heights, body, loads[4:7], start=warm[2:4], tol=TOL))
+    for a, b in zip(resumed, warm[4:7]):
+        np.testing.assert_array_equal(a.gap, b.gap)
+        assert a.iterations == b.iterations
