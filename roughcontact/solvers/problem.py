@@ -161,8 +161,9 @@ def load_path(surface, body: ElasticHalfSpace, mean_pressures, warm_start=True, 
 
     With ``warm_start`` each solve starts from a prediction of its pressure field, which the solver rescales
     to the new load: ``predictor="secant"`` (default) extrapolates linearly in load from the two previous
-    results (exact where p is linear in load, e.g. in full contact), ``"previous"`` takes the last field as it
-    is; the first warm step has only one result and takes it (a smooth law's solve starts from the last gap).
+    results (exact where p is linear in load, e.g. in full contact; where the last load was solved on the gap,
+    their gaps, and the solve continues on the gap), ``"previous"`` takes the last field as it is; the first warm
+    step has only one result and takes it (a smooth law's solve starts from the last gap).
     ``start`` warm-starts the first step, so a sweep resumes where it stopped: a ``ContactResult`` (e.g. the last
     one saved by an interrupted sweep) or the last two in order, with which the secant predictor continues
     exactly as if uninterrupted. ``progress`` shows a tqdm bar with the contact fraction and iterations of the
