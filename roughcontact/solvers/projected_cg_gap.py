@@ -477,9 +477,9 @@ def solve_wall(problem, control: Control, first=None) -> ContactResult:
     ``slow_exit`` (from ``x0``'s pressure field, or cold; returned where it converges); the gap minimised to tol ×
     ``GAP_TOL_FACTOR`` (in float32 not below its round-off floor), then Polonsky–Keer's polish (at most
     ``POLISH_STEPS`` steps; none where the gap did not converge) from the wall's reaction. The result's ``details``
-    are the polish's, with
-    ``gap_iterations``, ``polish_iterations`` and, after a slow start, ``handed_over_at`` (PK's step) and the
-    start's ``nested_iterations``; its ``iterations``, ``fft_pairs`` and ``residuals`` count every phase."""
+    are the polish's, with ``gap_iterations``, ``polish_iterations`` and, after a slow start, ``handed_over_at``
+    (PK's step) and the start's ``nested_iterations``; its ``iterations``, ``fft_pairs`` and ``residuals`` count
+    every phase."""
     start = time.perf_counter()
     if first is None and not isinstance(control.x0, ContactResult):
         first = solve_hard_wall(problem, dataclasses.replace(control, warn=False), slow_exit=True)
