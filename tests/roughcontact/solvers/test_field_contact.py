@@ -85,16 +85,14 @@ def test_default_patch_with_air_breakdown_is_at_equilibrium_with_its_field(defau
 
 
 def test_a_solve_from_its_own_answer_solves_the_starts_field_as_tightly_as_a_cold_one(default_patch):
-    """The start's field solve runs at the loosest field tolerance (FIELD_TOL_CEILING: the start's residual is not
-    known yet). From a converged answer (x0) the residual asks for far more, so the law at the start is solved again,
-    until its residual asks for no tighter, before convergence is declared: the traction the solve returns is the
-    field's at its gap to the cold solve's bound."""
+    """The start's field solve runs at the loosest field tolerance (1e-4: the start's residual is not known yet).
+    From a converged answer (x0) the residual asks for far more, so the law at the start is solved again before
+    convergence is declared: the traction the solve returns is the field's at its gap to the cold solve's bound."""
     heights, body, pressure = default_patch
     cold = solve_contact(heights, body, mean_pressure=pressure, interaction=layered(100.0), tol=1e-8)
     again = solve_contact(heights, body, mean_pressure=pressure, interaction=layered(100.0), tol=1e-8, x0=cold)
-    # it is at equilibrium from the start: no step (measured with the re-solve switched off: the start's field left
-    # at 1e-2 reads a residual above tol and the solve takes 28 steps back to where it started; re-solved once only,
-    # the residual then asks for tighter still, and it takes 5)
+    # it is at equilibrium from the start: no step (with the start's field left at 1e-4, its residual reads above
+    # tol and the solve takes 11 steps back to where it started: measured with the re-solve switched off)
     assert again.converged and again.iterations == 0
     imbalance, mismatch = field_equilibrium(again, heights, body)
     assert imbalance < 3e-5 and mismatch < 2e-6       # the bounds of test_default_patch_converges_...
