@@ -255,11 +255,12 @@ class StackField:
         factor = self.slope_factor(gap)
         column = self.column_elastance(gap, factor)
         flux = 1.0 / (self._diagonal + column)
-        scale = breakdown.field / abs(voltage)
+        scale, inverse_factor = breakdown.field / abs(voltage), 1.0 / factor
         iterations, sweeps, _, residual, settled, _ = self.active_set_solve(
-            column, flux.copy(), 1.0 / factor, scale, gap, breakdown.at_contact, flux, tol, maxiter)
-        threshold = EPSILON_0 * self.stack.eps_a * scale * factor
-        air = np.where((flux > threshold) & (breakdown.at_contact | (gap > 0)), threshold, flux)
+            column, flux.copy(), inverse_factor, scale, gap, breakdown.at_contact, flux, tol, maxiter)
+        field_scale = EPSILON_0 * self.stack.eps_a * scale      # the broken columns as _is_broken finds them
+        broken = (flux * inverse_factor > field_scale) & (breakdown.at_contact | (gap > 0))
+        air = np.where(broken, field_scale / inverse_factor, flux)
         return flux, air, iterations, sweeps, residual, settled
 
 
@@ -414,13 +415,19 @@ def cg_start(flux, product, column, inverse_diagonal, residual, z, direction, rh
 
 
 @njit(cache=True)
+def _is_broken(flux, inverse_factor, gap, field_scale, at_contact) -> bool:
+    """Whether a column's air is broken down: D₁ > D₁* = ``field_scale``/(1/f) (field_scale = ε0 ε_a E_bd/|U|), and
+    g > 0 unless ``at_contact``."""
+    return flux * inverse_factor > field_scale and (at_contact or gap > 0.0)
+
+
+@njit(cache=True)
 def _broken_changes(flux, inverse_factor, gap, field_scale, at_contact, broken):
-    """How many columns of ``flux`` changed sides against the set ``broken``, which takes the new sides: a column is
-    broken where D₁ > D₁* = ``field_scale``/(1/f) (field_scale = ε0 ε_a E_bd/|U|; and g > 0 unless
-    ``at_contact``). Reads three arrays: the sweeps' light check."""
+    """How many columns of ``flux`` changed sides against the set ``broken``, which takes the new sides
+    (:func:`_is_broken`). Reads three arrays: the sweeps' light check."""
     changes = 0
     for i in range(flux.size):
-        now = flux[i] * inverse_factor[i] > field_scale and (at_contact or gap[i] > 0.0)
+        now = _is_broken(flux[i], inverse_factor[i], gap[i], field_scale, at_contact)
         if now != broken[i]:
             changes += 1
             broken[i] = now
@@ -452,8 +459,9 @@ def _breakdown_outputs_into(gap, flux, inverse_factor, column, inverse_diagonal,
                             rhs, reduced, plain, accepted_charge, at_contact, inverse_permittivity, squared_voltage,
                             stiffness, flux_out, column_out, air, charge):
     """The air-breakdown field's pointwise outputs (:class:`FieldLaw`): the air flux D₁ − ρ₁ and the charge ρ₁ (D₁*
-    = ``field_scale``·f, the broken drop ``drop_scale``·g), the stiffness U² (D₁/(ε f))²/(M_ii + R) of the unbroken
-    columns (0 of the broken: their Maxwell stress does not follow the gap; the merit's curvature there,
+    = ``field_scale``·f where :func:`_is_broken`, the broken drop ``drop_scale``·g), the stiffness
+    U² (D₁/(ε f))²/(M_ii + R) of the unbroken columns (0 of the broken: their Maxwell stress does not follow the
+    gap; the merit's curvature there,
     E_bd²/M_ii, is that of the saturating air's energy, which the attraction is not, and taken as the model's
     curvature it sends the solve round a cycle), the flux and the columns; returns (the energy sum
     Σ ½ D₁ (M D₁) + ψ(D₁) − D₁ with M D₁ = rhs − ρ − R_u D₁ from the last sweep's residual ρ (``plain``: its
@@ -463,10 +471,9 @@ def _breakdown_outputs_into(gap, flux, inverse_factor, column, inverse_diagonal,
     for i in range(nx):
         for j in range(ny):
             d = flux[i, j]
-            threshold = field_scale / inverse_factor[i, j]
             drop = drop_scale * gap[i, j]
-            broken = d > threshold and (at_contact or gap[i, j] > 0.0)
-            a = threshold if broken else d
+            broken = _is_broken(d, inverse_factor[i, j], gap[i, j], field_scale, at_contact)
+            a = field_scale / inverse_factor[i, j] if broken else d
             rho = d - a
             if plain:
                 product = 1.0 - residual[i, j] - column[i, j] * d
@@ -767,7 +774,7 @@ class FieldLaw:
         squared_voltage = self.voltage ** 2
         reduced, rhs = field.active_set[:2]
         energy, credit, accepted_credit = _breakdown_outputs_into(
-            gap, unit_flux, inverse_factor, column, inverse_diagonal, scale / inverse_permittivity, scale,
+            gap, unit_flux, inverse_factor, column, inverse_diagonal, EPSILON_0 * field.stack.eps_a * scale, scale,
             field.residual, rhs, reduced, system is None, accepted, breakdown.at_contact, inverse_permittivity,
             squared_voltage, stiffness, flux, columns, air, charge)
         _attraction_into(gap, air, inverse_factor, field._stencil, -0.5 * squared_voltage * inverse_permittivity,
