@@ -257,6 +257,14 @@ class VariantDirectory(ResultsDirectory):
                     os.replace(plan.topography.save(path.with_name(f"{index}.part.npz")), path)
 
 
+def task_store(results: ResultsDirectory | None, tasks) -> TaskStore | None:
+    """Where a run keeps its tasks: the task store of its results directory ``results``, else the directory
+    ``tasks`` (checked and created as "tasks"), else none (the records stay in memory)."""
+    if results is not None:
+        return results.tasks
+    return None if tasks is None else TaskStore(output_directory(tasks, "tasks"))
+
+
 def _lock(path: Path) -> int:
     """An open descriptor of ``path`` holding the exclusive lock of a results directory (the system frees it
     when this process ends, killed or not; the process id in the file is for messages only). Raises

@@ -63,7 +63,8 @@ from ..io.provenance import output_directory
 from .apparent import apparent_scale
 from .coupled import coupled_chain
 from .cost import run_estimate
-from .execution import PATCH_FILE, InProcess, ResultsDirectory, TaskStore, check_executor, make_executor
+from .execution import (PATCH_FILE, InProcess, ResultsDirectory, TaskStore, check_executor, make_executor,
+                        task_store)
 from .plan import StudyPlan, plan_study
 from .progress import LoadProgress
 from .records import PER_REALISATION, PointResult, confidence_interval, point_result
@@ -171,8 +172,7 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
     check_executor(workers, dask)
     check_drive(plan)
     results = None if directory is None else ResultsDirectory(output_directory(directory), plan, tasks)
-    store = (results.tasks if results is not None else None if tasks is None
-             else TaskStore(output_directory(tasks, "tasks")))
+    store = task_store(results, tasks)
     apparent = apparent_scale(scene)                # once, for every task
     try:
         records, solved = solve_plans([(plan, apparent)], store, workers, dask, progress)

@@ -18,7 +18,7 @@ from surfaces import HeightField
 
 from ..io.provenance import output_directory
 from .apparent import apparent_scale
-from .execution import PATCHES, TaskStore, VariantDirectory, check_executor
+from .execution import PATCHES, TaskStore, VariantDirectory, check_executor, task_store
 from .plan import plan_study
 from .run import StudyResult, assemble_study_result, check_drive, open_results as open_study_results, solve_plans
 from .sensitivity import OUTPUTS, Sensitivity, analyse, study_outputs
@@ -113,8 +113,7 @@ def run_variants(study: VariantStudy, directory=None, progress: bool = False, wo
     for plan in plans:
         check_drive(plan)
     results = None if directory is None else VariantDirectory(output_directory(directory), study, plans, tasks)
-    store = (results.tasks if results is not None else None if tasks is None
-             else TaskStore(output_directory(tasks, "tasks")))
+    store = task_store(results, tasks)
     try:
         apparents = _apparent(variant.scene for variant in study.variants)
         records, solved = solve_plans(list(zip(plans, apparents)), store, workers, dask, progress)
