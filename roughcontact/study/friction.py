@@ -79,8 +79,8 @@ def bottom_up_friction(result: StudyResult, c2: float | None = None,
                          f"A_R in F_N and needs at least {FRICTION_MIN_LOADS} loads")
     apparent = result.array("apparent_area")
     if realisation is None:
-        if unconverged_points(result):
-            raise ValueError(f"no realisation converged at {unconverged_points(result)}: the bottom-up friction law "
+        if unconverged := unconverged_points(result):
+            raise ValueError(f"no realisation converged at {unconverged}: the bottom-up friction law "
                              "interpolates the realisation means of d_eq,R and A_R, which are NaN there")
         gaps = result.summary("ridge_equivalent_gap")[0]
         fractions = result.summary("ridge_area_fractions")[0][:, :, 0]

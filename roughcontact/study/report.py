@@ -167,14 +167,14 @@ def _scan_sentence(result: StudyResult) -> str:
 
 def _run_sentence(result: StudyResult, seconds: float | None) -> str:
     """The report's first paragraph: version, preset, patch, tolerance, convergence, instabilities, run time."""
-    scene, converged = result.scene, result.array("converged")
+    scene, converged, unconverged = result.scene, result.array("converged"), unconverged_points(result)
     return (f"roughcontact {__version__}, preset `{scene.study.preset}`: "
             + _patch_sentence(result, converged.shape[-1])
             + f", solver tolerance {scene.preset.tolerance:g}. Scene: `scene.toml` in this directory. "
             f"{converged.size - int(converged.sum())} of {converged.size} patch results did not converge (also "
             "from the solver's own start) and are left out of the means"
-            + (f"; none converged at {unconverged_points(result)}, whose means are NaN (`nan` in the tables, left "
-               "out of the comparisons below)" if unconverged_points(result) else "") + ". "
+            + (f"; none converged at {unconverged}, whose means are NaN (`nan` in the tables, left out of the "
+               "comparisons below)" if unconverged else "") + ". "
             + _unstable_sentence(result)
             + (f" Run time {seconds:.0f} s, tables and figures included ({result.computed} points computed with "
                f"{result.solves} solves, "
