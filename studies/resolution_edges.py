@@ -166,13 +166,17 @@ def strip_rows(stack, pixels, contact_line=None) -> list:
 @contextlib.contextmanager
 def fixed_field_tolerance(tol: float):
     """The layered law's field solves at ``tol`` throughout a contact solve instead of the solver's adaptive
-    tolerance (0.1 × its residual, within [1e-12, 1e-4]): the solver's module bounds pinned while inside."""
-    bounds = projected_cg_gap.FIELD_TOL_FLOOR, projected_cg_gap.FIELD_TOL_CEILING
-    projected_cg_gap.FIELD_TOL_FLOOR = projected_cg_gap.FIELD_TOL_CEILING = tol
+    tolerance (0.1 × its residual, within [1e-12, 1e-2] until a trial step is rejected and [1e-12, 1e-4] from then
+    on): the solver's module bounds pinned while inside."""
+    names = ("FIELD_TOL_FLOOR", "FIELD_TOL_CEILING", "FIELD_TOL_START")
+    bounds = tuple(getattr(projected_cg_gap, name) for name in names)
+    for name in names:
+        setattr(projected_cg_gap, name, tol)
     try:
         yield
     finally:
-        projected_cg_gap.FIELD_TOL_FLOOR, projected_cg_gap.FIELD_TOL_CEILING = bounds
+        for name, bound in zip(names, bounds):
+            setattr(projected_cg_gap, name, bound)
 
 
 def fem_strip_rows(stack, finest=FEM_FINEST, contact_line=None) -> list:

@@ -46,7 +46,8 @@ Convergence criterion, with ``gap_scale`` the rms height of h (the law's length 
     sqrt(⟨(K r)²⟩_F) ≤ tol · gap_scale,   r = G on F,
 
 the displacement that the residual traction would still cause. The layered field (a non-local law) is solved to a
-tenth of the last residual (within [1e-12, 1e-4]), and a residual at or below tol is trusted only once its law has
+tenth of the last residual, within [1e-12, 1e-2] until a trial step is first rejected and [1e-12, 1e-4] from
+then on (``FIELD_TOL_START``), and a residual at or below tol is trusted only once its law has
 been solved to a tenth of tol or tighter (a snap into full contact leaves F empty and the residual 0 at once, its
 field still solved as loosely as at the start). Under load control a tensile load with no contact left and every
 pixel pulled harder than the law attracts it has no equilibrium: reported, not iterated.
@@ -78,7 +79,17 @@ APPROACH = 2.0            # a stable point closes by at most this times (gap + l
 ENERGY_ROUND_OFF = 1e-12  # relative round-off of the energy sums (float64), below which a rise is not a rise
 FIELD_TOL_FACTOR = 0.1   # the layered field's solves to this times the solve's relative residual,
 FIELD_TOL_FLOOR = 1e-12  # but no tighter than this
-FIELD_TOL_CEILING = 1e-4 # and no looser (the start's, whose residual is not known yet)
+FIELD_TOL_CEILING = 1e-4 # and no looser once a trial step has been rejected;
+#: the bound before that (and the start's, whose residual is not known yet). Until a line search first rejects a
+#: trial, a field solved to 1 % steers the steps through the snap-in as well as one solved to 1e-4; near contact
+#: edges, where short steps gain less energy than a field solved to 1 % is off by, trials are rejected, and from the
+#: first one on the bound is FIELD_TOL_CEILING. FFT pairs of the default law, four realisations at 512², 30 / 100 /
+#: 200 V, against 1e-4 throughout: bench patch 1.09 / 0.54 / 0.53, scene patch 0.97 / 0.85 / 0.75 (``python
+#: studies/bench_field.py --sizes 512 --realisations 4 --contact-line breakdown``, this constant set to 1e-4 for the
+#: reference). 1e-2 throughout saves as much there but does not converge near contact edges at fine pixels
+#: (``docs/dev/investigations.md``, "The layered field's tolerance").
+FIELD_TOL_START = 1e-2
+START_RESOLVE = 0.5       # an x0's law solved again while its residual asks for a field this much tighter or more
 _REFRESH = 50             # exact recomputation of p_el at least every _REFRESH incremental steps
 RETRACT_HALVINGS = 10     # halvings of a cold tensile solve's retract step before its branch is said to end
 POLISH_STEPS = 100        # Polonsky–Keer's steps from the hard wall's answer on the gap, at most (0–4 measured)
@@ -622,7 +633,8 @@ class _Solver:
         self.window_view = tuple(slice(0, m) for m in grid.shape)  # the grid in the corner of the operator's fields
         # the layered law, evaluated by field solves on the window; it also carries its unit-voltage flux and
         # column elastance per point (zero outside the window)
-        self.field = FieldLaw(law.stack, law.voltage, grid, tol=FIELD_TOL_CEILING, contact_line=law.contact_line) \
+        self.field_ceiling = FIELD_TOL_START                   # the field's bound, until a trial is rejected
+        self.field = FieldLaw(law.stack, law.voltage, grid, tol=FIELD_TOL_START, contact_line=law.contact_line) \
             if isinstance(law, ElectrostaticInteraction) and not law.local else None
         arrays = 2 if self.field is None else 4
         # the layered law's stiffness is positive wherever its column is unbroken: zero marks a saturated point
@@ -668,8 +680,8 @@ class _Solver:
         history, residuals, interaction = [], [], 0.0
         iterations, converged, message, detached = 0, False, "", False
         previous_rz, tau, since_exact = 0.0, 0.0, 0
-        start_tol = FIELD_TOL_CEILING                   # the field's at the start (FieldLaw's first tolerance)
-        law_tol = start_tol if self.field is not None else 0.0   # the tolerance the accepted gap's law was solved to
+        # the tolerance the accepted gap's law was solved to (at the start, FieldLaw's first)
+        law_tol = FIELD_TOL_START if self.field is not None else 0.0
         accept_tol = max(FIELD_TOL_FLOOR, FIELD_TOL_FACTOR * tol)   # and the one it needs to be accepted
         try:
             value, magnitude, interaction = self.evaluate(self.g, pel, self.law_now)
@@ -689,12 +701,12 @@ class _Solver:
                 residual = math.sqrt(zz / n) / self.gap_scale
                 residuals.append(residual)
                 if self.field is not None:                  # the field solves as accurate as the step needs
-                    self.field.tol = min(FIELD_TOL_CEILING, max(FIELD_TOL_FLOOR, FIELD_TOL_FACTOR * residual))
-                    if self.field.tol < start_tol and not iterations:
+                    self.field.tol = min(self.field_ceiling, max(FIELD_TOL_FLOOR, FIELD_TOL_FACTOR * residual))
+                    if self.field.tol < START_RESOLVE * law_tol and not iterations:
                         # a start near its equilibrium (x0): its law solved again, warm, as tightly as its residual
-                        # asks, before that residual is trusted (once)
+                        # asks, before that residual is trusted (until it asks for no field much tighter)
                         value, magnitude, interaction = self.evaluate(g, pel, self.law_now)
-                        start_tol, law_tol = 0.0, self.field.tol
+                        law_tol = self.field.tol
                         history[-1] = value
                         residuals.pop()
                         continue
@@ -819,6 +831,7 @@ class _Solver:
                 self.unstable_steps += self.snapping
                 return (True, first) + trial
             rejected = first
+            self.tighten_field()
         self.snapping = False
         d_mean = sum_d / n
         _centred_into(d, d_mean, self.work.reshape(-1))
@@ -842,8 +855,16 @@ class _Solver:
                 self.snapping = concave
                 self.unstable_steps += concave
                 return (True, tau) + trial
+            self.tighten_field()
             tau *= 0.5
         return False, tau, pel, since_exact, None
+
+    def tighten_field(self):
+        """A rejected trial: the layered field's solves bounded by FIELD_TOL_CEILING from here on (the next trial's
+        included)."""
+        if self.field is not None and self.field_ceiling > FIELD_TOL_CEILING:
+            self.field_ceiling = FIELD_TOL_CEILING
+            self.field.tol = min(self.field.tol, FIELD_TOL_CEILING)
 
     def curvature(self, curvature, mean):
         """Π's curvature per unit area along a step from Σ Δg K⁻¹Δg − Σ k Δg² over n and ⟨Δg⟩: plus the layer's

@@ -16,9 +16,13 @@ def test_sweep_runs_from_dc_to_the_dielectric_limit(sweep):
     # DC: its surrogate is the DC law, no correction; a lossy drive corrects at least once; ∞ is the energy solve
     assert sweep[0]["corrections"] == "0" == sweep[-1]["corrections"]
     assert all(int(row["corrections"]) >= 1 for row in sweep[1:-1])
-    for column in ("mean_pressure_Pa", "fixed_mean_pressure_Pa"):        # solved and fixed gap: both fall
-        means = [float(row[column]) for row in sweep]
-        assert all(a >= b for a, b in zip(means, means[1:])) and means[0] > means[-1]
+    # on a fixed gap ⟨σ̄⟩ falls with the frequency; each frequency's equilibrium is solved cold, and near a snap-in
+    # two cold paths may end a contact pixel apart: one of the 4096 moves ⟨σ̄⟩ by about 3e-4 (3162 Hz ended at
+    # 2.539 % contact, 10 kHz at 2.563 %: 19.040 against 19.045 kPa), so the solved ⟨σ̄⟩ falls to within 1e-3
+    fixed = [float(row["fixed_mean_pressure_Pa"]) for row in sweep]
+    assert all(a >= b for a, b in zip(fixed, fixed[1:])) and fixed[0] > fixed[-1]
+    solved = [float(row["mean_pressure_Pa"]) for row in sweep]
+    assert all(a >= b * (1 - 1e-3) for a, b in zip(solved, solved[1:])) and solved[0] > 1.05 * solved[-1]
     assert float(sweep[-1]["ratio_to_dielectric"]) == 1.0 == float(sweep[-1]["fixed_ratio_to_dielectric"])
     # the dielectric limit's AC-equivalent gap is its field-equivalent gap; the crossovers lie inside the sweep
     assert float(sweep[-1]["ac_equivalent_gap_m"]) == pytest.approx(float(sweep[-1]["field_equivalent_gap_m"]))

@@ -61,10 +61,11 @@ def test_interpolated_gap_is_periodic_and_linear(edges):
 
 
 def test_fixed_field_tolerance_pins_and_restores_the_solvers_bounds(edges):
-    bounds = projected_cg_gap.FIELD_TOL_FLOOR, projected_cg_gap.FIELD_TOL_CEILING
+    names = ("FIELD_TOL_FLOOR", "FIELD_TOL_CEILING", "FIELD_TOL_START")
+    bounds = tuple(getattr(projected_cg_gap, name) for name in names)
     with edges.fixed_field_tolerance(1e-12):
-        assert projected_cg_gap.FIELD_TOL_FLOOR == projected_cg_gap.FIELD_TOL_CEILING == 1e-12
-    assert (projected_cg_gap.FIELD_TOL_FLOOR, projected_cg_gap.FIELD_TOL_CEILING) == bounds
+        assert all(getattr(projected_cg_gap, name) == 1e-12 for name in names)
+    assert tuple(getattr(projected_cg_gap, name) for name in names) == bounds
 
 
 def test_fast_run_tables_are_consistent(edges, read_csv, tmp_path):
