@@ -11,9 +11,11 @@ default 1 MPa), external load p̄ (``--pressure``, default 1 kPa), the seed's di
 grid: the hard-wall solve (Polonsky–Keer) and the electrostatic solves (the per-pixel law,
 ``field="parallel_plate"``: the peers' law; the layered field's cost is ``studies/bench_field.py``) at each
 voltage, cold, their time and FFT pairs as multiples of the hard wall's; then the voltage sweep 0 → max solved
-cold at every step and as a continuation (each solve starts from the last gap). With ``--realisations`` > 1 the
-costs are also summed over the realisations, as ratios of the hard wall's sum (``bench_interactions_totals.csv``):
-near the snap-in one solve's cost moves by a factor 2 with its path, and the sums average it. ``--peers``: the
+cold at every step and as a continuation (each solve starts from the last gap); the ``sweep`` row holds the
+continuation's time and FFT pairs and their shares of the cold solves'. With ``--realisations`` > 1 the costs are
+also summed over the realisations, as ratios of the hard wall's sum (``bench_interactions_totals.csv``), and the
+continuation's as a share of the cold solves' sum (section ``sweep``): near the snap-in one solve's cost moves by
+a factor 2 with its path, and the sums average it. ``--peers``: the
 same electrostatic problem in Tamaas (gap-primal Polonsky–Keer–Rey with the law as a Python functional, at our
 mean gap) and ContactMechanics + Adhesion (L-BFGS-B at our flat position), timed against our solve at the same
 control, with the relative difference of the conjugate quantity. Writes ``bench_interactions.csv`` with its
@@ -54,7 +56,7 @@ def rows_for(n, args, realisation=1):
                  iterations=hard.iterations, fft_pairs=hard.solver.fft_pairs, fft_pair_ratio=1.0,
                  contact_fraction=hard.contact_fraction, equivalent_gap_m=stack.equivalent_gap(hard.gap),
                  converged=hard.converged)]
-    sweeps = {"cold": 0.0, "continuation": 0.0}
+    sweeps = {kind: {"time_s": 0.0, "fft_pairs": 0.0} for kind in ("cold", "continuation")}
     previous = None
     for voltage in args.voltages:
         law = ElectrostaticInteraction(stack, voltage, field="parallel_plate")
@@ -62,15 +64,18 @@ def rows_for(n, args, realisation=1):
             x0 = previous if kind == "continuation" and previous is not None and voltage > 0 else None
             res, seconds = best_of(lambda: solve_contact(surface, half, mean_pressure=args.pressure, tol=args.tol,
                                                          interaction=law, x0=x0, warn=False), args.repeat)
-            sweeps[kind] += seconds
+            sweeps[kind]["time_s"] += seconds
+            sweeps[kind]["fft_pairs"] += res.solver.fft_pairs
             rows.append(dict(section=f"electrostatic_{kind}", n=n, realisation=realisation, voltage_V=voltage,
                              time_s=seconds, time_ratio=seconds / hard_time, iterations=res.iterations,
                              fft_pairs=res.solver.fft_pairs, fft_pair_ratio=res.solver.fft_pairs /
                              hard.solver.fft_pairs, contact_fraction=res.contact_fraction,
                              equivalent_gap_m=res.equivalent_gap, converged=res.converged))
         previous = res
+    cold, continued = sweeps["cold"], sweeps["continuation"]
     rows.append(dict(section="sweep", n=n, realisation=realisation, voltage_V=max(args.voltages),
-                     time_s=sweeps["continuation"], time_ratio=sweeps["cold"] / sweeps["continuation"]))
+                     time_s=continued["time_s"], time_ratio=continued["time_s"] / cold["time_s"],
+                     fft_pairs=continued["fft_pairs"], fft_pair_ratio=continued["fft_pairs"] / cold["fft_pairs"]))
     return rows
 
 
@@ -203,10 +208,16 @@ def main(argv=None):
         solves = [row for row in rows
                   if row["section"] in ("hard_wall", "electrostatic_cold", "electrostatic_continuation")]
         totals = summed_ratios(solves, ("n", "section", "voltage_V"), lambda key: (key[0], "hard_wall", 0.0))
+        sweeps = [dict(row, section=f"sweep_{row['section'][len('electrostatic_'):]}") for row in rows
+                  if row["section"] in ("electrostatic_cold", "electrostatic_continuation")]
+        totals += [dict(row, section="sweep", voltage_V=max(args.voltages), count=args.realisations)
+                   for row in summed_ratios(sweeps, ("n", "section"), lambda key: (key[0], "sweep_cold"))
+                   if row["section"] == "sweep_continuation"]
         write_csv(directory / "bench_interactions_totals.csv", totals, provenance)
         for row in totals:
+            reference = "the cold solves" if row["section"] == "sweep" else "the hard wall"
             print(f"{row['n']:4d}² {row['section']:28s} {row['voltage_V']:6.3g} V over {row['count']} realisations: "
-                  f"{row['fft_pairs']:7.0f} FFT pairs (x{row['fft_pairs_ratio']:.2f} the hard wall), "
+                  f"{row['fft_pairs']:7.0f} FFT pairs (x{row['fft_pairs_ratio']:.2f} {reference}), "
                   f"time x{row['time_s_ratio']:.2f}")
 
 

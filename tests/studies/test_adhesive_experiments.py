@@ -22,3 +22,8 @@ def test_electrostatic_cost_table(fast_run, read_csv):
     for a, b in zip(cold, continued):
         assert float(b["contact_fraction"]) == pytest.approx(float(a["contact_fraction"]), abs=0.005)
     assert float(cold[1]["contact_fraction"]) > float(cold[0]["contact_fraction"])
+    # the sweep row: the continuation's FFT pairs and their share of the cold solves'
+    (sweep,) = [row for row in rows if row["section"] == "sweep"]
+    pairs = [sum(float(row["fft_pairs"]) for row in kind) for kind in (cold, continued)]
+    assert float(sweep["fft_pairs"]) == pairs[1]
+    assert float(sweep["fft_pair_ratio"]) == pytest.approx(pairs[1] / pairs[0], rel=1e-12)
