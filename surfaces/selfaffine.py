@@ -21,7 +21,7 @@ Non-periodic axes: the field is synthesised on a periodic grid twice as long on 
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 import scipy.fft
@@ -157,6 +157,18 @@ def _amplitude_target(rms_height, rms_slope) -> tuple:
     if name == "rms_height":                # a length, in the range of the grid's (its square a power in float64)
         return 0, check_real(name, value, low=MIN_LENGTH, high=MAX_LENGTH)
     return 1, check_positive(name, value)
+
+
+def _check_prefactor_amplitude(spectrum: "SelfAffinePSD") -> None:
+    """A ``prefactor`` amplitude whose spectrum's analytic rms height [m] lies outside the lengths a grid may hold
+    ([MIN_LENGTH, MAX_LENGTH], as ``rms_height``) is refused before synthesis, naming the prefactor range that fits
+    (the rms height goes as its square root; computed from the unit spectrum's, so that nothing overflows)."""
+    unit_rms = replace(spectrum, prefactor=1.0).rms_height
+    rms = math.sqrt(spectrum.prefactor) * unit_rms
+    if not MIN_LENGTH <= rms <= MAX_LENGTH:
+        low, high = ((bound / unit_rms) ** 2 for bound in (MIN_LENGTH, MAX_LENGTH))
+        raise ValueError(f"prefactor = {spectrum.prefactor!r} m^4 gives heights of rms {rms:.3g} m, outside "
+                         f"[{MIN_LENGTH:g}, {MAX_LENGTH:g}] m; valid range here [{low:.3g}, {high:.3g}] m^4")
 
 
 def _stream_index(kx: np.ndarray, ky: np.ndarray, profile: bool) -> np.ndarray:
@@ -335,6 +347,8 @@ def self_affine(grid: Grid, hurst: float, *, rms_height=None, rms_slope=None, pr
     spectrum = SelfAffinePSD(hurst, 1.0 if prefactor is None else check_positive("prefactor", prefactor),
                              long_cutoff, rolloff, short_cutoff, grid.is_profile)
     exact = normalise and prefactor is None
+    if prefactor is not None:
+        _check_prefactor_amplitude(spectrum)
     if prefactor is None and (short_cutoff is not None or not normalise):
         if short_cutoff is None:
             raise ValueError("short_cutoff = None with normalise=False and an rms amplitude: the prefactor comes "

@@ -310,6 +310,11 @@ ROWS = [
     ("sa-hurst-big", lambda: self_affine(G(), hurst=1.5, rms_height=1e-6), refused(ValueError, "hurst", "1.5", "(0, 1]")),
     ("sa-hurst-nan", lambda: self_affine(G(), hurst=np.nan, rms_height=1e-6), refused(ValueError, "hurst", "nan")),
     ("sa-rms-zero", lambda: self_affine(G(), hurst=0.8, rms_height=0.0), refused(ValueError, "rms_height", "0")),
+    # a prefactor whose heights overflow (rms 1e154 m) or vanish (1e-96 m) beyond the lengths a grid holds
+    ("sa-prefactor-huge", lambda: self_affine(G(), hurst=0.8, prefactor=1e300, rng=1),
+     refused(ValueError, "prefactor = 1e+300", "rms", "valid range")),
+    ("sa-prefactor-tiny", lambda: self_affine(G(), hurst=0.8, prefactor=1e-200, rng=1),
+     refused(ValueError, "prefactor = 1e-200", "rms", "valid range")),
     ("sa-rms-negative", lambda: self_affine(G(), hurst=0.8, rms_height=-1e-6), refused(ValueError, "rms_height", "-1e-06")),
     ("sa-rms-and-slope", lambda: self_affine(G(), hurst=0.8, rms_height=1e-6, rms_slope=0.1),
      refused(ValueError, "rms_height", "rms_slope")),
