@@ -80,9 +80,11 @@ def _cmd_scene(args, provenance) -> int:
     path = getattr(args, "scene", None)
     try:
         if path is not None and study.has_variation(path):
-            return _show_variant_study(study.load_variant_study(path), args.show, path)
+            variants = study.load_variant_study(path)
+            study.plan_variants(variants)       # every variant's checks of roughcontact run, before any solve
+            return _show_variant_study(variants, args.show, path)
         scene = study.load_scene(path)
-        study.plan_study(scene)                 # the patch's checks of roughcontact run, before any solve
+        study.checked_plan(scene)               # the patch's and the drive's checks of roughcontact run
     except (ValueError, ImportError) as error:
         print(f"roughcontact scene: error: {error}", file=sys.stderr)
         return USAGE_ERROR

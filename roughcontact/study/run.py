@@ -168,9 +168,8 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
     """
     if not isinstance(progress, bool):
         raise TypeError(f"progress must be True or False, got {progress!r}")
-    plan = plan_study(scene)
+    plan = checked_plan(scene)
     check_executor(workers, dask)
-    check_drive(plan)
     results = None if directory is None else ResultsDirectory(output_directory(directory), plan, tasks)
     store = task_store(results, tasks)
     apparent = apparent_scale(scene)                # once, for every task
@@ -181,6 +180,14 @@ def run_study(scene: Scene, directory=None, progress: bool = False, workers: int
             results.release()
     return assemble_study_result(plan, {task.index: records[task.key] for task in plan.tasks}, apparent,
                          [task for task in plan.tasks if task.key in solved])
+
+
+def checked_plan(scene) -> StudyPlan:
+    """The study's plan of ``scene`` (:func:`~.plan.plan_study`, with the patch's checks) and the drive's check:
+    what ``roughcontact run`` and ``roughcontact scene`` refuse before any solve."""
+    plan = plan_study(scene)
+    check_drive(plan)
+    return plan
 
 
 def check_drive(plan: StudyPlan) -> None:

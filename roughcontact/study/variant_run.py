@@ -20,7 +20,7 @@ from ..io.provenance import output_directory
 from .apparent import apparent_scale
 from .execution import PATCHES, TaskStore, VariantDirectory, check_executor, task_store
 from .plan import plan_study
-from .run import StudyResult, assemble_study_result, check_drive, open_results as open_study_results, solve_plans
+from .run import StudyResult, assemble_study_result, checked_plan, open_results as open_study_results, solve_plans
 from .sensitivity import OUTPUTS, Sensitivity, analyse, study_outputs
 from .variants import VariantStudy, has_variation, load_variant_study
 
@@ -109,9 +109,7 @@ def run_variants(study: VariantStudy, directory=None, progress: bool = False, wo
     if not isinstance(progress, bool):
         raise TypeError(f"progress must be True or False, got {progress!r}")
     check_executor(workers, dask)
-    plans = [plan_study(variant.scene) for variant in study.variants]
-    for plan in plans:
-        check_drive(plan)
+    plans = plan_variants(study)
     results = None if directory is None else VariantDirectory(output_directory(directory), study, plans, tasks)
     store = task_store(results, tasks)
     try:
@@ -121,6 +119,18 @@ def run_variants(study: VariantStudy, directory=None, progress: bool = False, wo
         if results is not None:
             results.release()
     return _assemble(study, plans, apparents, records, solved)
+
+
+def plan_variants(study: VariantStudy) -> list:
+    """Every variant's plan, each checked as one scene is (:func:`~.run.checked_plan`); ValueError naming the
+    variant whose patch or drive is refused."""
+    plans = []
+    for variant in study.variants:
+        try:
+            plans.append(checked_plan(variant.scene))
+        except ValueError as error:
+            raise ValueError(f"variant {variant.index} ({variant.label}): {error}") from error
+    return plans
 
 
 def open_variant_results(directory, tasks=None) -> VariantStudyResult:

@@ -47,6 +47,18 @@ def varied(tmp_path_factory):
     return study, directory, run_variants(study, directory / "out", workers=1)
 
 
+def test_the_scene_command_checks_every_variant_as_run_does(tmp_path, capsys):
+    # a variant whose patch is refused (its long cut-off beyond the patch side of 0.45 mm): `roughcontact scene`
+    # refuses the study in one line naming the variant, as `roughcontact run` does before any solve
+    scene = tmp_path / "vary.toml"
+    scene.write_text(BASE + '\n[vary]\n"roughness.long_cutoff" = [1e-4, 1e-3]\n')
+    for command in (["scene", str(scene)], ["run", str(scene), "--out", str(tmp_path / "out")]):
+        assert main(command) == 2
+        error = capsys.readouterr().err
+        assert error.count("\n") == 1 and ": error: variant 2 (roughness.long_cutoff = 0.001): roughness.long_cutoff " \
+            "= 0.001 m exceeds the patch side 0.00045 m" in error
+
+
 # ---------------------------------------------------------------------------------------------------------
 # The [vary] table
 # ---------------------------------------------------------------------------------------------------------
