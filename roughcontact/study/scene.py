@@ -271,8 +271,8 @@ class Ridges(_Section):
 
 #: The [roughness] keys that say how a measured scan is read and windowed, each with its value when absent (the
 #: file's own unit, size and first channel; no crop, no resampling): :func:`measured_topography`.
-SCAN_KEYS = {"unit": "", "lengths": (), "pixel_size": (), "channel": 0, "crop": (), "crop_by": "pixels",
-             "resample": ()}
+SCAN_KEYS = {"unit": "", "lengths": (), "pixel_size": (), "channel": 0, "rows": "", "crop": (),
+             "crop_by": "pixels", "resample": ()}
 
 
 @dataclass(frozen=True)
@@ -283,8 +283,11 @@ class Roughness(_Section):
 
     How the scan is read (:data:`SCAN_KEYS`, for a file that does not store them): the ``unit`` of its numbers
     (a name or metres per number), its size as ``lengths`` [Lx, Ly] or ``pixel_size`` (dx or [dx, dy]) [m], its
-    ``channel``; then the window ``crop`` = [x0, x1, y0, y1] of the scan as read, half-open, in pixels or, with
-    ``crop_by = "metres"``, in metres, and ``resample`` = [nx, ny] pixels over that window."""
+    ``channel``, and for a text height matrix or ``.npy`` the layout of its ``rows`` ("x": row i holds the heights
+    at x_i, as numpy writes an array; "y": row j holds those along x at y_j, the image layout; "" the reader's own,
+    which is "y" for text and "x" for ``.npy``); then the window ``crop`` = [x0, x1, y0, y1] of the scan as read,
+    half-open, in pixels or, with ``crop_by = "metres"``, in metres, and ``resample`` = [nx, ny] pixels over that
+    window."""
     section = "roughness"
     enabled: bool = _field(_BOOLEAN)
     hurst: float = _field(RealKey(0.0, 1.0, low_open=True))
@@ -299,6 +302,7 @@ class Roughness(_Section):
     lengths: tuple = _field(_Optional(2, RealKey(0.0, low_open=True)), default=())
     pixel_size: tuple = _field(_Optional(2, RealKey(0.0, low_open=True), single=True), default=())
     channel: int = _field(_Integer(0, 1000), default=0)
+    rows: str = _field(_Choice(("", "x", "y")), default="")
     crop: tuple = _field(_Optional(4, RealKey(0.0)), default=())
     crop_by: str = _field(_Choice(("pixels", "metres")), default="pixels")
     resample: tuple = _field(_Optional(2, _Integer(8, 4096)), default=())
@@ -640,7 +644,7 @@ def _read_scan(path: str, missing: str, options: dict) -> HeightField:
     """The scan ``path`` as read with the scene's ``missing`` and :data:`SCAN_KEYS` ``options`` (the reader's
     errors in the scene's keys)."""
     if path.endswith(".npz"):
-        given = [f"roughness.{key}" for key in ("unit", "lengths", "pixel_size", "channel")
+        given = [f"roughness.{key}" for key in ("unit", "lengths", "pixel_size", "channel", "rows")
                  if options[key] != SCAN_KEYS[key]]
         if given:
             raise ValueError(f"{path} is a saved HeightField, which stores its size and its heights in metres, one "
@@ -648,10 +652,30 @@ def _read_scan(path: str, missing: str, options: dict) -> HeightField:
         return HeightField.load(path)
     size = {key: options[key] or None for key in ("lengths", "pixel_size")}
     try:
+        if options["rows"]:
+            return _read_matrix(path, missing, options, size)
         return read_topography(path, channel=options["channel"], unit=options["unit"] or None, missing=missing,
                                **size)
     except ValueError as error:
         raise ValueError(_in_scene_keys(str(error))) from None
+
+
+def _read_matrix(path: str, missing: str, options: dict, size: dict) -> HeightField:
+    """A text height matrix or ``.npy`` in the layout of ``roughness.rows`` (HeightField.read: numpy only), with
+    the unit and size the file does not store."""
+    if not path.endswith(".npy"):
+        with open(path, "rb") as stream:
+            if b"\0" in stream.read(4096):
+                raise ValueError(f'roughness.rows = "{options["rows"]}" says how a text height matrix or .npy is laid '
+                                 f"out, but {path} is a binary file (an instrument's format, which fixes its axes); "
+                                 "valid: leave roughness.rows out")
+    if not options["unit"]:
+        raise ValueError(f'{path} stores no length unit; set roughness.unit (e.g. "um" or metres per number)')
+    if not (size["lengths"] or size["pixel_size"]):
+        raise ValueError(f"{path} stores no physical size; set roughness.lengths = [Lx, Ly] or roughness.pixel_size "
+                         "= dx or [dx, dy] in m")
+    return HeightField.read(path, unit=options["unit"], channel=options["channel"], rows=options["rows"],
+                            layout="matrix", missing=missing, **size)
 
 
 #: The reader's arguments as the [roughness] keys that set them (:func:`_in_scene_keys`).

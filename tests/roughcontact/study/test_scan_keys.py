@@ -1,5 +1,5 @@
-"""How a scene reads a measured scan: the [roughness] keys unit, lengths or pixel_size, channel, crop (by pixels or
-metres), resample and missing = "crop"; each checked at validation with an error naming the key, its line and
+"""How a scene reads a measured scan: the [roughness] keys unit, lengths or pixel_size, channel, rows, crop (by
+pixels or metres), resample and missing = "crop"; each checked at validation with an error naming the key, its line and
 what is valid; a reader's own error written in the scene's keys; every key that changes the patch changes the
 task keys (through the patch's digest)."""
 import numpy as np
@@ -55,7 +55,29 @@ def test_a_text_scan_is_read_with_its_unit_and_pixel_size_from_the_scene(tmp_pat
     assert patch.patch_grid(one_size).spacing == pytest.approx((DX, DX), rel=1e-12)       # one number: square
 
 
+def test_rows_says_how_a_height_matrix_is_laid_out(tmp_path, scans):
+    """The window written in the image layout (rows along y: scan.txt) and as numpy writes it (rows along x, .txt
+    and .npy) reads to the same patch once ``rows`` says which it is; without it a text matrix is read in the
+    image layout and a .npy as stored, so the same array saved both ways was read transposed."""
+    np.savetxt(tmp_path / "numpy.txt", scans.heights * 1e6)
+    np.save(tmp_path / "numpy.npy", scans.heights * 1e6)
+    image = scene(tmp_path, "scan.txt", TEXT_KEYS, "free")
+    expected = patch.patch_surface(image, 0)
+    for name, rows in [("scan.txt", "y"), ("numpy.txt", "x"), ("numpy.npy", "x"), ("numpy.npy", "")]:
+        read = scene(tmp_path, name, TEXT_KEYS + (f'rows = "{rows}"\n' if rows else ""), "free")
+        assert patch.patch_grid(read) == patch.patch_grid(image)
+        np.testing.assert_allclose(patch.patch_surface(read, 0), expected, rtol=0, atol=1e-17)
+        assert patch.measured_topography(read.roughness).metadata.get("rows", "") == rows
+    # the other layout is the window transposed: NY x NX pixels of 5 x 12.5 µm
+    assert patch.patch_grid(scene(tmp_path, "numpy.txt", TEXT_KEYS, "free")).shape == (NY, NX)
+
+
 @pytest.mark.parametrize("name, keys, line, key, message", [
+    ("scan.x3p", 'rows = "x"\n', 6, "rows", r'roughness.rows = "x" says how a text height matrix or .npy is laid '
+     r"out, but .*scan.x3p is a binary file .*; valid: leave roughness.rows out"),
+    ("scan.npz", 'rows = "y"\n', 6, "rows", r"scan.npz is a saved HeightField, .*; valid: leave roughness.rows out"),
+    ("scan.txt", 'pixel_size = 5e-6\nrows = "y"\n', 4, "topography",
+     r'scan.txt stores no length unit; set roughness.unit \(e.g. "um" or metres per number\)'),
     ("scan.x3p", 'unit = "um"\n', 6, "unit",
      r'roughness.unit = "um" given, but scan.x3p stores its unit \(\'m\'\); leave roughness.unit out'),
     ("scan.x3p", "lengths = [1e-4, 1e-4]\n", 6, "lengths",
@@ -94,6 +116,7 @@ def test_a_reader_error_names_the_scene_key(tmp_path, scans, name, keys, line, k
     ('crop_by = "inches"\n', r'crop_by = \'inches\' is not one of "pixels", "metres"'),
     ("resample = [4, 40]\n", r"resample\[0\] must be an integer in \[8, 4096\]"),
     ('missing = "zero"\n', r'roughness.missing = \'zero\' is not one of "refuse", "harmonic", "crop"'),
+    ('rows = "z"\n', r'roughness.rows = \'z\' is not one of "", "x", "y"'),
 ])
 def test_the_scan_keys_are_validated(tmp_path, scans, keys, message):
     with pytest.raises((ValueError, TypeError), match=rf"scene.toml, line 6: scene key roughness\.\w+: .*{message}"):
@@ -139,18 +162,20 @@ def test_every_scan_key_that_changes_the_patch_changes_the_task_keys(tmp_path, s
                "pixel_size": keys("scan.txt", 'unit = "um"\npixel_size = [5e-6, 5e-6]\n'),
                "crop": keys("scan.txt", TEXT_KEYS + "crop = [0, 20, 0, 20]\n"),
                "resample": keys("scan.txt", TEXT_KEYS + "resample = [12, 10]\n"),
-               "missing": keys("holes.txt", TEXT_KEYS + 'missing = "harmonic"\n')}
+               "missing": keys("holes.txt", TEXT_KEYS + 'missing = "harmonic"\n'),
+               "rows": keys("scan.txt", TEXT_KEYS + 'rows = "x"\n')}
     assert keys("holes.txt", TEXT_KEYS + 'missing = "crop"\n') != changed["missing"]
     for name, tasks in changed.items():
         assert not set(tasks) & set(base), name
     # the same patch however it is asked for: the same keys
     assert keys("scan.txt", 'unit = 1e-6\npixel_size = [5e-6, 12.5e-6]\n') == base
     assert keys("scan.txt", TEXT_KEYS + 'missing = "crop"\n') == base            # nothing missing: nothing cut
+    assert keys("scan.txt", TEXT_KEYS + 'rows = "y"\n') == base                   # the text reader's own layout
 
 
 def test_the_scan_keys_round_trip_and_stay_out_of_a_scene_without_them(tmp_path, scans):
     chosen = scene(tmp_path, "scan.txt", TEXT_KEYS + 'crop = [0, 2e-5, 0, 1e-4]\ncrop_by = "metres"\n')
     assert load_scene(text=chosen.to_toml()) == chosen
     plain = load_scene()
-    assert not {"unit", "lengths", "pixel_size", "channel", "crop", "crop_by", "resample"} & set(
+    assert not {"unit", "lengths", "pixel_size", "channel", "rows", "crop", "crop_by", "resample"} & set(
         plain.to_dict()["roughness"])
