@@ -20,6 +20,7 @@ _LAZY = {
     "ElasticHalfSpace": "body",
     "solve_contact": "solvers",
     "load_path": "solvers",
+    "voltage_path": "solvers",
     "ContactResult": "solvers",
     "ContactProblem": "solvers",
     "HardWall": "interactions",

@@ -2,7 +2,7 @@
 :meth:`~ContactProblem.control` (what is fixed, tolerance, iteration limit, warm start, callback); its
 :meth:`~ContactProblem.solve` hands both to the method that solves the law (:data:`~.dispatch.METHODS`), which
 takes them as they are. :func:`solve_contact` and :func:`load_path` are the functional forms, with the same
-keywords."""
+keywords, and :func:`voltage_path` sweeps an electrostatic law's voltage."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -16,7 +16,7 @@ from ..interactions import HardWall, Interaction
 from .dispatch import method_and_options
 from .inputs import Control, body_heights, check_body, checked_control, checked_interaction, checked_surface
 from .result import ContactResult
-from .sweep import load_steps
+from .sweep import load_steps, voltage_steps
 
 
 @dataclass(frozen=True)
@@ -27,7 +27,8 @@ class ContactProblem:
 
     ``problem.solve(mean_pressure=…)`` (or ``total_force=`` [N], ``penetration=`` [m]; the other keywords as in
     :func:`solve_contact`) returns a :class:`ContactResult`; ``problem.load_path(loads)`` sweeps the load
-    (:func:`load_path`). A sweep or a load cycle checks the problem once and each solve's control once.
+    (:func:`load_path`), ``problem.voltage_path(voltages, mean_pressure=…)`` the voltage (:func:`voltage_path`).
+    A sweep or a load cycle checks the problem once and each solve's control once.
     """
 
     surface: HeightField
@@ -66,6 +67,10 @@ class ContactProblem:
                   **solver_options):
         """Yield the results at each of ``mean_pressures`` [Pa] in order (:func:`load_path`)."""
         return load_steps(self, mean_pressures, warm_start, start, progress, predictor, solver_options)
+
+    def voltage_path(self, voltages, warm_start=True, start=None, progress=False, **solver_options):
+        """Yield the results with the law at each of ``voltages`` [V] in order (:func:`voltage_path`)."""
+        return voltage_steps(self, voltages, warm_start, start, progress, solver_options)
 
     def coarsened(self) -> ContactProblem:
         """The same problem on the grid coarsened 2 × 2 (each coarse pixel the mean height of the four it covers;
@@ -172,3 +177,23 @@ def load_path(surface, body: ElasticHalfSpace, mean_pressures, warm_start=True, 
     """
     return ContactProblem(surface, body, interaction).load_path(mean_pressures, warm_start, start, progress,
                                                                 predictor, **solver_options)
+
+
+def voltage_path(surface, body: ElasticHalfSpace, voltages, warm_start=True, start=None, progress=False, *,
+                 interaction: Interaction, **solver_options):
+    """Yield :func:`solve_contact` results with the electrostatic law ``interaction`` (an
+    :class:`~roughcontact.interactions.ElectrostaticInteraction`) at each of ``voltages`` [V] in order, at the
+    control in ``solver_options`` (``mean_pressure=``, ``total_force=`` or ``penetration=``):
+    ``ContactProblem(surface, body, interaction).voltage_path(voltages, …)``.
+
+    With ``warm_start`` each solve starts from the last result's gap, so the sweep follows the branch a drive
+    ramped through these voltages reaches: ramped down after a ramp up, the contact that snapped in stays where
+    the attraction still holds it (the hysteresis of docs/guide/interactions.md, "Several
+    equilibria"), and each step costs what its change of voltage asks (on the bench's patch, 256², ten 20 V steps,
+    0.67 of the cold solves' FFT pairs; ``studies/bench_interactions.py``). A secant predictor is not offered: it
+    carries the path across the instabilities it predicts (docs/dev/roadmap.md). ``start`` (a ContactResult, e.g.
+    the last one saved by an interrupted sweep) warm-starts the first step, so a sweep resumes exactly where it
+    stopped. ``progress`` shows a tqdm bar with the voltage, contact fraction and iterations of the last step.
+    """
+    return ContactProblem(surface, body, interaction).voltage_path(voltages, warm_start, start, progress,
+                                                                   **solver_options)

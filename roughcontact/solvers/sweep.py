@@ -1,5 +1,7 @@
-"""Load sweeps: :func:`load_steps` solves a problem at a sequence of loads, each warm-started from a prediction of
-its solution (:func:`~roughcontact.solvers.problem.load_path`)."""
+"""Load and voltage sweeps: :func:`load_steps` solves a problem at a sequence of loads, each warm-started from a
+prediction of its solution (:func:`~roughcontact.solvers.problem.load_path`); :func:`voltage_steps` at a
+sequence of voltages of its electrostatic law, each from the last gap (:func:`~roughcontact.solvers.problem.
+voltage_path`)."""
 from __future__ import annotations
 
 import dataclasses
@@ -8,6 +10,7 @@ import numpy as np
 
 from surfaces.validation import check_choice
 
+from ..interactions import ElectrostaticInteraction
 from .projected_cg_gap import solved_on_the_gap
 from .result import ContactResult
 
@@ -87,4 +90,42 @@ def _load_steps(problem, mean_pressures, warm_start, starts, progress, predictor
         previous, before = result, previous
         steps.set_postfix(contact_fraction=f"{result.contact_fraction:.4g}", iterations=result.iterations,
                           refresh=False)
+        yield result
+
+
+def voltage_steps(problem, voltages, warm_start=True, start=None, progress=False, solver_options=None):
+    """The results of the checked ``problem``, whose law is an :class:`~roughcontact.interactions.
+    ElectrostaticInteraction`, with that law at each of ``voltages`` [V] in order, at the control in
+    ``solver_options`` (``mean_pressure=``, ``total_force=`` or ``penetration=``, with :func:`solve_contact`'s
+    other keywords), each solve started from the last result (``start``, a ContactResult, for the first) as
+    :func:`~roughcontact.solvers.problem.voltage_path` says; every voltage checked before the first step."""
+    law = problem.interaction
+    if not isinstance(law, ElectrostaticInteraction):
+        raise TypeError(f"voltage_path sweeps the voltage of an ElectrostaticInteraction; the problem's law is "
+                        f"{type(law).__name__}")
+    solver_options = solver_options or {}
+    if "x0" in solver_options:
+        raise ValueError("voltage_path sets x0 itself; pass warm_start=False to start every step cold, or start= "
+                         "to warm-start the first step")
+    if start is not None and not isinstance(start, ContactResult):
+        raise TypeError(f"start must be a ContactResult (the last result of the sweep resumed), got {start!r:.60}")
+    if start is not None and not warm_start:
+        raise ValueError("start= warm-starts the first step; it contradicts warm_start=False")
+    if isinstance(voltages, (str, bytes)) or not np.iterable(voltages):
+        raise TypeError(f"voltages must be a sequence of voltages [V], got {voltages!r:.60}")
+    laws = [dataclasses.replace(law, voltage=voltage) for voltage in voltages]
+    return _voltage_steps(problem, laws, warm_start, start, progress, solver_options)
+
+
+def _voltage_steps(problem, laws, warm_start, previous, progress, solver_options):
+    """The generator behind :func:`voltage_steps` (its arguments checked before the first step)."""
+    from tqdm.auto import tqdm
+
+    steps = tqdm(laws, desc="voltage path", unit="step", disable=not progress)
+    for law in steps:
+        result = problem.with_heights(problem.heights, law).solve(x0=previous if warm_start else None,
+                                                                  **solver_options)
+        previous = result
+        steps.set_postfix(voltage=f"{law.voltage:.4g}", contact_fraction=f"{result.contact_fraction:.4g}",
+                          iterations=result.iterations, refresh=False)
         yield result
