@@ -58,16 +58,24 @@ def load_steps(problem, mean_pressures, warm_start=True, start=None, progress=Fa
     says (its arguments checked here, before the first step): ``problem.solve(mean_pressure=…, x0=…,
     **solver_options)``."""
     solver_options = solver_options or {}
-    if "x0" in solver_options:
-        raise ValueError("load_path sets x0 itself; pass warm_start=False to start every step cold, or start= "
-                         "to warm-start the first step")
     starts = _start_results(start)
+    check_choice("predictor", predictor, PREDICTORS)
+    _check_sweep("load_path", ("mean_pressures", mean_pressures, "mean pressures [Pa]"), solver_options, start,
+                 warm_start)
+    return _load_steps(problem, mean_pressures, warm_start, starts, progress, predictor, solver_options)
+
+
+def _check_sweep(path: str, steps: tuple, solver_options: dict, start, warm_start) -> None:
+    """The checks a sweep ``path`` shares: no ``x0`` among the solver's options (the sweep sets it), no ``start``
+    without a warm start, and ``steps`` (name, values, what they are) a sequence."""
+    if "x0" in solver_options:
+        raise ValueError(f"{path} sets x0 itself; pass warm_start=False to start every step cold, or start= "
+                         "to warm-start the first step")
     if start is not None and not warm_start:
         raise ValueError("start= warm-starts the first step; it contradicts warm_start=False")
-    check_choice("predictor", predictor, PREDICTORS)
-    if isinstance(mean_pressures, (str, bytes)) or not np.iterable(mean_pressures):
-        raise TypeError(f"mean_pressures must be a sequence of mean pressures [Pa], got {mean_pressures!r:.60}")
-    return _load_steps(problem, mean_pressures, warm_start, starts, progress, predictor, solver_options)
+    name, values, what = steps
+    if isinstance(values, (str, bytes)) or not np.iterable(values):
+        raise TypeError(f"{name} must be a sequence of {what}, got {values!r:.60}")
 
 
 def _load_steps(problem, mean_pressures, warm_start, starts, progress, predictor, solver_options):
@@ -104,15 +112,9 @@ def voltage_steps(problem, voltages, warm_start=True, start=None, progress=False
         raise TypeError(f"voltage_path sweeps the voltage of an ElectrostaticInteraction; the problem's law is "
                         f"{type(law).__name__}")
     solver_options = solver_options or {}
-    if "x0" in solver_options:
-        raise ValueError("voltage_path sets x0 itself; pass warm_start=False to start every step cold, or start= "
-                         "to warm-start the first step")
     if start is not None and not isinstance(start, ContactResult):
         raise TypeError(f"start must be a ContactResult (the last result of the sweep resumed), got {start!r:.60}")
-    if start is not None and not warm_start:
-        raise ValueError("start= warm-starts the first step; it contradicts warm_start=False")
-    if isinstance(voltages, (str, bytes)) or not np.iterable(voltages):
-        raise TypeError(f"voltages must be a sequence of voltages [V], got {voltages!r:.60}")
+    _check_sweep("voltage_path", ("voltages", voltages, "voltages [V]"), solver_options, start, warm_start)
     laws = [dataclasses.replace(law, voltage=voltage) for voltage in voltages]
     return _voltage_steps(problem, laws, warm_start, start, progress, solver_options)
 
