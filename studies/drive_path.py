@@ -51,13 +51,13 @@ def branch_results(patch, law, voltages, tol):
 
 
 def rows_for(name, force, realisation, args):
-    patch = default_scene_patch(args.grid, force, realisation)
+    patch, voltages = default_scene_patch(args.grid, force, realisation), sorted(args.voltages)
     drive = {"frequency": args.frequency} if name == "ac" else {}
-    law = ElectrostaticInteraction(patch.stack, max(args.voltages), **LAWS[name], **drive)
-    results = branch_results(patch, law, sorted(args.voltages), args.tol)
+    law = ElectrostaticInteraction(patch.stack, voltages[-1], **LAWS[name], **drive)
+    results = branch_results(patch, law, voltages, args.tol)
     rows = []
     for branch in BRANCHES:
-        for voltage, result, cold in zip(sorted(args.voltages), results[branch], results["cold"]):
+        for voltage, result, cold in zip(voltages, results[branch], results["cold"]):
             rows.append(dict(law=name, force_N=force, realisation=realisation, voltage_V=voltage, branch=branch,
                              electrostatic_force_N=result.electrostatic_force,
                              force_over_cold=result.electrostatic_force / cold.electrostatic_force,
